@@ -1,0 +1,256 @@
+//! The paper's per-mode identification of the joint parameters.
+//!
+//! For each measured mode r (eq. (4)-(16)):
+//! 1. Y, Lambda: the first `n` eigenpairs of the nominal model, rigid-body modes included in
+//!    the count (eq. (2)); mode r pairs with basis index s_r = r + (rigid-body modes)
+//!    (1-based; 0-based `r - 1 + rigid` here).
+//! 2. g_r: least squares of Y~ g = y~ over the identified DOFs, eq. (14)/(15)
+//!    ([`projection`]).
+//! 3. S_r, b_r: eq. (10)-(12) on the `m` retained rows nearest to s_r ([`system`],
+//!    [`weighting`]).
+//! 4. Z_r: weighted least squares (13) by QR ([`wls`]); the correction of parameter i is
+//!    Delta p_i = p_i Z_r(i) (eq. (8)).
+
+pub mod projection;
+pub mod system;
+pub mod weighting;
+pub mod wls;
+
+use faer::Mat;
+
+pub use projection::{ProjectionError, Projector};
+pub use system::ModeSystem;
+pub use weighting::{RetainedRows, Weighting};
+pub use wls::RankDeficient;
+
+use crate::measured::MeasuredMode;
+use crate::modal::{ModalSolution, lambda_to_hz};
+use crate::model::{Model, Parameter, RIGID_BODY_MODES};
+
+/// The method's settings: basis size n, retained equations m, weighting W.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Settings {
+    /// Number of calculated eigenpairs in the sub-basis Y, rigid-body modes included.
+    pub n: usize,
+    /// Number of retained sensitivity equations, q <= m <= n - rigid-body modes.
+    pub m: usize,
+    /// Weighting of the retained equations (eq. (16)).
+    pub weighting: Weighting,
+}
+
+/// Settings or data the method cannot work with.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum IdentifyError {
+    /// n outside what the model offers.
+    #[error(
+        "n = {n} is invalid: it must be from {min} to {dofs} (the model's DOFs), rigid-body modes included"
+    )]
+    BasisSize {
+        /// Requested n.
+        n: usize,
+        /// Smallest useful n (one deformable mode).
+        min: usize,
+        /// N.
+        dofs: usize,
+    },
+    /// m below the number of parameters.
+    #[error("m = {m} is invalid: it must be at least the number of parameters q = {q}")]
+    TooFewEquations {
+        /// Requested m.
+        m: usize,
+        /// q.
+        q: usize,
+    },
+    /// m above the deformable rows of the basis.
+    #[error(
+        "m = {m} is invalid: a basis of n = {n} has only {available} deformable rows (rigid-body rows are never retained)"
+    )]
+    TooManyEquations {
+        /// Requested m.
+        m: usize,
+        /// Basis size n.
+        n: usize,
+        /// n - rigid-body modes.
+        available: usize,
+    },
+    /// The mode's own basis vector is not in the sub-basis.
+    #[error(
+        "mode {mode} pairs with basis index {index} (1-based, after {rigid} rigid-body modes), beyond n = {n}: increase n"
+    )]
+    ModeBeyondBasis {
+        /// Mode r.
+        mode: usize,
+        /// s_r, 1-based.
+        index: usize,
+        /// Rigid-body modes.
+        rigid: usize,
+        /// Basis size n.
+        n: usize,
+    },
+    /// The measured shape cannot be projected on the sub-basis.
+    #[error("mode {mode}: {source}")]
+    Projection {
+        /// Mode r.
+        mode: usize,
+        /// Why.
+        source: ProjectionError,
+    },
+}
+
+/// The nominal model's side of the method, shared by every mode: sub-basis, eigenvalues,
+/// parameters and settings.
+#[derive(Debug, Clone)]
+pub struct Identifier {
+    y: Mat<f64>,
+    lambdas: Vec<f64>,
+    params: Vec<Parameter>,
+    settings: Settings,
+    rigid: usize,
+}
+
+/// The identification of one mode.
+#[derive(Debug, Clone)]
+pub struct ModeOutcome {
+    /// Mode r.
+    pub mode: usize,
+    /// Basis index s_r, 0-based.
+    pub basis_index: usize,
+    /// Measured frequency, Hz.
+    pub frequency_measured_hz: f64,
+    /// Frequency of the paired nominal mode, Hz.
+    pub frequency_model_hz: f64,
+    /// Coefficients g_r of the measured shape on the sub-basis.
+    pub g: Vec<f64>,
+    /// Condition number of W S_r (infinite when rank deficient).
+    pub condition: f64,
+    /// Z_r = Delta p_i / p_i, or the rank of a rank-deficient S_r.
+    pub relative: Result<Vec<f64>, RankDeficient>,
+}
+
+impl Identifier {
+    /// The joint identification of the paper: parameters k1, k2 of every joint of `model`,
+    /// sub-basis from its modal solution.
+    pub fn for_joints(
+        model: &Model,
+        modal: &ModalSolution,
+        settings: Settings,
+    ) -> Result<Self, IdentifyError> {
+        Self::new(modal, model.joint_parameters(), RIGID_BODY_MODES, settings)
+    }
+
+    /// General form: any parameters with their derivatives, `rigid` rigid-body modes first.
+    pub fn new(
+        modal: &ModalSolution,
+        params: Vec<Parameter>,
+        rigid: usize,
+        settings: Settings,
+    ) -> Result<Self, IdentifyError> {
+        let Settings { n, m, .. } = settings;
+        if n <= rigid || n > modal.len() {
+            return Err(IdentifyError::BasisSize {
+                n,
+                min: rigid + 1,
+                dofs: modal.len(),
+            });
+        }
+        if m < params.len() {
+            return Err(IdentifyError::TooFewEquations { m, q: params.len() });
+        }
+        if m > n - rigid {
+            return Err(IdentifyError::TooManyEquations {
+                m,
+                n,
+                available: n - rigid,
+            });
+        }
+        let (y, lambdas) = modal.sub_basis(n);
+        Ok(Self {
+            y,
+            lambdas,
+            params,
+            settings,
+            rigid,
+        })
+    }
+
+    /// The sub-basis Y (N x n).
+    pub fn basis(&self) -> &Mat<f64> {
+        &self.y
+    }
+
+    /// Its eigenvalues.
+    pub fn lambdas(&self) -> &[f64] {
+        &self.lambdas
+    }
+
+    /// The parameters p_i.
+    pub fn parameters(&self) -> &[Parameter] {
+        &self.params
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    /// Basis index s_r (0-based) of deformable mode r, checked to lie in the sub-basis.
+    pub fn basis_index(&self, mode: usize) -> Result<usize, IdentifyError> {
+        let s = mode - 1 + self.rigid;
+        if s >= self.settings.n {
+            return Err(IdentifyError::ModeBeyondBasis {
+                mode,
+                index: s + 1,
+                rigid: self.rigid,
+                n: self.settings.n,
+            });
+        }
+        Ok(s)
+    }
+
+    /// The retained, weighted system of the mode paired with basis index `s_r`.
+    pub fn mode_system(&self, s_r: usize) -> ModeSystem {
+        let Settings { n, m, weighting } = self.settings;
+        let rows = RetainedRows::select(n, self.rigid, s_r, m, weighting);
+        ModeSystem::new(&self.y, &self.lambdas, &self.params, rows)
+    }
+
+    /// Identifies the parameter corrections on one measured mode.
+    pub fn identify(&self, measured: &MeasuredMode) -> Result<ModeOutcome, IdentifyError> {
+        let mode = measured.mode;
+        let s_r = self.basis_index(mode)?;
+        let projector = Projector::new(&self.y, &measured.dofs)
+            .map_err(|source| IdentifyError::Projection { mode, source })?;
+        let mut g = vec![0.0; self.settings.n];
+        projector.project(&measured.values, &mut g);
+        let system = self.mode_system(s_r);
+        let (m, q) = (system.m(), system.q());
+        let mut ws = vec![0.0; m * q];
+        let mut wb = vec![0.0; m];
+        system.assemble(&g, measured.lambda(), &mut ws, &mut wb);
+        let condition = condition_number(&ws, m, q);
+        let mut z = vec![0.0; q];
+        let relative = wls::solve_in_place(&mut ws, &mut wb, m, q, &mut z).map(|()| z);
+        Ok(ModeOutcome {
+            mode,
+            basis_index: s_r,
+            frequency_measured_hz: measured.frequency_hz,
+            frequency_model_hz: lambda_to_hz(self.lambdas[s_r]),
+            g,
+            condition: if relative.is_ok() {
+                condition
+            } else {
+                f64::INFINITY
+            },
+            relative,
+        })
+    }
+}
+
+/// 2-norm condition number of the column-major `m x q` matrix `a` (infinite when singular).
+pub fn condition_number(a: &[f64], m: usize, q: usize) -> f64 {
+    let mat = Mat::from_fn(m, q, |i, j| a[j * m + i]);
+    match mat.singular_values() {
+        Ok(s) if s[q - 1] > 0.0 => s[0] / s[q - 1],
+        _ => f64::INFINITY,
+    }
+}

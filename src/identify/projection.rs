@@ -1,0 +1,134 @@
+//! Representation of a measured shape on the calculated modal sub-basis, eq. (5), (14), (15):
+//! g_r = least-squares solution of Y~ g = y~ over the identified DOFs.
+//!
+//! The pseudo-inverse P = Y~^+ (n x n_id) is formed once from a thin SVD of Y~, so that every
+//! later shape over the same DOFs costs one matrix-vector product (the study engine projects
+//! millions of noisy shapes on one P).
+
+use faer::Mat;
+
+/// Why a shape cannot be projected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ProjectionError {
+    /// Fewer identified DOFs than basis vectors: g is not determined.
+    #[error(
+        "{identified} identified DOF(s) cannot determine the {n} components of g (n must not exceed the identified DOFs)"
+    )]
+    Underdetermined {
+        /// Identified DOFs.
+        identified: usize,
+        /// Basis size n.
+        n: usize,
+    },
+    /// The basis vectors restricted to the identified DOFs are linearly dependent.
+    #[error(
+        "the {n} basis vectors restricted to the identified DOFs have rank {rank}: measure more DOFs or reduce n"
+    )]
+    RankDeficient {
+        /// Basis size n.
+        n: usize,
+        /// Numerical rank of Y~.
+        rank: usize,
+    },
+}
+
+/// Relative singular-value threshold below which Y~ is declared rank deficient.
+pub const RANK_TOLERANCE: f64 = 1e-12;
+
+/// The pseudo-inverse of the sub-basis over a set of identified DOFs.
+#[derive(Debug, Clone)]
+pub struct Projector {
+    pinv: Mat<f64>,
+    condition: f64,
+}
+
+impl Projector {
+    /// Builds Y~^+ for the rows `dofs` of the sub-basis `y` (N x n).
+    pub fn new(y: &Mat<f64>, dofs: &[usize]) -> Result<Self, ProjectionError> {
+        let n = y.ncols();
+        if dofs.len() < n {
+            return Err(ProjectionError::Underdetermined {
+                identified: dofs.len(),
+                n,
+            });
+        }
+        let yt = Mat::from_fn(dofs.len(), n, |i, j| y[(dofs[i], j)]);
+        let svd = yt
+            .thin_svd()
+            .map_err(|_| ProjectionError::RankDeficient { n, rank: 0 })?;
+        let s = svd.S().column_vector();
+        let smax = s[0];
+        let rank = (0..n).filter(|&i| s[i] > RANK_TOLERANCE * smax).count();
+        if rank < n {
+            return Err(ProjectionError::RankDeficient { n, rank });
+        }
+        let (u, v) = (svd.U(), svd.V());
+        let pinv = Mat::from_fn(n, dofs.len(), |i, j| {
+            (0..n).map(|k| v[(i, k)] * u[(j, k)] / s[k]).sum()
+        });
+        Ok(Self {
+            pinv,
+            condition: smax / s[n - 1],
+        })
+    }
+
+    /// The pseudo-inverse P (n x n_id).
+    pub fn pinv(&self) -> &Mat<f64> {
+        &self.pinv
+    }
+
+    /// Condition number of Y~.
+    pub fn condition(&self) -> f64 {
+        self.condition
+    }
+
+    /// g = P y~, written into `g` (length n).
+    pub fn project(&self, shape: &[f64], g: &mut [f64]) {
+        let p = &self.pinv;
+        g.fill(0.0);
+        for (j, &yj) in shape.iter().enumerate() {
+            for (i, gi) in g.iter_mut().enumerate() {
+                *gi += p[(i, j)] * yj;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recovers_coefficients_of_a_shape_in_the_span() {
+        let y = Mat::from_fn(6, 3, |i, j| ((i + 1) as f64).powi(j as i32));
+        let g_true = [0.5, -2.0, 0.25];
+        let dofs = [0, 2, 3, 5];
+        let shape: Vec<f64> = dofs
+            .iter()
+            .map(|&d| (0..3).map(|j| y[(d, j)] * g_true[j]).sum())
+            .collect();
+        let p = Projector::new(&y, &dofs).unwrap();
+        let mut g = [0.0; 3];
+        p.project(&shape, &mut g);
+        for (a, b) in g.iter().zip(g_true) {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn too_few_dofs_or_dependent_columns_are_errors() {
+        let y = Mat::from_fn(6, 3, |i, j| ((i + 1) as f64).powi(j as i32));
+        assert_eq!(
+            Projector::new(&y, &[0, 1]).unwrap_err(),
+            ProjectionError::Underdetermined {
+                identified: 2,
+                n: 3
+            }
+        );
+        let dependent = Mat::from_fn(6, 2, |i, _| i as f64 + 1.0);
+        assert_eq!(
+            Projector::new(&dependent, &[0, 1, 2]).unwrap_err(),
+            ProjectionError::RankDeficient { n: 2, rank: 1 }
+        );
+    }
+}

@@ -1,0 +1,18 @@
+//! jointid: identification of the stiffness of mechanical joints from measured vibration
+//! modes, mode by mode, after Abdel-Mohsen & Bassiouni, "Effect of vibration frequency on
+//! dynamic contact stiffness of joints".
+//!
+//! The data flow one way; open the modules in this order:
+//! 1. [`model`]: the model file, beam elements, the joint of eq. (17), assembly of K, M and
+//!    of the parameter derivatives dK/dp (eq. (8));
+//! 2. [`modal`]: the eigensolution of eq. (1)-(2);
+//! 3. [`measured`]: measured modes (eigenvalues and partial shapes);
+//! 4. [`identify`]: the per-mode method, eq. (5)-(16);
+//! 5. [`output`]: CSV and terminal tables.
+
+pub mod identify;
+pub mod input;
+pub mod measured;
+pub mod modal;
+pub mod model;
+pub mod output;

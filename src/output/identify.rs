@@ -1,0 +1,131 @@
+//! The result of `jointid identify`: one row per (mode, parameter).
+//!
+//! CSV columns: `mode,param,initial,correction,corrected,relative_correction,
+//! frequency_measured_hz,frequency_model_hz,condition`. Numbers are written in the shortest
+//! form that reads back to the same f64. A mode whose S_r is rank deficient has empty
+//! `correction`, `corrected` and `relative_correction` and `condition = inf`.
+
+use std::io::{self, Write};
+
+use super::table::{sci, write_table};
+use crate::identify::ModeOutcome;
+use crate::model::Parameter;
+
+/// The CSV header.
+pub const HEADER: [&str; 9] = [
+    "mode",
+    "param",
+    "initial",
+    "correction",
+    "corrected",
+    "relative_correction",
+    "frequency_measured_hz",
+    "frequency_model_hz",
+    "condition",
+];
+
+/// One output row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdentifyRow {
+    /// Mode r.
+    pub mode: usize,
+    /// Parameter name.
+    pub param: String,
+    /// p_i.
+    pub initial: f64,
+    /// Z_r(i), `None` when S_r is rank deficient.
+    pub relative: Option<f64>,
+    /// Measured frequency, Hz.
+    pub frequency_measured_hz: f64,
+    /// Paired nominal frequency, Hz.
+    pub frequency_model_hz: f64,
+    /// cond(W S_r).
+    pub condition: f64,
+}
+
+impl IdentifyRow {
+    /// Delta p_i = p_i Z_r(i).
+    pub fn correction(&self) -> Option<f64> {
+        self.relative.map(|z| self.initial * z)
+    }
+
+    /// p_i + Delta p_i.
+    pub fn corrected(&self) -> Option<f64> {
+        self.correction().map(|d| self.initial + d)
+    }
+}
+
+/// The rows of a set of identified modes.
+pub fn rows(outcomes: &[ModeOutcome], params: &[Parameter]) -> Vec<IdentifyRow> {
+    outcomes
+        .iter()
+        .flat_map(|o| {
+            params.iter().enumerate().map(move |(i, p)| IdentifyRow {
+                mode: o.mode,
+                param: p.name.clone(),
+                initial: p.value,
+                relative: o.relative.as_ref().ok().map(|z| z[i]),
+                frequency_measured_hz: o.frequency_measured_hz,
+                frequency_model_hz: o.frequency_model_hz,
+                condition: o.condition,
+            })
+        })
+        .collect()
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// Writes the rows as CSV.
+pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record(HEADER)?;
+    for r in rows {
+        w.write_record([
+            r.mode.to_string(),
+            r.param.clone(),
+            r.initial.to_string(),
+            opt(r.correction()),
+            opt(r.corrected()),
+            opt(r.relative),
+            r.frequency_measured_hz.to_string(),
+            r.frequency_model_hz.to_string(),
+            r.condition.to_string(),
+        ])?;
+    }
+    w.flush()
+}
+
+/// Writes the rows as an aligned terminal table.
+pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
+    let header = [
+        "mode",
+        "param",
+        "initial",
+        "correction",
+        "corrected",
+        "rel. corr.",
+        "f meas (Hz)",
+        "f model (Hz)",
+        "cond(WS)",
+    ];
+    let na = || "rank-deficient".to_string();
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.mode.to_string(),
+                r.param.clone(),
+                sci(r.initial),
+                r.correction().map(sci).unwrap_or_else(na),
+                r.corrected().map(sci).unwrap_or_else(na),
+                r.relative.map(|z| format!("{z:+.4}")).unwrap_or_else(na),
+                format!("{:.3}", r.frequency_measured_hz),
+                format!("{:.3}", r.frequency_model_hz),
+                format!("{:.3e}", r.condition),
+            ]
+        })
+        .collect();
+    write_table(out, &header, &cells)
+}

@@ -1,0 +1,8 @@
+//! Exporters: CSV tables and terminal tables, written into any `io::Write`, and the atomic
+//! file writer that puts them on disk whole or not at all.
+
+pub mod atomic;
+pub mod identify;
+pub mod table;
+
+pub use atomic::write_atomically;
