@@ -8,7 +8,8 @@
 //! 2. [`modal`]: the eigensolution of eq. (1)-(2);
 //! 3. [`measured`]: measured modes (eigenvalues and partial shapes);
 //! 4. [`identify`]: the per-mode method, eq. (5)-(16);
-//! 5. [`output`]: CSV and terminal tables.
+//! 5. [`output`]: CSV and terminal tables;
+//! - [`simulate`]: exact modes of a model as measurements, for tests and studies.
 
 pub mod identify;
 pub mod input;
@@ -16,3 +17,4 @@ pub mod measured;
 pub mod modal;
 pub mod model;
 pub mod output;
+pub mod simulate;

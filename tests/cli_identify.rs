@@ -1,0 +1,273 @@
+//! `jointid identify` end to end: a good run, and every bad input with its message, a
+//! non-zero exit and no output file.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::{all_dofs, paper_model};
+use jointid::modal::ModalSolution;
+use jointid::simulate::exact_modes;
+
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("jointid-cli-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+    fn write(&self, name: &str, text: &str) -> PathBuf {
+        let p = self.path(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+const MODEL: &str = include_str!("../models/paper-case-1.toml");
+
+fn simulated_csv(dofs: &[usize]) -> String {
+    let truth = paper_model(1.2e7, 1.2e4);
+    let modes = exact_modes(
+        &ModalSolution::solve(&truth.assemble()).unwrap(),
+        &[1, 2, 3, 4],
+        dofs,
+    );
+    let mut buf = Vec::new();
+    modes.write_csv(&mut buf).unwrap();
+    String::from_utf8(buf).unwrap()
+}
+
+fn identify(model: &Path, measured: &Path, extra: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_jointid"))
+        .arg("identify")
+        .arg("--model")
+        .arg(model)
+        .arg("--measured")
+        .arg(measured)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn identifies_noise_free_modes_into_a_csv() {
+    let s = Scratch::new("good");
+    let model = s.write("m.toml", MODEL);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    let out = s.path("out.csv");
+    let run = identify(
+        &model,
+        &data,
+        &[
+            "--n",
+            "38",
+            "--m",
+            "7",
+            "--weighting",
+            "inverse",
+            "--modes",
+            "1,3",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition"
+    );
+    assert_eq!(lines.len(), 5);
+    for (line, (mode, param, delta)) in lines[1..].iter().zip([
+        (1, "k1", 2.0e6),
+        (1, "k2", 2.0e3),
+        (3, "k1", 2.0e6),
+        (3, "k2", 2.0e3),
+    ]) {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f[0], mode.to_string());
+        assert_eq!(f[1], param);
+        let correction: f64 = f[3].parse().unwrap();
+        assert!((correction - delta).abs() < 1e-8 * delta, "{line}");
+        let relative: f64 = f[5].parse().unwrap();
+        assert!((relative - 0.2).abs() < 1e-8, "{line}");
+    }
+    // Without --out: a readable table on stdout.
+    let run = identify(
+        &model,
+        &data,
+        &["--n", "38", "--m", "7", "--weighting", "equal"],
+    );
+    assert!(run.status.success());
+    let table = String::from_utf8(run.stdout).unwrap();
+    assert!(table.lines().next().unwrap().contains("correction"));
+    assert_eq!(table.lines().count(), 9);
+}
+
+fn assert_fails(name: &str, model_text: &str, csv: &str, args: &[&str], message: &str) {
+    let s = Scratch::new(name);
+    let model = s.write("m.toml", model_text);
+    let data = s.write("d.csv", csv);
+    let out = s.path("out.csv");
+    let mut all: Vec<&str> = args.to_vec();
+    all.extend(["--out", out.to_str().unwrap()]);
+    let run = identify(&model, &data, &all);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success(), "{name}: should fail");
+    assert!(
+        stderr.contains(message),
+        "{name}: expected `{message}` in:\n{stderr}"
+    );
+    assert!(!out.exists(), "{name}: output file left behind");
+    assert_eq!(
+        std::fs::read_dir(&s.0).unwrap().count(),
+        2,
+        "{name}: stray files"
+    );
+}
+
+#[test]
+fn every_bad_input_is_explained_and_leaves_no_file() {
+    let good = simulated_csv(&all_dofs(&paper_model(1.0, 1.0)));
+    let w_only = simulated_csv(&common::translations(&paper_model(1.0, 1.0)));
+    let std_args = ["--n", "10", "--m", "5", "--weighting", "inverse"];
+    let header = "mode,frequency_hz,node,dof,value\n";
+    assert_fails(
+        "length",
+        &MODEL.replacen("length = 0.30", "length = -0.3", 1),
+        &good,
+        &std_args,
+        "m.toml: beam[1].length = -0.3 is invalid: it must be finite and > 0 (m)",
+    );
+    assert_fails(
+        "unknown-key",
+        &MODEL.replacen("density", "densty", 1),
+        &good,
+        &std_args,
+        "beam[0].densty: unknown field `densty`",
+    );
+    assert_fails(
+        "dof",
+        MODEL,
+        &format!("{header}1,150,0,phi,1\n"),
+        &std_args,
+        "d.csv:2: dof = `phi` is invalid: it must be `w` or `theta`",
+    );
+    assert_fails(
+        "node",
+        MODEL,
+        &format!("{header}1,150,19,w,1\n"),
+        &std_args,
+        "d.csv:2: node = `19` is invalid: the model has nodes 0 to 18",
+    );
+    assert_fails(
+        "duplicate",
+        MODEL,
+        &format!("{header}1,150,0,w,1\n1,150,0,w,1\n"),
+        &std_args,
+        "d.csv:3: mode 1, node 0, dof w is given twice (first on line 2)",
+    );
+    assert_fails(
+        "frequencies",
+        MODEL,
+        &format!("{header}1,150,0,w,1\n1,152,1,w,1\n"),
+        &std_args,
+        "d.csv:3: mode 1 has frequency_hz = 152 here but 150 on line 2",
+    );
+    assert_fails(
+        "nonfinite",
+        MODEL,
+        &format!("{header}1,150,0,w,nan\n"),
+        &std_args,
+        "d.csv:2: value = `nan` is invalid",
+    );
+    assert_fails(
+        "no-shape",
+        MODEL,
+        &format!("{header}1,150,,,\n"),
+        &std_args,
+        "d.csv:2: mode 1 has no shape rows",
+    );
+    assert_fails(
+        "underdetermined",
+        MODEL,
+        &w_only,
+        &["--n", "20", "--m", "5", "--weighting", "inverse"],
+        "mode 1: 19 identified DOF(s) cannot determine the 20 components of g",
+    );
+    assert_fails(
+        "m-large",
+        MODEL,
+        &good,
+        &["--n", "10", "--m", "9", "--weighting", "inverse"],
+        "m = 9 is invalid: a basis of n = 10 has only 8 deformable rows",
+    );
+    assert_fails(
+        "m-small",
+        MODEL,
+        &good,
+        &["--n", "10", "--m", "1", "--weighting", "inverse"],
+        "m = 1 is invalid: it must be at least the number of parameters q = 2",
+    );
+    assert_fails(
+        "n-large",
+        MODEL,
+        &good,
+        &["--n", "39", "--m", "5", "--weighting", "inverse"],
+        "n = 39 is invalid: it must be from 3 to 38",
+    );
+    assert_fails(
+        "beyond-basis",
+        MODEL,
+        &good,
+        &["--n", "5", "--m", "2", "--weighting", "inverse"],
+        "mode 4 pairs with basis index 6 (1-based, after 2 rigid-body modes), beyond n = 5: increase n",
+    );
+    assert_fails(
+        "missing-mode",
+        MODEL,
+        &good,
+        &[
+            "--n",
+            "10",
+            "--m",
+            "5",
+            "--weighting",
+            "inverse",
+            "--modes",
+            "1,7",
+        ],
+        "--modes asks for mode 7",
+    );
+    assert_fails(
+        "weighting",
+        MODEL,
+        &good,
+        &["--n", "10", "--m", "5", "--weighting", "cubic"],
+        "`cubic` is not a weighting: use equal, inverse or inverse-sqrt",
+    );
+    assert_fails(
+        "no-model",
+        "",
+        &good,
+        &std_args,
+        "m.toml:1: missing field `beam`",
+    );
+}
