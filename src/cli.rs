@@ -20,6 +20,47 @@ pub struct Cli {
 pub enum Command {
     /// Per-mode correction of the joint stiffnesses (the paper's method, eq. (5)-(16)).
     Identify(IdentifyArgs),
+    /// Monte-Carlo robustness study from a TOML file: bias and spread of every per-mode
+    /// correction over the grid.
+    Study(StudyArgs),
+    /// Run a study and exit 1 when the estimator bias in the cells of `[check]` exceeds
+    /// its threshold (a CI gate).
+    Check(StudyArgs),
+    /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
+    Bench(BenchArgs),
+}
+
+/// `jointid study` and `jointid check`.
+#[derive(Debug, Args)]
+pub struct StudyArgs {
+    /// Study file (TOML).
+    pub study: PathBuf,
+    /// Worker threads (default: all cores). The output does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Also write every trial's corrections to this CSV.
+    #[arg(long)]
+    pub trials_csv: Option<PathBuf>,
+    /// Write the results here instead of the study's `[output].csv`.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// No progress bar (it is hidden anyway when stderr is not a terminal).
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// `jointid bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Trials per timed run (each trial identifies 4 modes).
+    #[arg(long, default_value_t = 200_000)]
+    pub trials: usize,
+    /// Timed runs per configuration; medians are reported.
+    #[arg(long, default_value_t = 5)]
+    pub repeat: usize,
+    /// The numpy baseline script, run side by side (python3 with numpy and scipy needed).
+    #[arg(long)]
+    pub numpy: Option<PathBuf>,
 }
 
 /// `jointid identify`.

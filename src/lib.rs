@@ -18,3 +18,5 @@ pub mod modal;
 pub mod model;
 pub mod output;
 pub mod simulate;
+pub mod stats;
+pub mod study;

@@ -1,14 +1,20 @@
 //! The `jointid` binary: parses arguments, runs the command, prints the error chain.
+//! Exit codes: 0 success, 1 a failed check (`jointid check`), 2 an error.
 
 mod cli;
 mod commands;
 
+use std::process::ExitCode;
+
 use clap::Parser;
 
-fn main() {
+fn main() -> ExitCode {
     let cli = cli::Cli::parse();
-    if let Err(e) = commands::run(cli) {
-        eprintln!("error: {e:#}");
-        std::process::exit(1);
+    match commands::run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
     }
 }

@@ -1,12 +1,21 @@
 //! One file per command: each reads its inputs, calls the library and writes its outputs.
 
+mod bench;
+mod check;
 mod identify;
+mod run_study;
+mod study;
+
+use std::process::ExitCode;
 
 use crate::cli::{Cli, Command};
 
 /// Runs the parsed command.
-pub fn run(cli: Cli) -> anyhow::Result<()> {
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Command::Identify(args) => identify::run(&args),
+        Command::Identify(args) => identify::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Study(args) => study::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Check(args) => check::run(&args),
+        Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),
     }
 }

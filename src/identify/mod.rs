@@ -19,7 +19,7 @@ pub mod wls;
 use faer::Mat;
 
 pub use projection::{ProjectionError, Projector};
-pub use system::ModeSystem;
+pub use system::{LANES, Lanes, ModeSystem};
 pub use weighting::{RetainedRows, Weighting};
 pub use wls::RankDeficient;
 

@@ -7,6 +7,8 @@
 
 use faer::Mat;
 
+use super::system::{LANES, Lanes};
+
 /// Why a shape cannot be projected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ProjectionError {
@@ -38,7 +40,9 @@ pub const RANK_TOLERANCE: f64 = 1e-12;
 /// The pseudo-inverse of the sub-basis over a set of identified DOFs.
 #[derive(Debug, Clone)]
 pub struct Projector {
-    pinv: Mat<f64>,
+    /// Y~^+ column-major (n x n_id): column j at `j * n`.
+    pinv: Vec<f64>,
+    n: usize,
     condition: f64,
 }
 
@@ -63,18 +67,22 @@ impl Projector {
             return Err(ProjectionError::RankDeficient { n, rank });
         }
         let (u, v) = (svd.U(), svd.V());
-        let pinv = Mat::from_fn(n, dofs.len(), |i, j| {
-            (0..n).map(|k| v[(i, k)] * u[(j, k)] / s[k]).sum()
-        });
+        // P = V S^-1 U^T, stored column by column.
+        let pinv = (0..dofs.len())
+            .flat_map(|j| (0..n).map(move |i| (i, j)))
+            .map(|(i, j)| (0..n).map(|k| v[(i, k)] * u[(j, k)] / s[k]).sum())
+            .collect();
         Ok(Self {
             pinv,
+            n,
             condition: smax / s[n - 1],
         })
     }
 
-    /// The pseudo-inverse P (n x n_id).
-    pub fn pinv(&self) -> &Mat<f64> {
-        &self.pinv
+    /// Column `j` of the pseudo-inverse: the derivative of g with respect to the j-th
+    /// identified shape element.
+    pub fn column(&self, j: usize) -> &[f64] {
+        &self.pinv[j * self.n..(j + 1) * self.n]
     }
 
     /// Condition number of Y~.
@@ -82,13 +90,29 @@ impl Projector {
         self.condition
     }
 
+    /// [`Projector::project`] for `LANES` shapes at once (`shape[j][l]`, `g[i][l]`), in the
+    /// same order of operations: bitwise the same result per lane.
+    #[inline]
+    pub fn project_lanes(&self, shape: &[Lanes], g: &mut [Lanes]) {
+        for gi in g.iter_mut() {
+            *gi = [0.0; LANES];
+        }
+        for (column, yj) in self.pinv.chunks_exact(self.n).zip(shape) {
+            for (gi, pij) in g.iter_mut().zip(column) {
+                for l in 0..LANES {
+                    gi[l] += pij * yj[l];
+                }
+            }
+        }
+    }
+
     /// g = P y~, written into `g` (length n).
+    #[inline]
     pub fn project(&self, shape: &[f64], g: &mut [f64]) {
-        let p = &self.pinv;
         g.fill(0.0);
-        for (j, &yj) in shape.iter().enumerate() {
-            for (i, gi) in g.iter_mut().enumerate() {
-                *gi += p[(i, j)] * yj;
+        for (column, &yj) in self.pinv.chunks_exact(self.n).zip(shape) {
+            for (gi, pij) in g.iter_mut().zip(column) {
+                *gi += pij * yj;
             }
         }
     }

@@ -1,8 +1,14 @@
-//! Weighted least squares of eq. (13), solved through a Householder QR of W S, never through
-//! the normal equations (whose conditioning is the square of that of W S).
+//! Weighted least squares of eq. (13), solved through a QR factorisation of W S, never
+//! through the normal equations (whose conditioning is the square of that of W S).
 //!
-//! The system is tiny (m x q with q = 2 per joint) and is solved millions of times by the
-//! study engine, so this is a small in-place QR on caller-owned buffers: no allocation.
+//! The factorisation is modified Gram-Schmidt applied to the augmented matrix [W S | W b]:
+//! the least-squares solution so obtained is backward stable (Bjorck 1967; Bjorck,
+//! *Numerical Methods for Least Squares Problems*, SIAM 1996, sec. 2.4.3), every column is
+//! normalised as it is processed (no overflow of squared entries), and for the tiny systems
+//! here (m x q with q = 2 per joint, solved millions of times by the study engine) it is the
+//! cheapest QR: in place on caller-owned buffers, no allocation.
+
+use super::system::{LANES, Lanes};
 
 /// A column is declared dependent when less than this fraction of its norm lies outside the
 /// span of the columns before it (|R_kk| <= RANK_TOLERANCE * ||a_k||).
@@ -16,7 +22,9 @@ pub struct RankDeficient {
 }
 
 /// Minimises ||a z - b|| for the column-major `m x q` matrix `a` (already weighted: a = W S,
-/// b = W b). `a` and `b` are overwritten by the factorisation; the solution goes to `z`.
+/// b = W b). `a` and `b` are overwritten (by Q and the residual); the solution goes to `z`.
+/// R lives in a stack array: q must not exceed [`MAX_Q`].
+#[inline]
 pub fn solve_in_place(
     a: &mut [f64],
     b: &mut [f64],
@@ -24,60 +32,176 @@ pub fn solve_in_place(
     q: usize,
     z: &mut [f64],
 ) -> Result<(), RankDeficient> {
-    debug_assert!(a.len() == m * q && b.len() == m && z.len() == q && m >= q);
+    assert!(a.len() == m * q && b.len() == m && z.len() == q && m >= q && q <= MAX_Q);
     let mut rank = 0;
+    let mut rb = [0.0; MAX_Q];
+    let mut r = [[0.0; MAX_Q]; MAX_Q];
+    let mut original = [0.0; MAX_Q];
+    for (k, o) in original.iter_mut().enumerate().take(q) {
+        *o = norm(&a[k * m..(k + 1) * m]);
+    }
     for k in 0..q {
-        let original = norm(&a[k * m..(k + 1) * m]);
         let (done, rest) = a.split_at_mut((k + 1) * m);
         let col = &mut done[k * m..];
-        let sigma = norm(&col[k..]);
-        if sigma > RANK_TOLERANCE * original {
+        let rkk = norm(col);
+        if rkk > RANK_TOLERANCE * original[k] {
             rank += 1;
-        }
-        if sigma == 0.0 {
+        } else {
             continue;
         }
-        // v = x - alpha e1 with alpha = -sign(x0) ||x||: no cancellation, and
-        // v^T v = 2 sigma (sigma + |x0|).
-        let x0 = col[k];
-        let alpha = if x0 > 0.0 { -sigma } else { sigma };
-        col[k] -= alpha;
-        let vtv = 2.0 * sigma * (sigma + x0.abs());
-        let v = &col[k..];
-        for j in 0..q - k - 1 {
-            reflect(v, &mut rest[j * m + k..(j + 1) * m], vtv);
+        for v in col.iter_mut() {
+            *v /= rkk;
         }
-        reflect(v, &mut b[k..], vtv);
-        col[k] = alpha;
+        r[k][k] = rkk;
+        for j in k + 1..q {
+            let aj = &mut rest[(j - k - 1) * m..(j - k) * m];
+            r[k][j] = project_out(col, aj);
+        }
+        rb[k] = project_out(col, b);
     }
     if rank < q {
         return Err(RankDeficient { rank });
     }
     for k in (0..q).rev() {
-        let s: f64 = (k + 1..q).map(|j| a[j * m + k] * z[j]).sum();
-        z[k] = (b[k] - s) / a[k * m + k];
+        let mut s = rb[k];
+        for j in k + 1..q {
+            s -= r[k][j] * z[j];
+        }
+        z[k] = s / r[k][k];
     }
     Ok(())
 }
 
+/// [`solve_in_place`] for `LANES` systems at once (`a[i * m + k][l]`, `b[k][l]`), each lane
+/// through the same operations in the same order: bitwise the scalar result. `ok[l]` tells
+/// whether lane l had full rank; the `z` of a rank-deficient lane is meaningless.
+#[inline]
+pub fn solve_lanes(
+    a: &mut [Lanes],
+    b: &mut [Lanes],
+    m: usize,
+    q: usize,
+    z: &mut [Lanes],
+    ok: &mut [bool; LANES],
+) {
+    assert!(a.len() == m * q && b.len() == m && z.len() == q && m >= q && q <= MAX_Q);
+    let mut rb = [[0.0; LANES]; MAX_Q];
+    let mut r = [[[0.0; LANES]; MAX_Q]; MAX_Q];
+    let mut original = [[0.0; LANES]; MAX_Q];
+    for (k, o) in original.iter_mut().enumerate().take(q) {
+        *o = norm_lanes(&a[k * m..(k + 1) * m]);
+    }
+    *ok = [true; LANES];
+    for k in 0..q {
+        let (done, rest) = a.split_at_mut((k + 1) * m);
+        let col = &mut done[k * m..];
+        let rkk = norm_lanes(col);
+        for l in 0..LANES {
+            ok[l] &= rkk[l] > RANK_TOLERANCE * original[k][l];
+        }
+        for v in col.iter_mut() {
+            for l in 0..LANES {
+                v[l] /= rkk[l];
+            }
+        }
+        r[k][k] = rkk;
+        for j in k + 1..q {
+            let aj = &mut rest[(j - k - 1) * m..(j - k) * m];
+            r[k][j] = project_out_lanes(col, aj);
+        }
+        rb[k] = project_out_lanes(col, b);
+    }
+    for k in (0..q).rev() {
+        let mut s = rb[k];
+        for j in k + 1..q {
+            for l in 0..LANES {
+                s[l] -= r[k][j][l] * z[j][l];
+            }
+        }
+        for l in 0..LANES {
+            z[k][l] = s[l] / r[k][k][l];
+        }
+    }
+}
+
+#[inline]
+fn norm_lanes(x: &[Lanes]) -> Lanes {
+    let mut ss = [0.0; LANES];
+    for v in x {
+        for l in 0..LANES {
+            ss[l] += v[l] * v[l];
+        }
+    }
+    if ss.iter().all(|s| s.is_finite() && *s > f64::MIN_POSITIVE) {
+        let mut out = [0.0; LANES];
+        for l in 0..LANES {
+            out[l] = ss[l].sqrt();
+        }
+        return out;
+    }
+    let mut column = [0.0; 64];
+    std::array::from_fn(|l| {
+        if x.len() > column.len() {
+            return norm(&x.iter().map(|v| v[l]).collect::<Vec<f64>>());
+        }
+        for (c, v) in column.iter_mut().zip(x) {
+            *c = v[l];
+        }
+        norm(&column[..x.len()])
+    })
+}
+
+#[inline]
+fn project_out_lanes(u: &[Lanes], x: &mut [Lanes]) -> Lanes {
+    let mut ux = [0.0; LANES];
+    for (a, b) in u.iter().zip(x.iter()) {
+        for l in 0..LANES {
+            ux[l] += a[l] * b[l];
+        }
+    }
+    for (xi, ui) in x.iter_mut().zip(u) {
+        for l in 0..LANES {
+            xi[l] -= ux[l] * ui[l];
+        }
+    }
+    ux
+}
+
+/// Largest number of parameters the solver takes (eight joints of two parameters).
+pub const MAX_Q: usize = 16;
+
+/// x <- x - (u . x) u for a unit vector u; returns u . x.
+#[inline]
+fn project_out(u: &[f64], x: &mut [f64]) -> f64 {
+    let mut ux = 0.0;
+    for (a, b) in u.iter().zip(x.iter()) {
+        ux += a * b;
+    }
+    for (xi, ui) in x.iter_mut().zip(u) {
+        *xi -= ux * ui;
+    }
+    ux
+}
+
+/// Euclidean norm: the plain sum of squares, rescaled only when it over- or underflows.
+#[inline]
 fn norm(x: &[f64]) -> f64 {
+    let mut ss = 0.0;
+    for v in x {
+        ss += v * v;
+    }
+    if ss.is_finite() && ss > f64::MIN_POSITIVE {
+        return ss.sqrt();
+    }
     let scale = x.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
     if scale == 0.0 || !scale.is_finite() {
         return scale;
     }
-    scale
-        * x.iter()
-            .map(|v| (v / scale) * (v / scale))
-            .sum::<f64>()
-            .sqrt()
-}
-
-/// x <- (I - 2 v v^T / v^T v) x.
-fn reflect(v: &[f64], x: &mut [f64], vtv: f64) {
-    let f = 2.0 * v.iter().zip(x.iter()).map(|(a, b)| a * b).sum::<f64>() / vtv;
-    for (xi, vi) in x.iter_mut().zip(v) {
-        *xi -= f * vi;
+    let mut ss = 0.0;
+    for v in x {
+        ss += (v / scale) * (v / scale);
     }
+    scale * ss.sqrt()
 }
 
 #[cfg(test)]
@@ -124,6 +248,60 @@ mod tests {
             (z[0] - 0.2).abs() < 1e-15 && (z[1] - 0.2).abs() < 1e-10,
             "{z:?}"
         );
+    }
+
+    #[test]
+    fn lanes_solve_bitwise_like_the_scalar_solver_and_flag_deficient_lanes() {
+        let (m, q) = (6, 3);
+        let entry = |i: usize, l: usize| {
+            (((i * 31 + l * 17) % 23) as f64 - 11.0) * 10f64.powi((i / m) as i32 * 2)
+        };
+        let mut a: Vec<Lanes> = (0..m * q)
+            .map(|i| std::array::from_fn(|l| entry(i, l)))
+            .collect();
+        // Lane 5: third column = first + second (rank 2). Lane 6: huge entries (scaled norms).
+        for k in 0..m {
+            a[2 * m + k][5] = a[k][5] + a[m + k][5];
+            for c in 0..q {
+                a[c * m + k][6] *= 1e200;
+            }
+        }
+        let b: Vec<Lanes> = (0..m)
+            .map(|k| std::array::from_fn(|l| (k as f64 + 0.5 * l as f64).cos()))
+            .collect();
+        let (mut al, mut bl, mut z, mut ok) =
+            (a.clone(), b.clone(), vec![[0.0; LANES]; q], [false; LANES]);
+        solve_lanes(&mut al, &mut bl, m, q, &mut z, &mut ok);
+        for l in 0..LANES {
+            let mut a1: Vec<f64> = a.iter().map(|v| v[l]).collect();
+            let mut b1: Vec<f64> = b.iter().map(|v| v[l]).collect();
+            let mut z1 = vec![0.0; q];
+            let scalar = solve_in_place(&mut a1, &mut b1, m, q, &mut z1);
+            assert_eq!(scalar.is_ok(), ok[l], "lane {l}");
+            if ok[l] {
+                for i in 0..q {
+                    assert_eq!(z1[i].to_bits(), z[i][l].to_bits(), "lane {l}, z{i}");
+                }
+            }
+        }
+        assert!(!ok[5] && ok[6]);
+    }
+
+    #[test]
+    fn huge_and_tiny_columns_keep_their_accuracy() {
+        // Sums of squares that overflow (1e200^2) or underflow (1e-200^2) take the scaled path.
+        for scale in [1e200, 1e-200] {
+            let (m, q) = (3, 2);
+            let a = vec![scale, 2.0 * scale, 0.0, 0.0, scale, scale];
+            let b = vec![scale, 3.0 * scale, scale];
+            let mut z = [0.0; 2];
+            solve_in_place(&mut a.clone(), &mut b.clone(), m, q, &mut z).unwrap();
+            // Consistent system: z = (1, 1).
+            assert!(
+                (z[0] - 1.0).abs() < 1e-14 && (z[1] - 1.0).abs() < 1e-14,
+                "{scale}: {z:?}"
+            );
+        }
     }
 
     #[test]

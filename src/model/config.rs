@@ -22,6 +22,10 @@ use serde::Deserialize;
 use super::{Beam, Joint, Model};
 use crate::input::{FieldCheck, InputError, parse_toml, read_file};
 
+/// Largest number of beams: the identification takes at most
+/// [`crate::identify::wls::MAX_Q`] parameters, two per joint.
+pub const MAX_BEAMS: usize = crate::identify::wls::MAX_Q / 2 + 1;
+
 /// Largest number of elements per beam: the modal solution is dense, O(N^3).
 pub const MAX_ELEMENTS_PER_BEAM: i64 = 2000;
 
@@ -61,8 +65,12 @@ impl Model {
     pub fn from_toml(text: &str, file: &Path) -> Result<Model, InputError> {
         let raw: RawModel = parse_toml(text, file)?;
         let check = FieldCheck { file };
-        if raw.beam.is_empty() {
-            return Err(check.invalid("beam", "[]", "at least one [[beam]] is required"));
+        if raw.beam.is_empty() || raw.beam.len() > MAX_BEAMS {
+            return Err(check.invalid(
+                "beam",
+                format!("{} beam(s)", raw.beam.len()),
+                format!("a chain has 1 to {MAX_BEAMS} [[beam]] tables"),
+            ));
         }
         let beams = raw
             .beam

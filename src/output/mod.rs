@@ -3,6 +3,7 @@
 
 pub mod atomic;
 pub mod identify;
+pub mod study;
 pub mod table;
 
 pub use atomic::write_atomically;

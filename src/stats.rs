@@ -1,0 +1,201 @@
+//! Summary statistics of a Monte-Carlo sample of corrections: moments beside robust figures,
+//! because the per-mode estimator is a ratio of noisy quantities with heavy tails.
+//!
+//! Definitions (x_1..x_N the successful trials, t the introduced value):
+//! - mean, bias = mean - t, relative bias = bias / t (absent when t = 0);
+//! - std: sample standard deviation (N - 1); rmse = sqrt(mean((x - t)^2));
+//! - quantiles: linear interpolation between order statistics at h = (N - 1) p
+//!   (Hyndman-Fan type 7, numpy's default); median = q50;
+//! - MAD: median of |x - median|, unscaled (multiply by 1.4826 for a normal sigma);
+//! - bias_se: Monte-Carlo standard error of the mean, std / sqrt(N);
+//! - median_se: distribution-free standard error of the median, half the width of the
+//!   95% order-statistic interval of the median divided by 1.96.
+
+/// The statistics of one sample against its introduced value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    /// Number of values N.
+    pub count: usize,
+    /// Arithmetic mean.
+    pub mean: f64,
+    /// mean - introduced.
+    pub bias: f64,
+    /// bias / introduced; `None` when introduced is 0.
+    pub relative_bias: Option<f64>,
+    /// Sample standard deviation (N - 1 denominator; 0 for N = 1).
+    pub std: f64,
+    /// Root mean square error against the introduced value.
+    pub rmse: f64,
+    /// Median.
+    pub median: f64,
+    /// Median absolute deviation from the median (unscaled).
+    pub mad: f64,
+    /// 5% quantile.
+    pub q05: f64,
+    /// 25% quantile.
+    pub q25: f64,
+    /// 75% quantile.
+    pub q75: f64,
+    /// 95% quantile.
+    pub q95: f64,
+    /// Standard error of the mean (of the bias).
+    pub bias_se: f64,
+    /// Standard error of the median.
+    pub median_se: f64,
+}
+
+/// Summarises `values` (sorted in place) against `introduced`; `None` when empty.
+pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
+    let n = values.len();
+    if n == 0 {
+        return None;
+    }
+    values.sort_by(f64::total_cmp);
+    let sorted = &*values;
+    let nf = n as f64;
+    let mean = sorted.iter().sum::<f64>() / nf;
+    let ss: f64 = sorted.iter().map(|x| (x - mean) * (x - mean)).sum();
+    let std = if n > 1 { (ss / (nf - 1.0)).sqrt() } else { 0.0 };
+    let rmse = (sorted
+        .iter()
+        .map(|x| (x - introduced) * (x - introduced))
+        .sum::<f64>()
+        / nf)
+        .sqrt();
+    let median = quantile_sorted(sorted, 0.5);
+    let mut deviations: Vec<f64> = sorted.iter().map(|x| (x - median).abs()).collect();
+    deviations.sort_by(f64::total_cmp);
+    let bias = mean - introduced;
+    Some(Summary {
+        count: n,
+        mean,
+        bias,
+        relative_bias: (introduced != 0.0).then(|| bias / introduced),
+        std,
+        rmse,
+        median,
+        mad: quantile_sorted(&deviations, 0.5),
+        q05: quantile_sorted(sorted, 0.05),
+        q25: quantile_sorted(sorted, 0.25),
+        q75: quantile_sorted(sorted, 0.75),
+        q95: quantile_sorted(sorted, 0.95),
+        bias_se: std / nf.sqrt(),
+        median_se: median_standard_error(sorted),
+    })
+}
+
+/// Type-7 quantile of an ascending, non-empty sample, `p` in [0, 1].
+pub fn quantile_sorted(sorted: &[f64], p: f64) -> f64 {
+    let h = (sorted.len() - 1) as f64 * p;
+    let lo = h.floor() as usize;
+    let hi = (lo + 1).min(sorted.len() - 1);
+    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
+}
+
+/// Distribution-free standard error of the median: the order statistics at
+/// N/2 -+ 1.96 sqrt(N)/2 bound a 95% interval; its half-width / 1.96.
+fn median_standard_error(sorted: &[f64]) -> f64 {
+    let n = sorted.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let half = 1.96 * (n as f64).sqrt() / 2.0;
+    let centre = (n - 1) as f64 / 2.0;
+    let lo = (centre - half).floor().max(0.0) as usize;
+    let hi = ((centre + half).ceil() as usize).min(n - 1);
+    (sorted[hi] - sorted[lo]) / (2.0 * 1.96)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moments_and_quantiles_of_a_small_sample() {
+        let mut x = vec![4.0, 1.0, 3.0, 2.0, 10.0];
+        let s = summarize(&mut x, 2.0).unwrap();
+        assert_eq!(x, vec![1.0, 2.0, 3.0, 4.0, 10.0]);
+        assert_eq!(s.count, 5);
+        assert_eq!(s.mean, 4.0);
+        assert_eq!(s.bias, 2.0);
+        assert_eq!(s.relative_bias, Some(1.0));
+        // sum of squares about the mean: 9 + 4 + 1 + 0 + 36 = 50, /4.
+        assert!((s.std - 12.5f64.sqrt()).abs() < 1e-15);
+        // (1 + 0 + 1 + 4 + 64) / 5 = 14.
+        assert!((s.rmse - 14f64.sqrt()).abs() < 1e-15);
+        assert_eq!(s.median, 3.0);
+        // |x - 3| = 2, 1, 0, 1, 7 -> median 1.
+        assert_eq!(s.mad, 1.0);
+        // type 7: h = 4 p.
+        assert!((s.q05 - 1.2).abs() < 1e-15);
+        assert_eq!(s.q25, 2.0);
+        assert_eq!(s.q75, 4.0);
+        assert!((s.q95 - 8.8).abs() < 1e-12);
+        assert!((s.bias_se - s.std / 5f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn quantiles_interpolate_like_numpy() {
+        // numpy.quantile([0, 1, 2, 3], [0.1, 0.5, 0.9]) = [0.3, 1.5, 2.7]
+        let x = [0.0, 1.0, 2.0, 3.0];
+        assert!((quantile_sorted(&x, 0.1) - 0.3).abs() < 1e-15);
+        assert_eq!(quantile_sorted(&x, 0.5), 1.5);
+        assert!((quantile_sorted(&x, 0.9) - 2.7).abs() < 1e-15);
+        assert_eq!(quantile_sorted(&[5.0], 0.3), 5.0);
+    }
+
+    #[test]
+    fn empty_sample_and_zero_introduced_value() {
+        assert_eq!(summarize(&mut [], 1.0), None);
+        let s = summarize(&mut [1.0], 0.0).unwrap();
+        assert_eq!(s.relative_bias, None);
+        assert_eq!(s.std, 0.0);
+        assert_eq!(s.median_se, 0.0);
+    }
+
+    #[test]
+    fn median_standard_error_matches_the_normal_theory_on_a_normal_sample() {
+        // For a normal sample, se(median) = sqrt(pi / 2) sigma / sqrt(N). Quantiles of the
+        // normal at evenly spaced probabilities stand in for a sample.
+        let n = 10_001;
+        let quantiles = NormalQuantiles::new();
+        let mut x: Vec<f64> = (0..n)
+            .map(|i| quantiles.at((i as f64 + 0.5) / n as f64))
+            .collect();
+        let s = summarize(&mut x, 0.0).unwrap();
+        let expected = (std::f64::consts::PI / 2.0).sqrt() / (n as f64).sqrt();
+        assert!(
+            (s.median_se / expected - 1.0).abs() < 0.02,
+            "{} vs {expected}",
+            s.median_se
+        );
+    }
+
+    /// Standard normal quantiles from a tabulated CDF (trapezoid rule, step 1e-3 on [-8, 8]).
+    struct NormalQuantiles {
+        z: Vec<f64>,
+        cdf: Vec<f64>,
+    }
+
+    impl NormalQuantiles {
+        fn new() -> Self {
+            let h = 1e-3;
+            let z: Vec<f64> = (0..=16_000).map(|i| -8.0 + h * i as f64).collect();
+            let pdf = |t: f64| (-t * t / 2.0).exp() / (2.0 * std::f64::consts::PI).sqrt();
+            let mut cdf = vec![0.0; z.len()];
+            for i in 1..z.len() {
+                cdf[i] = cdf[i - 1] + 0.5 * h * (pdf(z[i - 1]) + pdf(z[i]));
+            }
+            Self { z, cdf }
+        }
+
+        fn at(&self, p: f64) -> f64 {
+            let i = self
+                .cdf
+                .partition_point(|&c| c < p)
+                .clamp(1, self.z.len() - 1);
+            let t = (p - self.cdf[i - 1]) / (self.cdf[i] - self.cdf[i - 1]);
+            self.z[i - 1] + t * (self.z[i] - self.z[i - 1])
+        }
+    }
+}

@@ -1,0 +1,122 @@
+//! Monte-Carlo robustness studies of the per-mode identification: the distribution of every
+//! per-mode correction over many independent measurement errors, across a grid of basis
+//! sizes n, retained equations m, unidentified DOFs NF, weightings and noise levels.
+//!
+//! - [`config`]: the study file;
+//! - [`unidentified`]: the NF rule;
+//! - [`plan`]: cells and the per-cell precomputation;
+//! - [`noise`]: the error model and the per-trial random streams;
+//! - [`engine`]: the parallel trials and their statistics;
+//! - [`predicted`]: first-order predicted standard deviations;
+//! - [`check`]: the CI gate on estimator bias.
+
+pub mod check;
+pub mod config;
+pub mod engine;
+pub mod noise;
+pub mod plan;
+pub mod predicted;
+pub mod unidentified;
+
+pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
+pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
+pub use noise::NoiseKind;
+pub use plan::{Cell, CellPlan, StudyContext};
+
+/// The statistics of one cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellResult {
+    /// The cell.
+    pub cell: Cell,
+    /// One row per (mode, parameter).
+    pub rows: Vec<RowStats>,
+}
+
+/// Why a study cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// The study or model file is invalid.
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
+    /// A model has no eigensolution.
+    #[error("{file}: {source}")]
+    Modal {
+        /// The model file.
+        file: std::path::PathBuf,
+        /// Why.
+        source: crate::modal::ModalError,
+    },
+    /// Some cells of the grid cannot be computed.
+    #[error("{file}: {count} impossible cell(s) in the grid, nothing was computed:\n{list}", count = problems.len(), list = problems.join("\n"))]
+    ImpossibleCells {
+        /// The study file.
+        file: std::path::PathBuf,
+        /// One line per offending cell.
+        problems: Vec<String>,
+    },
+}
+
+/// A validated study with its shared eigensolutions, ready to run cell by cell.
+pub struct StudyRun {
+    /// The study.
+    pub study: Study,
+    /// Shared eigensolutions.
+    pub context: StudyContext,
+    /// The cells, in grid order.
+    pub cells: Vec<Cell>,
+}
+
+impl StudyRun {
+    /// Solves the models and validates every cell before anything is computed.
+    pub fn new(study: Study) -> Result<Self, StudyError> {
+        let context = StudyContext::new(&study).map_err(|source| StudyError::Modal {
+            file: study.model_file.clone(),
+            source,
+        })?;
+        let cells = study.cells();
+        let problems: Vec<String> = cells
+            .iter()
+            .filter_map(|cell| {
+                CellPlan::new(&study, &context, cell)
+                    .err()
+                    .map(|e| format!("  cell {} ({}): {e}", cell.index, cell.describe()))
+            })
+            .collect();
+        if !problems.is_empty() {
+            return Err(StudyError::ImpossibleCells {
+                file: study.file.clone(),
+                problems,
+            });
+        }
+        Ok(Self {
+            study,
+            context,
+            cells,
+        })
+    }
+
+    /// Plans, simulates and summarises one cell; the raw trials are returned beside the
+    /// statistics for whoever keeps them, and dropped by the caller before the next cell.
+    pub fn run_cell(
+        &self,
+        cell: &Cell,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> (CellResult, CellSamples) {
+        let plan = CellPlan::new(&self.study, &self.context, cell)
+            .expect("cells are validated in StudyRun::new");
+        let raw = simulate_cell(&self.study, cell, &plan, progress);
+        let rows = summarize_cell(&self.study, cell, &plan, &raw);
+        (
+            CellResult {
+                cell: cell.clone(),
+                rows,
+            },
+            raw,
+        )
+    }
+
+    /// Total trial-modes of the study (for progress).
+    pub fn trial_count(&self) -> u64 {
+        (self.cells.len() * self.study.trials) as u64
+    }
+}

@@ -1,0 +1,215 @@
+//! The cells of a study and, per cell, everything that does not change between trials:
+//! the identified DOFs, the projector Y~^+ (eq. (15)), the retained and weighted sensitivity
+//! blocks of every mode (eq. (10)-(13)) and the exact truth modes.
+//!
+//! The nominal and truth eigensolutions are shared by every cell: the model is the same.
+
+use crate::identify::{Identifier, IdentifyError, ModeSystem, Projector, Settings, Weighting};
+use crate::modal::{ModalError, ModalSolution};
+use crate::model::{Parameter, RIGID_BODY_MODES, dof_of_index};
+
+use super::config::{NfSpec, Study};
+use super::unidentified;
+
+/// One combination of the grid's axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cell {
+    /// Position in the study, 0-based: grid by grid, and within a grid in the order n, m, nf,
+    /// weighting, shape_noise, frequency_noise, the last varying fastest.
+    pub index: usize,
+    /// Field path of the cell's grid (`grid` or `grid[1]`).
+    pub grid: String,
+    /// Basis size n and its index in `grid.n`.
+    pub n: (usize, usize),
+    /// Retained equations m and its index in `grid.m`.
+    pub m: (usize, usize),
+    /// Index of the entry in `grid.nf`.
+    pub nf_index: usize,
+    /// Unidentified DOFs (ascending).
+    pub unidentified: Vec<usize>,
+    /// Weighting.
+    pub weighting: Weighting,
+    /// Shape noise level.
+    pub shape_noise: f64,
+    /// Frequency noise level.
+    pub frequency_noise: f64,
+}
+
+impl Cell {
+    /// NF, the number of unidentified DOFs.
+    pub fn nf(&self) -> usize {
+        self.unidentified.len()
+    }
+
+    /// The unidentified DOFs as `node:dof` words separated by spaces.
+    pub fn unidentified_names(&self) -> String {
+        self.unidentified
+            .iter()
+            .map(|&d| {
+                let (node, dof) = dof_of_index(d);
+                format!("{node}:{dof}")
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    /// `n = 10, m = 5, nf = 5, weighting = inverse, shape_noise = 0.04, frequency_noise = 0`.
+    pub fn describe(&self) -> String {
+        format!(
+            "n = {}, m = {}, nf = {}, weighting = {}, shape_noise = {}, frequency_noise = {}",
+            self.n.0,
+            self.m.0,
+            self.nf(),
+            self.weighting,
+            self.shape_noise,
+            self.frequency_noise
+        )
+    }
+}
+
+impl Study {
+    /// Every cell of the study, in order (see [`Cell::index`]).
+    pub fn cells(&self) -> Vec<Cell> {
+        let nodes = self.model.node_count();
+        let mut cells = Vec::new();
+        for g in &self.grids {
+            for (ni, &n) in g.n.iter().enumerate() {
+                for (mi, &m) in g.m.iter().enumerate() {
+                    for (fi, nf) in g.nf.iter().enumerate() {
+                        let unidentified = match nf {
+                            NfSpec::Count(c) => unidentified::by_rule(nodes, *c),
+                            NfSpec::Explicit(list) => list.clone(),
+                        };
+                        for &weighting in &g.weighting {
+                            for &shape_noise in &g.shape_noise {
+                                for &frequency_noise in &g.frequency_noise {
+                                    cells.push(Cell {
+                                        index: cells.len(),
+                                        grid: g.path.clone(),
+                                        n: (n, ni),
+                                        m: (m, mi),
+                                        nf_index: fi,
+                                        unidentified: unidentified.clone(),
+                                        weighting,
+                                        shape_noise,
+                                        frequency_noise,
+                                    });
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        cells
+    }
+}
+
+/// The eigensolutions shared by every cell.
+#[derive(Debug, Clone)]
+pub struct StudyContext {
+    /// The nominal (initial) model's eigensolution.
+    pub nominal: ModalSolution,
+    /// The truth (simulated identified) model's eigensolution.
+    pub truth: ModalSolution,
+    /// The identified parameters at their nominal values.
+    pub params: Vec<Parameter>,
+}
+
+impl StudyContext {
+    /// Solves the nominal and the truth model.
+    pub fn new(study: &Study) -> Result<Self, ModalError> {
+        let truth = study.model.with_joint_delta(&study.delta);
+        Ok(Self {
+            nominal: ModalSolution::solve(&study.model.assemble())?,
+            truth: ModalSolution::solve(&truth.assemble())?,
+            params: study.model.joint_parameters(),
+        })
+    }
+}
+
+/// One mode of a cell: its sensitivity system and its exact truth.
+#[derive(Debug, Clone)]
+pub struct ModePlan {
+    /// Mode r.
+    pub mode: usize,
+    /// The retained, weighted system.
+    pub system: ModeSystem,
+    /// Exact truth shape at the identified DOFs.
+    pub truth_shape: Vec<f64>,
+    /// Exact truth eigenvalue.
+    pub truth_lambda: f64,
+}
+
+/// Everything of a cell that does not change between trials.
+#[derive(Debug, Clone)]
+pub struct CellPlan {
+    /// Identified DOFs (ascending).
+    pub identified: Vec<usize>,
+    /// Y~^+ over them.
+    pub projector: Projector,
+    /// One plan per grid mode, in grid order.
+    pub modes: Vec<ModePlan>,
+    /// Parameter values p_i.
+    pub values: Vec<f64>,
+}
+
+impl CellPlan {
+    /// Plans `cell`, or says, with the grid field at fault, why it is impossible.
+    pub fn new(study: &Study, ctx: &StudyContext, cell: &Cell) -> Result<CellPlan, String> {
+        let settings = Settings {
+            n: cell.n.0,
+            m: cell.m.0,
+            weighting: cell.weighting,
+        };
+        let at = |field: &str, index: usize, value: usize, e: &dyn std::fmt::Display| {
+            format!("{}.{field}[{index}] = {value}: {e}", cell.grid)
+        };
+        let identifier =
+            Identifier::new(&ctx.nominal, ctx.params.clone(), RIGID_BODY_MODES, settings).map_err(
+                |e| match e {
+                    IdentifyError::BasisSize { .. } => at("n", cell.n.1, cell.n.0, &e),
+                    _ => at("m", cell.m.1, cell.m.0, &e),
+                },
+            )?;
+        let identified = unidentified::complement(study.model.dof_count(), &cell.unidentified);
+        let projector = Projector::new(identifier.basis(), &identified).map_err(|e| {
+            format!(
+                "{grid}.nf[{}] (NF = {}) with {grid}.n[{}] = {}: {e}",
+                cell.nf_index,
+                cell.nf(),
+                cell.n.1,
+                cell.n.0,
+                grid = cell.grid
+            )
+        })?;
+        let modes = study
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(k, &mode)| {
+                let s_r = identifier
+                    .basis_index(mode)
+                    .map_err(|e| at("modes", k, mode, &e))?;
+                let truth = ctx.truth.vectors();
+                Ok(ModePlan {
+                    mode,
+                    system: identifier.mode_system(s_r),
+                    truth_shape: identified.iter().map(|&d| truth[(d, s_r)]).collect(),
+                    truth_lambda: ctx.truth.values()[s_r],
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(CellPlan {
+            identified,
+            projector,
+            modes,
+            values: ctx.params.iter().map(|p| p.value).collect(),
+        })
+    }
+
+    /// Number of parameters q.
+    pub fn q(&self) -> usize {
+        self.values.len()
+    }
+}
