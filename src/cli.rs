@@ -33,15 +33,16 @@ pub enum Command {
 /// `jointid study` and `jointid check`.
 #[derive(Debug, Args)]
 pub struct StudyArgs {
-    /// Study file (TOML).
-    pub study: PathBuf,
+    /// Study files (TOML), run one after the other.
+    #[arg(required = true)]
+    pub studies: Vec<PathBuf>,
     /// Worker threads (default: all cores). The output does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Also write every trial's corrections to this CSV.
     #[arg(long)]
     pub trials_csv: Option<PathBuf>,
-    /// Write the results here instead of the study's `[output].csv`.
+    /// Write the results here instead of the study's `[output].csv` (one study only).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// No progress bar (it is hidden anyway when stderr is not a terminal).

@@ -1,4 +1,4 @@
-//! `jointid check`: run a study and hold its estimator bias to `[check]`.
+//! `jointid check`: run studies and hold each one's estimator bias to its `[check]`.
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -6,11 +6,25 @@ use std::process::ExitCode;
 use anyhow::bail;
 
 use crate::cli::StudyArgs;
-use crate::commands::run_study::run_study;
+use crate::commands::run_study::{Finished, run_studies};
 use jointid::study::check::evaluate;
 
+/// Exit 1 when any study fails its gate; every study is run and reported.
 pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
-    let finished = run_study(args)?;
+    let mut failed = false;
+    run_studies(args, |finished| {
+        failed |= !check_one(finished)?;
+        Ok(())
+    })?;
+    Ok(if failed {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Holds one finished study to its gate; `Ok(false)` when it fails.
+fn check_one(finished: &Finished) -> anyhow::Result<bool> {
     let study = &finished.run.study;
     let Some(spec) = &study.check else {
         bail!(
@@ -29,16 +43,17 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     if report.failures.is_empty() {
         writeln!(
             out,
-            "check passed: {} (cell, mode, parameter) rows within |relative bias| <= {} + 3 se",
-            report.checked, spec.max_abs_relative_bias
+            "check passed: {} (cell, mode, parameter) rows within |relative bias| <= {} + 3 se ({})",
+            report.checked, spec.max_abs_relative_bias, study.name
         )?;
-        return Ok(ExitCode::SUCCESS);
+        return Ok(true);
     }
     writeln!(
         out,
-        "check FAILED: {} of {} rows exceed the bias threshold:",
+        "check FAILED: {} of {} rows exceed the bias threshold ({}):",
         report.failures.len(),
-        report.checked
+        report.checked,
+        study.name
     )?;
     for f in &report.failures {
         writeln!(
@@ -51,5 +66,5 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
             f.reason
         )?;
     }
-    Ok(ExitCode::from(1))
+    Ok(false)
 }

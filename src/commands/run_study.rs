@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use anyhow::Context;
+use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
@@ -20,9 +20,26 @@ pub struct Finished {
     pub names: Vec<String>,
 }
 
-/// Reads, validates and runs the study of `args`, writing its outputs.
-pub fn run_study(args: &StudyArgs) -> anyhow::Result<Finished> {
-    let study = Study::from_path(&args.study)?;
+/// Reads, validates and runs every study of `args` in turn, handing each to `finished`.
+pub fn run_studies(
+    args: &StudyArgs,
+    mut finished: impl FnMut(&Finished) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    if args.studies.len() > 1 && (args.out.is_some() || args.trials_csv.is_some()) {
+        bail!(
+            "--out and --trials-csv take one study file, not {}",
+            args.studies.len()
+        );
+    }
+    for path in &args.studies {
+        finished(&run_study(path, args)?)?;
+    }
+    Ok(())
+}
+
+/// Reads, validates and runs one study, writing its outputs.
+fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
+    let study = Study::from_path(path)?;
     let run = StudyRun::new(study)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
