@@ -26,6 +26,9 @@ pub enum Command {
     /// Run a study and exit 1 when the estimator bias in the cells of `[check]` exceeds
     /// its threshold (a CI gate).
     Check(StudyArgs),
+    /// Measured modes simulated from a model, with optional measurement errors, in the
+    /// measured-modes CSV format.
+    Simulate(SimulateArgs),
     /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
     Bench(BenchArgs),
 }
@@ -48,6 +51,46 @@ pub struct StudyArgs {
     /// No progress bar (it is hidden anyway when stderr is not a terminal).
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// Which DOFs a simulated test measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Measure {
+    /// Translations only (the usual accelerometer test).
+    W,
+    /// Rotations only.
+    Theta,
+    /// Every DOF.
+    All,
+}
+
+/// `jointid simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Model to simulate (the "real" structure).
+    #[arg(long)]
+    pub model: PathBuf,
+    /// Number of deformable modes, from the first.
+    #[arg(long)]
+    pub modes: usize,
+    /// Relative error of every shape element (standard deviation; maximum for uniform).
+    #[arg(long, default_value_t = 0.0)]
+    pub shape_noise: f64,
+    /// Relative standard deviation of every frequency.
+    #[arg(long, default_value_t = 0.0)]
+    pub frequency_noise: f64,
+    /// Error distribution: gaussian or uniform.
+    #[arg(long, default_value = "gaussian")]
+    pub noise: String,
+    /// Measured DOFs.
+    #[arg(long, value_enum, default_value_t = Measure::All)]
+    pub measure: Measure,
+    /// Seed of the errors.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output CSV.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `jointid bench`.

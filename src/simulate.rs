@@ -1,9 +1,11 @@
 //! Simulated measurements: the exact eigensolution of a model (the paper's "simulated
-//! identified model"), over chosen DOFs, in the measured-modes form.
+//! identified model"), over chosen DOFs, in the measured-modes form, optionally with
+//! measurement errors.
 
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
 use crate::model::RIGID_BODY_MODES;
+use crate::study::noise::{NoiseKind, TrialRng};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, exact, over the DOFs `dofs`.
 /// The caller guarantees every mode exists (`mode + rigid-body modes <= N`).
@@ -23,4 +25,116 @@ pub fn exact_modes(modal: &ModalSolution, modes: &[usize], dofs: &[usize]) -> Me
             })
             .collect(),
     )
+}
+
+/// Measurement errors of a simulated test campaign.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Errors {
+    /// Relative error level of every shape element (std, or maximum for uniform noise).
+    pub shape: f64,
+    /// Relative standard deviation of every frequency.
+    pub frequency: f64,
+    /// Distribution of the errors.
+    pub kind: NoiseKind,
+    /// Seed: mode r draws from the stream (seed, 0, r) of [`TrialRng`].
+    pub seed: u64,
+}
+
+/// Exact modes as [`exact_modes`], each shape scaled to a largest component of +1, then
+/// every shape element multiplied by (1 + e) and every frequency by (1 + eps).
+pub fn measured_modes(
+    modal: &ModalSolution,
+    modes: &[usize],
+    dofs: &[usize],
+    errors: Errors,
+) -> MeasuredModes {
+    let exact = exact_modes(modal, modes, dofs);
+    MeasuredModes::new(
+        exact
+            .modes()
+            .iter()
+            .map(|m| {
+                let mut rng = TrialRng::new(errors.seed, 0, m.mode as u64);
+                let peak = m
+                    .values
+                    .iter()
+                    .copied()
+                    .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
+                let values = m
+                    .values
+                    .iter()
+                    .map(|v| v / peak * (1.0 + rng.shape_error(errors.kind, errors.shape)))
+                    .collect();
+                let frequency_hz =
+                    m.frequency_hz * (1.0 + rng.frequency_error(errors.kind, errors.frequency));
+                MeasuredMode {
+                    values,
+                    frequency_hz,
+                    ..m.clone()
+                }
+            })
+            .collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Beam, Joint, Model};
+
+    #[test]
+    fn noise_free_measurement_is_the_scaled_exact_mode_and_noise_is_seeded() {
+        let bar = |length, elements| Beam {
+            length,
+            elements,
+            youngs_modulus: 2.1e11,
+            density: 7850.0,
+            area: 2.4e-3,
+            second_moment: 3.2e-7,
+        };
+        let model = Model::new(
+            vec![bar(0.2, 7), bar(0.3, 10)],
+            vec![Joint { k1: 1e7, k2: 1e4 }],
+        );
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let dofs: Vec<usize> = (0..38).step_by(2).collect();
+        let clean = Errors {
+            shape: 0.0,
+            frequency: 0.0,
+            kind: NoiseKind::Gaussian,
+            seed: 1,
+        };
+        let m = measured_modes(&modal, &[1, 3], &dofs, clean);
+        let exact = exact_modes(&modal, &[1, 3], &dofs);
+        for (a, b) in m.modes().iter().zip(exact.modes()) {
+            assert_eq!(a.frequency_hz, b.frequency_hz);
+            assert_eq!(a.values.iter().cloned().fold(f64::MIN, f64::max), 1.0);
+            let ratio = a.values[3] / b.values[3];
+            assert!(
+                a.values
+                    .iter()
+                    .zip(&b.values)
+                    .all(|(x, y)| (x - ratio * y).abs() < 1e-14)
+            );
+        }
+        let noisy = |seed| {
+            measured_modes(
+                &modal,
+                &[1, 3],
+                &dofs,
+                Errors {
+                    shape: 0.02,
+                    frequency: 0.001,
+                    seed,
+                    ..clean
+                },
+            )
+        };
+        assert_eq!(noisy(4), noisy(4));
+        assert_ne!(noisy(4), noisy(5));
+        assert_ne!(
+            noisy(4).modes()[0].frequency_hz,
+            exact.modes()[0].frequency_hz
+        );
+    }
 }

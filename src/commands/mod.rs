@@ -4,6 +4,7 @@ mod bench;
 mod check;
 mod identify;
 mod run_study;
+mod simulate;
 mod study;
 
 use std::process::ExitCode;
@@ -16,6 +17,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Identify(args) => identify::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Study(args) => study::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Check(args) => check::run(&args),
+        Command::Simulate(args) => simulate::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),
     }
 }

@@ -1,0 +1,54 @@
+//! `jointid simulate`: measured modes of a model, with optional errors, as CSV.
+
+use anyhow::{Context, bail};
+
+use crate::cli::{Measure, SimulateArgs};
+use jointid::modal::ModalSolution;
+use jointid::model::{Model, RIGID_BODY_MODES};
+use jointid::output::write_atomically;
+use jointid::simulate::{Errors, measured_modes};
+use jointid::study::NoiseKind;
+
+pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
+    let model = Model::from_path(&args.model)?;
+    let deformable = model.dof_count() - RIGID_BODY_MODES;
+    if args.modes == 0 || args.modes > deformable {
+        bail!(
+            "--modes {} is invalid: the model has deformable modes 1 to {deformable}",
+            args.modes
+        );
+    }
+    for (name, v) in [
+        ("--shape-noise", args.shape_noise),
+        ("--frequency-noise", args.frequency_noise),
+    ] {
+        if !(v.is_finite() && (0.0..1.0).contains(&v)) {
+            bail!("{name} {v} is invalid: it must be a relative level from 0 to below 1");
+        }
+    }
+    let kind: NoiseKind = args
+        .noise
+        .parse()
+        .map_err(|e: String| anyhow::anyhow!("--noise {} is invalid: {e}", args.noise))?;
+    let modal = ModalSolution::solve(&model.assemble())
+        .with_context(|| format!("{}: modal solution", args.model.display()))?;
+    let dofs: Vec<usize> = (0..model.dof_count())
+        .filter(|d| match args.measure {
+            Measure::W => d % 2 == 0,
+            Measure::Theta => d % 2 == 1,
+            Measure::All => true,
+        })
+        .collect();
+    let modes: Vec<usize> = (1..=args.modes).collect();
+    let errors = Errors {
+        shape: args.shape_noise,
+        frequency: args.frequency_noise,
+        kind,
+        seed: args.seed,
+    };
+    let measured = measured_modes(&modal, &modes, &dofs, errors);
+    write_atomically(&args.out, |w| {
+        measured.write_csv(w).map_err(std::io::Error::other)
+    })
+    .with_context(|| format!("{}: cannot write", args.out.display()))
+}
