@@ -133,26 +133,11 @@ fn fix_sign(v: &mut Mat<f64>, j: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Beam, Joint, Model};
-
-    fn paper_model() -> Model {
-        let bar = |length, elements| Beam {
-            length,
-            elements,
-            youngs_modulus: 2.1e11,
-            density: 7850.0,
-            area: 2.4e-3,
-            second_moment: 3.2e-7,
-        };
-        Model::new(
-            vec![bar(0.2, 7), bar(0.3, 10)],
-            vec![Joint { k1: 1e7, k2: 1e4 }],
-        )
-    }
+    use crate::model::fixtures::paper_model;
 
     #[test]
     fn contract_orthonormality_residual_order_and_sign() {
-        let mats = paper_model().assemble();
+        let mats = paper_model(1e7, 1e4).assemble();
         let sol = ModalSolution::solve(&mats).unwrap();
         let n = sol.len();
         let y = sol.vectors();
@@ -191,7 +176,7 @@ mod tests {
 
     #[test]
     fn exactly_two_rigid_body_modes_and_k_semidefinite() {
-        let sol = ModalSolution::solve(&paper_model().assemble()).unwrap();
+        let sol = ModalSolution::solve(&paper_model(1e7, 1e4).assemble()).unwrap();
         let lmax = sol.values()[sol.len() - 1];
         // Round-off level of the eigenvalues: a few eps times the largest.
         let zero = 1e-12 * lmax;
@@ -204,7 +189,7 @@ mod tests {
 
     #[test]
     fn mass_matrix_is_positive_definite_and_a_massless_dof_is_an_error() {
-        let mut mats = paper_model().assemble();
+        let mut mats = paper_model(1e7, 1e4).assemble();
         assert!(mats.m.llt(Side::Lower).is_ok());
         for j in 0..mats.m.ncols() {
             mats.m[(3, j)] = 0.0;

@@ -80,22 +80,11 @@ pub fn measured_modes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Beam, Joint, Model};
+    use crate::model::fixtures::paper_model;
 
     #[test]
     fn noise_free_measurement_is_the_scaled_exact_mode_and_noise_is_seeded() {
-        let bar = |length, elements| Beam {
-            length,
-            elements,
-            youngs_modulus: 2.1e11,
-            density: 7850.0,
-            area: 2.4e-3,
-            second_moment: 3.2e-7,
-        };
-        let model = Model::new(
-            vec![bar(0.2, 7), bar(0.3, 10)],
-            vec![Joint { k1: 1e7, k2: 1e4 }],
-        );
+        let model = paper_model(1e7, 1e4);
         let modal = ModalSolution::solve(&model.assemble()).unwrap();
         let dofs: Vec<usize> = (0..38).step_by(2).collect();
         let clean = Errors {

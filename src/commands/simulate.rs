@@ -4,7 +4,7 @@ use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
 use jointid::modal::ModalSolution;
-use jointid::model::{Model, RIGID_BODY_MODES};
+use jointid::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
 use jointid::output::write_atomically;
 use jointid::simulate::{Errors, measured_modes};
 use jointid::study::NoiseKind;
@@ -33,9 +33,9 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     let modal = ModalSolution::solve(&model.assemble())
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     let dofs: Vec<usize> = (0..model.dof_count())
-        .filter(|d| match args.measure {
-            Measure::W => d % 2 == 0,
-            Measure::Theta => d % 2 == 1,
+        .filter(|&d| match args.measure {
+            Measure::W => dof_of_index(d).1 == Dof::W,
+            Measure::Theta => dof_of_index(d).1 == Dof::Theta,
             Measure::All => true,
         })
         .collect();

@@ -85,23 +85,11 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Beam, Joint};
-
-    pub(crate) fn two_bars(k1: f64, k2: f64) -> Model {
-        let bar = |length, elements| Beam {
-            length,
-            elements,
-            youngs_modulus: 2.1e11,
-            density: 7850.0,
-            area: 2.4e-3,
-            second_moment: 3.2e-7,
-        };
-        Model::new(vec![bar(0.2, 7), bar(0.3, 10)], vec![Joint { k1, k2 }])
-    }
+    use crate::model::fixtures::paper_model;
 
     #[test]
     fn paper_model_has_38_dofs_and_symmetric_matrices() {
-        let model = two_bars(1e7, 1e4);
+        let model = paper_model(1e7, 1e4);
         let mats = model.assemble();
         assert_eq!(model.dof_count(), 38);
         for i in 0..38 {
@@ -114,8 +102,8 @@ mod tests {
 
     #[test]
     fn joint_block_is_eq_17() {
-        let model = two_bars(3.0e7, 5.0e4);
-        let bare = two_bars(0.0, 0.0).assemble();
+        let model = paper_model(3.0e7, 5.0e4);
+        let bare = paper_model(0.0, 0.0).assemble();
         let mats = model.assemble();
         let (a, b) = model.joint_nodes(0);
         assert_eq!((a, b), (7, 8));
@@ -147,7 +135,7 @@ mod tests {
 
     #[test]
     fn mass_matrix_carries_the_total_mass() {
-        let model = two_bars(1e7, 1e4);
+        let model = paper_model(1e7, 1e4);
         let m = model.assemble().m;
         let n = model.dof_count();
         let heave: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 1.0 } else { 0.0 }).collect();

@@ -72,7 +72,7 @@ pub fn dof_index(node: usize, dof: Dof) -> usize {
 
 /// The node and DOF kind of a global DOF index.
 pub fn dof_of_index(index: usize) -> (usize, Dof) {
-    let dof = if index % Dof::PER_NODE == 0 {
+    let dof = if index.is_multiple_of(Dof::PER_NODE) {
         Dof::W
     } else {
         Dof::Theta
@@ -168,5 +168,31 @@ impl Model {
             beams: self.beams.clone(),
             joints,
         }
+    }
+}
+
+/// The paper's system on the shipped geometry (`models/paper-case-*.toml`), built in code for
+/// tests and benchmarks.
+pub mod fixtures {
+    use super::{Beam, Joint, Model};
+
+    /// A steel bar 60 mm wide and 40 mm high.
+    pub fn steel_bar(length: f64, elements: usize) -> Beam {
+        Beam {
+            length,
+            elements,
+            youngs_modulus: 2.1e11,
+            density: 7850.0,
+            area: 2.4e-3,
+            second_moment: 3.2e-7,
+        }
+    }
+
+    /// The paper's system on the shipped geometry: 0.20 m / 7 and 0.30 m / 10 elements.
+    pub fn paper_model(k1: f64, k2: f64) -> Model {
+        Model::new(
+            vec![steel_bar(0.2, 7), steel_bar(0.3, 10)],
+            vec![Joint { k1, k2 }],
+        )
     }
 }

@@ -82,6 +82,20 @@ pub struct TrialRng {
     s: [u64; 4],
 }
 
+/// One step of xoshiro256++: the output of state (s0, s1, s2, s3), which advances.
+#[inline(always)]
+fn xoshiro_step(s0: &mut u64, s1: &mut u64, s2: &mut u64, s3: &mut u64) -> u64 {
+    let result = s0.wrapping_add(*s3).rotate_left(23).wrapping_add(*s0);
+    let t = *s1 << 17;
+    *s2 ^= *s0;
+    *s3 ^= *s1;
+    *s1 ^= *s2;
+    *s0 ^= *s3;
+    *s2 ^= t;
+    *s3 = s3.rotate_left(45);
+    result
+}
+
 /// The SplitMix64 finaliser: a bijection of u64 with full avalanche.
 fn mix(mut z: u64) -> u64 {
     z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -110,16 +124,8 @@ impl TrialRng {
     /// The next 64 random bits.
     #[inline]
     pub fn next_u64(&mut self) -> u64 {
-        let s = &mut self.s;
-        let result = s[0].wrapping_add(s[3]).rotate_left(23).wrapping_add(s[0]);
-        let t = s[1] << 17;
-        s[2] ^= s[0];
-        s[3] ^= s[1];
-        s[1] ^= s[2];
-        s[0] ^= s[3];
-        s[2] ^= t;
-        s[3] = s[3].rotate_left(45);
-        result
+        let [s0, s1, s2, s3] = &mut self.s;
+        xoshiro_step(s0, s1, s2, s3)
     }
 
     /// A uniform variate on [-1, 1).
@@ -169,14 +175,11 @@ pub struct LaneRng {
 impl LaneRng {
     /// Lane l is the stream of trial `first + l` of cell `cell`.
     pub fn new(seed: u64, cell: u64, first: u64) -> Self {
-        let mut s = [[0; LANES]; 4];
-        for l in 0..LANES {
-            let t = TrialRng::new(seed, cell, first + l as u64);
-            for w in 0..4 {
-                s[w][l] = t.s[w];
-            }
+        let trials: [TrialRng; LANES] =
+            std::array::from_fn(|l| TrialRng::new(seed, cell, first + l as u64));
+        LaneRng {
+            s: std::array::from_fn(|w| std::array::from_fn(|l| trials[l].s[w])),
         }
-        LaneRng { s }
     }
 
     /// The next 64 bits of every lane (xoshiro256++, lane-wise).
@@ -185,17 +188,7 @@ impl LaneRng {
         let [s0, s1, s2, s3] = &mut self.s;
         let mut out = [0; LANES];
         for l in 0..LANES {
-            out[l] = s0[l]
-                .wrapping_add(s3[l])
-                .rotate_left(23)
-                .wrapping_add(s0[l]);
-            let t = s1[l] << 17;
-            s2[l] ^= s0[l];
-            s3[l] ^= s1[l];
-            s1[l] ^= s2[l];
-            s0[l] ^= s3[l];
-            s2[l] ^= t;
-            s3[l] = s3[l].rotate_left(45);
+            out[l] = xoshiro_step(&mut s0[l], &mut s1[l], &mut s2[l], &mut s3[l]);
         }
         out
     }
@@ -252,18 +245,7 @@ impl LaneView<'_> {
     fn next(&mut self) -> u64 {
         let [s0, s1, s2, s3] = &mut self.rng.s;
         let l = self.lane;
-        let result = s0[l]
-            .wrapping_add(s3[l])
-            .rotate_left(23)
-            .wrapping_add(s0[l]);
-        let t = s1[l] << 17;
-        s2[l] ^= s0[l];
-        s3[l] ^= s1[l];
-        s1[l] ^= s2[l];
-        s0[l] ^= s3[l];
-        s2[l] ^= t;
-        s3[l] = s3[l].rotate_left(45);
-        result
+        xoshiro_step(&mut s0[l], &mut s1[l], &mut s2[l], &mut s3[l])
     }
 
     fn standard_normal(&mut self) -> f64 {
@@ -271,50 +253,34 @@ impl LaneView<'_> {
     }
 }
 
-impl rand_core::TryRng for LaneView<'_> {
-    type Error = Infallible;
+/// rand_core's generator trait over a `next` of 64 bits, for rand_distr's distributions.
+macro_rules! try_rng_from_u64 {
+    ($t:ty, $next:ident) => {
+        impl rand_core::TryRng for $t {
+            type Error = Infallible;
 
-    #[inline]
-    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
-        Ok((self.next() >> 32) as u32)
-    }
+            #[inline]
+            fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+                Ok((self.$next() >> 32) as u32)
+            }
 
-    #[inline]
-    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
-        Ok(self.next())
-    }
+            #[inline]
+            fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+                Ok(self.$next())
+            }
 
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
-        fill_bytes(dst, || self.next());
-        Ok(())
-    }
+            fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+                for chunk in dst.chunks_mut(8) {
+                    chunk.copy_from_slice(&self.$next().to_le_bytes()[..chunk.len()]);
+                }
+                Ok(())
+            }
+        }
+    };
 }
 
-fn fill_bytes(dst: &mut [u8], mut next: impl FnMut() -> u64) {
-    for chunk in dst.chunks_mut(8) {
-        chunk.copy_from_slice(&next().to_le_bytes()[..chunk.len()]);
-    }
-}
-
-/// For rand_distr's distributions.
-impl rand_core::TryRng for TrialRng {
-    type Error = Infallible;
-
-    #[inline]
-    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
-        Ok((self.next_u64() >> 32) as u32)
-    }
-
-    #[inline]
-    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
-        Ok(self.next_u64())
-    }
-
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
-        fill_bytes(dst, || self.next_u64());
-        Ok(())
-    }
-}
+try_rng_from_u64!(TrialRng, next_u64);
+try_rng_from_u64!(LaneView<'_>, next);
 
 #[cfg(test)]
 mod tests {
