@@ -42,8 +42,9 @@ use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, parse_toml, read_file};
 use crate::model::{Dof, Model, dof_index};
 
-/// Largest number of trials per cell.
-pub const MAX_TRIALS: i64 = 100_000_000;
+/// Largest number of trials per cell: a cell keeps every trial's corrections in memory
+/// (trials x modes x q x 8 bytes: 640 MB at this limit with 4 modes and one joint).
+pub const MAX_TRIALS: i64 = 10_000_000;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
