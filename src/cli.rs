@@ -29,6 +29,9 @@ pub enum Command {
     /// Measured modes simulated from a model, with optional measurement errors, in the
     /// measured-modes CSV format.
     Simulate(SimulateArgs),
+    /// Diagnose measured data: calibrate the joint, trace the residual to a missing effect,
+    /// report before and after.
+    Diagnose(DiagnoseArgs),
     /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
     Bench(BenchArgs),
 }
@@ -82,6 +85,10 @@ pub struct SimulateArgs {
     /// Error distribution: gaussian or uniform.
     #[arg(long, default_value = "gaussian")]
     pub noise: String,
+    /// An effect the model lacks, `name=size` (repeatable): joint_coupling, joint_mass,
+    /// sensor_mass, suspension, shear, element_damage, rising_joint (see README for sizes).
+    #[arg(long = "effect", value_parser = parse_effect)]
+    pub effects: Vec<(String, f64)>,
     /// Measured DOFs.
     #[arg(long, value_enum, default_value_t = Measure::All)]
     pub measure: Measure,
@@ -135,4 +142,46 @@ pub struct IdentifyArgs {
 
 fn parse_weighting(s: &str) -> Result<Weighting, String> {
     s.parse()
+}
+
+fn parse_effect(s: &str) -> Result<(String, f64), String> {
+    let (name, size) = s
+        .split_once('=')
+        .ok_or_else(|| format!("`{s}` is not name=size, e.g. joint_mass=0.05"))?;
+    let size: f64 = size
+        .parse()
+        .map_err(|_| format!("`{size}` is not a number (the size of {name})"))?;
+    if !size.is_finite() {
+        return Err(format!("the size of {name} must be finite"));
+    }
+    Ok((name.to_string(), size))
+}
+
+/// `jointid diagnose`.
+#[derive(Debug, Args)]
+pub struct DiagnoseArgs {
+    /// Model file (TOML): the nominal model, without the effect to be found.
+    #[arg(long)]
+    pub model: PathBuf,
+    /// Measured modes (CSV).
+    #[arg(long)]
+    pub measured: PathBuf,
+    /// Relative standard deviation of the measured frequencies.
+    #[arg(long, default_value_t = 0.001)]
+    pub frequency_noise: f64,
+    /// Relative standard deviation of the measured shape components.
+    #[arg(long, default_value_t = 0.02)]
+    pub shape_noise: f64,
+    /// Also write the report as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Basis size n of the per-mode corrections (default: the fewest identified DOFs of a mode).
+    #[arg(long)]
+    pub n: Option<usize>,
+    /// Retained equations m of the per-mode corrections (default: min(n - 2, 6)).
+    #[arg(long)]
+    pub m: Option<usize>,
+    /// Weighting of the per-mode corrections.
+    #[arg(long, value_parser = parse_weighting, default_value = "inverse")]
+    pub weighting: Weighting,
 }

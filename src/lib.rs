@@ -11,6 +11,7 @@
 //! 5. [`output`]: CSV and terminal tables;
 //! - [`simulate`]: exact modes of a model as measurements, for tests and studies.
 
+pub mod diagnose;
 pub mod identify;
 pub mod input;
 pub mod measured;

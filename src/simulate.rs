@@ -4,7 +4,8 @@
 
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
-use crate::model::RIGID_BODY_MODES;
+use crate::model::effects::{Configured, EffectContext, by_name, candidates, outside_library};
+use crate::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
 use crate::study::noise::{NoiseKind, TrialRng};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, exact, over the DOFs `dofs`.
@@ -75,6 +76,123 @@ pub fn measured_modes(
             })
             .collect(),
     )
+}
+
+/// Name of the per-mode joint trend `jointid simulate` accepts beside the effects.
+pub const RISING_JOINT: &str = "rising_joint";
+
+/// An effect `simulate` does not know.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimulateError {
+    /// No effect of that name.
+    #[error("unknown effect `{name}`: the effects are {known}")]
+    UnknownEffect {
+        /// The name given.
+        name: String,
+        /// The names accepted.
+        known: String,
+    },
+    /// A size that makes the model unphysical.
+    #[error("{name} = {size} is invalid: {reason}")]
+    Inadmissible {
+        /// The effect.
+        name: String,
+        /// Its size.
+        size: f64,
+        /// Why.
+        reason: String,
+    },
+    /// The simulated model has no eigensolution.
+    #[error("the simulated model has no eigensolution: {0}")]
+    Modal(#[from] crate::modal::ModalError),
+}
+
+/// Every name `--effect` accepts, with what its size means.
+pub fn effect_catalogue() -> Vec<(String, String)> {
+    candidates()
+        .into_iter()
+        .chain(outside_library())
+        .map(|e| (e.name().to_string(), e.describe().to_string()))
+        .chain([(RISING_JOINT.to_string(), "joint stiffnesses that rise with the mode (outside the candidate library): mode r is simulated with every k1, k2 times (1 + size (r - 1))".to_string())])
+        .collect()
+}
+
+/// Measured modes of `model` with `effects` (name, size) added, measured at `dofs`.
+/// Sensor masses sit at the nodes whose translation is measured.
+pub fn simulate(
+    model: &Model,
+    effects: &[(String, f64)],
+    modes: &[usize],
+    dofs: &[usize],
+    errors: Errors,
+) -> Result<MeasuredModes, SimulateError> {
+    let nominal = ModalSolution::solve(&model.assemble())?;
+    let mut sensor_nodes: Vec<usize> = dofs
+        .iter()
+        .map(|&d| dof_of_index(d))
+        .filter(|(_, dof)| *dof == Dof::W)
+        .map(|(n, _)| n)
+        .collect();
+    sensor_nodes.dedup();
+    let ctx = EffectContext {
+        model: model.clone(),
+        sensor_nodes,
+        first_elastic_hz: nominal.frequency_hz(RIGID_BODY_MODES),
+    };
+    let mut rising = 0.0;
+    let mut applied = Vec::new();
+    for (name, size) in effects {
+        if name == RISING_JOINT {
+            rising += size;
+            continue;
+        }
+        let effect = by_name(name).ok_or_else(|| SimulateError::UnknownEffect {
+            name: name.clone(),
+            known: effect_catalogue()
+                .into_iter()
+                .map(|(n, _)| n)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })?;
+        let theta = effect.theta_of_size(&ctx, *size);
+        effect
+            .admissible(model, &theta)
+            .map_err(|reason| SimulateError::Inadmissible {
+                name: name.clone(),
+                size: *size,
+                reason,
+            })?;
+        applied.push((effect, theta));
+    }
+    let mut out = Vec::with_capacity(modes.len());
+    for &r in modes {
+        let factor = 1.0 + rising * (r as f64 - 1.0);
+        if factor <= 0.0 {
+            return Err(SimulateError::Inadmissible {
+                name: RISING_JOINT.into(),
+                size: rising,
+                reason: format!("mode {r} would have a joint stiffness factor {factor} <= 0"),
+            });
+        }
+        let delta: Vec<f64> = model
+            .joint_parameters()
+            .iter()
+            .map(|p| p.value * (factor - 1.0))
+            .collect();
+        let truth = Configured {
+            ctx: ctx.clone(),
+            model: model.with_joint_delta(&delta),
+            effects: applied.clone(),
+        };
+        let modal = ModalSolution::solve(&truth.assemble())?;
+        out.extend(
+            measured_modes(&modal, &[r], dofs, errors)
+                .modes()
+                .iter()
+                .cloned(),
+        );
+    }
+    Ok(MeasuredModes::new(out))
 }
 
 #[cfg(test)]

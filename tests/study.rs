@@ -10,7 +10,7 @@ use jointid::identify::{Identifier, Settings};
 use jointid::measured::MeasuredMode;
 use jointid::model::Model;
 use jointid::study::noise::TrialRng;
-use jointid::study::predicted::jacobian;
+use jointid::study::predicted::noise_free_jacobian;
 use jointid::study::{CellPlan, Study, StudyRun};
 
 const MODEL: &str = include_str!("../models/paper-case-1.toml");
@@ -113,7 +113,7 @@ fn first_order_jacobian_matches_central_differences() {
     )
     .unwrap();
     for mode in &plan.modes {
-        let jac = jacobian(&plan, mode).unwrap();
+        let jac = noise_free_jacobian(&plan, mode).unwrap();
         let z_of = |shape: Vec<f64>, lambda: f64| {
             let measured = MeasuredMode {
                 mode: mode.mode,

@@ -3,10 +3,9 @@
 use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
-use jointid::modal::ModalSolution;
 use jointid::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
 use jointid::output::write_atomically;
-use jointid::simulate::{Errors, measured_modes};
+use jointid::simulate::{Errors, simulate};
 use jointid::study::NoiseKind;
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
@@ -30,8 +29,6 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         .noise
         .parse()
         .map_err(|e: String| anyhow::anyhow!("--noise {} is invalid: {e}", args.noise))?;
-    let modal = ModalSolution::solve(&model.assemble())
-        .with_context(|| format!("{}: modal solution", args.model.display()))?;
     let dofs: Vec<usize> = (0..model.dof_count())
         .filter(|&d| match args.measure {
             Measure::W => dof_of_index(d).1 == Dof::W,
@@ -46,7 +43,7 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         kind,
         seed: args.seed,
     };
-    let measured = measured_modes(&modal, &modes, &dofs, errors);
+    let measured = simulate(&model, &args.effects, &modes, &dofs, errors)?;
     write_atomically(&args.out, |w| {
         measured.write_csv(w).map_err(std::io::Error::other)
     })

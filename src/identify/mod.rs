@@ -12,6 +12,7 @@
 //!    Delta p_i = p_i Z_r(i) (eq. (8)).
 
 pub mod projection;
+pub mod propagation;
 pub mod system;
 pub mod weighting;
 pub mod wls;
@@ -216,8 +217,25 @@ impl Identifier {
 
     /// Identifies the parameter corrections on one measured mode.
     pub fn identify(&self, measured: &MeasuredMode) -> Result<ModeOutcome, IdentifyError> {
+        self.identify_paired(measured, self.basis_index(measured.mode)?)
+    }
+
+    /// As [`Identifier::identify`], the mode paired with basis index `s_r` (0-based, below n)
+    /// instead of r + rigid-body modes: for a mode paired by MAC.
+    pub fn identify_paired(
+        &self,
+        measured: &MeasuredMode,
+        s_r: usize,
+    ) -> Result<ModeOutcome, IdentifyError> {
         let mode = measured.mode;
-        let s_r = self.basis_index(mode)?;
+        if s_r >= self.settings.n {
+            return Err(IdentifyError::ModeBeyondBasis {
+                mode,
+                index: s_r + 1,
+                rigid: self.rigid,
+                n: self.settings.n,
+            });
+        }
         let projector = Projector::new(&self.y, &measured.dofs)
             .map_err(|source| IdentifyError::Projection { mode, source })?;
         let mut g = vec![0.0; self.settings.n];

@@ -10,6 +10,7 @@
 pub mod assembly;
 pub mod beam;
 pub mod config;
+pub mod effects;
 pub mod joint;
 pub mod sparse;
 

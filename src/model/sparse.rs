@@ -34,6 +34,12 @@ impl SparseSym {
         s
     }
 
+    /// Appends `scale * other`.
+    pub fn extend_scaled(&mut self, other: &SparseSym, scale: f64) {
+        self.entries
+            .extend(other.entries.iter().map(|&(i, j, v)| (i, j, scale * v)));
+    }
+
     /// Whether the matrix has no entry.
     pub fn is_zero(&self) -> bool {
         self.entries.is_empty()

@@ -2,6 +2,7 @@
 //! file writer that puts them on disk whole or not at all.
 
 pub mod atomic;
+pub mod diagnose;
 pub mod identify;
 pub mod study;
 pub mod table;

@@ -1,25 +1,12 @@
-//! First-order (linear) propagation of the noise model through g, S and b to the corrections.
-//!
-//! Z(y~, lambda) is the weighted least-squares solution of A Z = c with A = W S_r(g),
-//! c = W b_r(g, lambda), g = Y~^+ y~. At the noise-free point (y~_0, lambda_0), with
-//! r_0 = c_0 - A_0 Z_0, a perturbation gives
-//!
-//! ```text
-//!   dZ = (A_0^T A_0)^-1 [ dA^T r_0 + A_0^T (dc - dA Z_0) ]
-//! ```
-//!
-//! (the derivative of the least-squares solution, residual term included). A and c are linear
-//! in g and affine in lambda, so dA, dc for the j-th shape element are A, c assembled at
-//! g = Y~^+ e_j, and for lambda the difference of the assemblies at lambda = 1 and 0.
-//! The shape errors are independent with variance v_e = var(e) y~_0j^2 each; the frequency
-//! error gives d lambda = 2 lambda_0 eps. Then
-//! Var(Delta p_i) = p_i^2 [ sum_j (dZ_i/dy~_j)^2 v_e y~_0j^2 + (dZ_i/dlambda)^2 4 lambda_0^2 sigma_f^2 ].
-
-use faer::linalg::solvers::Solve;
-use faer::{Mat, Side};
+//! First-order predicted standard deviation of every correction of a study cell: the noise
+//! model propagated linearly through g, S and b at the noise-free point
+//! ([`crate::identify::propagation`]).
 
 use super::noise::NoiseKind;
 use super::plan::{Cell, CellPlan, ModePlan};
+use crate::identify::propagation::{jacobian, propagated_std};
+
+pub use crate::identify::propagation::Jacobian;
 
 /// Predicted standard deviation of every Delta p_i of `mode` in `cell`; `None` when the
 /// noise-free system is rank deficient.
@@ -29,68 +16,29 @@ pub fn predicted_std(
     cell: &Cell,
     noise: NoiseKind,
 ) -> Option<Vec<f64>> {
-    let jac = jacobian(plan, mode)?;
-    let shape_var = noise.shape_variance(cell.shape_noise);
+    let jac = jacobian(
+        &plan.projector,
+        &mode.system,
+        &mode.truth_shape,
+        mode.truth_lambda,
+    )?;
     let freq_var = cell.frequency_noise * cell.frequency_noise;
-    let lambda0 = mode.truth_lambda;
-    Some(
-        (0..plan.q())
-            .map(|i| {
-                let shape: f64 = mode
-                    .truth_shape
-                    .iter()
-                    .enumerate()
-                    .map(|(j, y)| (jac.shape[(i, j)] * y).powi(2))
-                    .sum();
-                let freq = (jac.lambda[i] * 2.0 * lambda0).powi(2);
-                plan.values[i] * (shape * shape_var + freq * freq_var).sqrt()
-            })
-            .collect(),
-    )
-}
-
-/// dZ/dy~ (q x n_id) and dZ/dlambda (q) at the noise-free point.
-pub struct Jacobian {
-    /// dZ_i / dy~_j.
-    pub shape: Mat<f64>,
-    /// dZ_i / dlambda.
-    pub lambda: Vec<f64>,
+    Some(propagated_std(
+        &jac,
+        &mode.truth_shape,
+        mode.truth_lambda,
+        &plan.values,
+        noise.shape_variance(cell.shape_noise),
+        freq_var,
+    ))
 }
 
 /// The Jacobian of Z at the noise-free point of `mode`; `None` when rank deficient.
-pub fn jacobian(plan: &CellPlan, mode: &ModePlan) -> Option<Jacobian> {
-    let (m, q, n) = (mode.system.m(), plan.q(), plan.projector.column(0).len());
-    let assemble = |g: &[f64], lambda: f64| {
-        let (mut a, mut c) = (vec![0.0; m * q], vec![0.0; m]);
-        mode.system.assemble(g, lambda, &mut a, &mut c);
-        (
-            Mat::from_fn(m, q, |r, i| a[i * m + r]),
-            Mat::from_fn(m, 1, |r, _| c[r]),
-        )
-    };
-    let mut g0 = vec![0.0; n];
-    plan.projector.project(&mode.truth_shape, &mut g0);
-    let (a0, c0) = assemble(&g0, mode.truth_lambda);
-    let ata = a0.transpose() * &a0;
-    let llt = ata.llt(Side::Lower).ok()?;
-    let z0 = llt.solve(a0.transpose() * &c0);
-    let r0 = &c0 - &a0 * &z0;
-    let derivative = |da: &Mat<f64>, dc: &Mat<f64>| {
-        llt.solve(da.transpose() * &r0 + a0.transpose() * (dc - da * &z0))
-    };
-    let mut shape = Mat::zeros(q, plan.identified.len());
-    for j in 0..plan.identified.len() {
-        let (da, dc) = assemble(plan.projector.column(j), mode.truth_lambda);
-        let dz = derivative(&da, &dc);
-        for i in 0..q {
-            shape[(i, j)] = dz[(i, 0)];
-        }
-    }
-    let (a1, c1) = assemble(&g0, 1.0);
-    let (a_zero, c_zero) = assemble(&g0, 0.0);
-    let dz = derivative(&(&a1 - &a_zero), &(&c1 - &c_zero));
-    Some(Jacobian {
-        shape,
-        lambda: (0..q).map(|i| dz[(i, 0)]).collect(),
-    })
+pub fn noise_free_jacobian(plan: &CellPlan, mode: &ModePlan) -> Option<Jacobian> {
+    jacobian(
+        &plan.projector,
+        &mode.system,
+        &mode.truth_shape,
+        mode.truth_lambda,
+    )
 }

@@ -1,0 +1,51 @@
+//! `jointid diagnose`: calibrate, trace the residual to a missing effect, report.
+
+use anyhow::{Context, bail};
+
+use crate::cli::DiagnoseArgs;
+use jointid::diagnose::{DiagnoseSettings, Noise, diagnose};
+use jointid::identify::Settings;
+use jointid::measured::MeasuredModes;
+use jointid::model::Model;
+use jointid::output::{diagnose as out, write_atomically};
+
+pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
+    for (name, v) in [
+        ("--frequency-noise", args.frequency_noise),
+        ("--shape-noise", args.shape_noise),
+    ] {
+        if !(v.is_finite() && v > 0.0 && v < 1.0) {
+            bail!(
+                "{name} {v} is invalid: the stated noise is a relative standard deviation, above 0 and below 1"
+            );
+        }
+    }
+    let model = Model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, model.node_count())?;
+    let per_mode = match (args.n, args.m) {
+        (None, None) => None,
+        (Some(n), Some(m)) => Some(Settings {
+            n,
+            m,
+            weighting: args.weighting,
+        }),
+        _ => bail!("--n and --m go together (or leave both out for the defaults)"),
+    };
+    let settings = DiagnoseSettings {
+        noise: Noise {
+            frequency: args.frequency_noise,
+            shape: args.shape_noise,
+        },
+        per_mode,
+    };
+    let report = diagnose(&model, &measured, settings)
+        .with_context(|| format!("{}", args.measured.display()))?;
+    if let Some(path) = &args.json {
+        write_atomically(path, |w| {
+            serde_json::to_writer_pretty(&mut *w, &report).map_err(std::io::Error::other)
+        })
+        .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    out::write_text(&mut std::io::stdout().lock(), &report)?;
+    Ok(())
+}

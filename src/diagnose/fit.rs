@@ -1,0 +1,558 @@
+//! Calibration of the model on all measured modes at once: weighted nonlinear least squares of
+//! every joint's k1, k2 (the invariant joint of the paper's references [9, 10]) and, for a
+//! candidate, of the effect's parameters, by Levenberg-Marquardt, the eigenproblem re-solved at
+//! every step.
+//!
+//! Residuals, for measured mode r paired with model mode s (weights fixed by the stated noise
+//! on the measured values, so that chi^2 = |residual|^2 has the chi-square distribution when
+//! the model is right):
+//!
+//! ```text
+//!   frequency:  (f_s - f_r^m) / (sigma_f f_r^m)
+//!   shape:      (c_r y_s(j) - y_r^m(j)) / sigma_j,
+//!               sigma_j = sigma_s sqrt(y_r^m(j)^2 + (SHAPE_FLOOR max_j |y_r^m|)^2)
+//! ```
+//! c_r is a fitted scale per mode (measured shapes have any normalisation). The floor keeps the
+//! components near a node of the mode, whose multiplicative error vanishes, from dominating.
+//! Unknowns: x = ln(p / p_0) for the joints (they stay positive), theta / scale for the
+//! effects (clamped at 0 where the effect must be non-negative), and c_r.
+
+use std::sync::Arc;
+
+use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
+
+use super::pairing::{Pairing, Unpaired, pair};
+use super::sensitivity::eigen_derivative;
+use crate::measured::MeasuredModes;
+use crate::modal::{ModalError, ModalSolution};
+use crate::model::effects::{Configured, Effect, EffectContext};
+use crate::model::{Parameter, RIGID_BODY_MODES};
+
+/// Floor of the shape standard deviation, as a fraction of the mode's largest component.
+pub const SHAPE_FLOOR: f64 = 0.02;
+/// Largest number of Levenberg-Marquardt iterations.
+pub const MAX_ITERATIONS: usize = 200;
+
+/// The stated measurement noise: relative standard deviations.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Noise {
+    /// Of every measured frequency.
+    pub frequency: f64,
+    /// Of every measured shape component.
+    pub shape: f64,
+}
+
+/// Why a fit failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FitError {
+    /// A measured mode resembles no model mode.
+    #[error(transparent)]
+    Unpaired(#[from] Unpaired),
+    /// A fitted model has no eigensolution.
+    #[error("the fitted model has no eigensolution: {0}")]
+    Modal(#[from] ModalError),
+    /// More unknowns than data.
+    #[error(
+        "{data} measured values cannot determine {parameters} unknowns: measure more modes or more DOFs"
+    )]
+    TooFewData {
+        /// Measured values (frequencies and shape components).
+        data: usize,
+        /// Unknowns (joint and effect parameters, one scale per mode).
+        parameters: usize,
+    },
+    /// Levenberg-Marquardt did not converge.
+    #[error("the fit{with} did not converge in {iterations} iterations (chi^2 {chi2:.4e}): the data may be inconsistent with the model (check mode numbering, units and the stated noise)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
+    NotConverged {
+        /// Effect fitted, if any.
+        effect: String,
+        /// Iterations done.
+        iterations: usize,
+        /// Last chi^2.
+        chi2: f64,
+    },
+}
+
+/// A fitted parameter with its standard error.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Estimate {
+    /// Name (`k1`, `joint_mass.m`, ...).
+    pub name: String,
+    /// Unit.
+    pub unit: &'static str,
+    /// Fitted value.
+    pub value: f64,
+    /// Standard error from the stated noise (linearised at the optimum).
+    pub se: f64,
+}
+
+/// The outcome of a fit.
+#[derive(Debug, Clone)]
+pub struct Fitted {
+    /// The fitted model (joints and effect parameters).
+    pub configured: Configured,
+    /// Its eigensolution.
+    pub modal: ModalSolution,
+    /// Measured-to-model mode pairing at the optimum.
+    pub pairing: Pairing,
+    /// chi^2 at the optimum.
+    pub chi2: f64,
+    /// Data minus unknowns.
+    pub dof: usize,
+    /// Joint parameters, then effect parameters.
+    pub estimates: Vec<Estimate>,
+    /// Iterations used.
+    pub iterations: usize,
+    /// The fitted scale c_r of every measured mode's model shape.
+    pub scales: Vec<f64>,
+}
+
+struct Problem<'a> {
+    ctx: &'a EffectContext,
+    measured: &'a MeasuredModes,
+    noise: Noise,
+    effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
+    joint_p0: Vec<f64>,
+    /// Per measured mode, sigma of each shape component.
+    sigma: Vec<Vec<f64>>,
+}
+
+struct Evaluation {
+    configured: Configured,
+    modal: ModalSolution,
+    residual: Vec<f64>,
+}
+
+impl Problem<'_> {
+    fn joint_count(&self) -> usize {
+        self.joint_p0.len()
+    }
+
+    fn effect_count(&self) -> usize {
+        self.effects.iter().map(|(_, t)| t.len()).sum()
+    }
+
+    fn scales(&self) -> Vec<f64> {
+        self.effects
+            .iter()
+            .flat_map(|(e, _)| e.parameters(self.ctx).into_iter().map(|p| p.scale))
+            .collect()
+    }
+
+    fn configured(&self, x: &[f64]) -> Configured {
+        let j = self.joint_count();
+        let delta: Vec<f64> = self
+            .joint_p0
+            .iter()
+            .zip(x)
+            .map(|(p, xi)| p * xi.exp() - p)
+            .collect();
+        let scales = self.scales();
+        let mut at = j;
+        let effects = self
+            .effects
+            .iter()
+            .map(|(e, t)| {
+                let theta = (0..t.len())
+                    .map(|k| scales[at - j + k] * x[at + k])
+                    .collect();
+                at += t.len();
+                (e.clone(), theta)
+            })
+            .collect();
+        Configured {
+            ctx: self.ctx.clone(),
+            model: self.ctx.model.with_joint_delta(&delta),
+            effects,
+        }
+    }
+
+    fn admissible(&self, configured: &Configured) -> bool {
+        configured
+            .effects
+            .iter()
+            .all(|(e, t)| e.admissible(&configured.model, t).is_ok())
+    }
+
+    /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
+    fn evaluate(&self, x: &[f64], pairing: &Pairing) -> Result<Evaluation, ModalError> {
+        let configured = self.configured(x);
+        let modal = ModalSolution::solve(&configured.assemble())?;
+        let scale_at = self.joint_count() + self.effect_count();
+        let y = modal.vectors();
+        let mut residual = Vec::new();
+        for (r, m) in self.measured.modes().iter().enumerate() {
+            let s = pairing.model_index[r];
+            residual.push(
+                (modal.frequency_hz(s) - m.frequency_hz) / (self.noise.frequency * m.frequency_hz),
+            );
+            let sign = model_sign(&modal, s, m);
+            for ((&d, &v), &sigma) in m.dofs.iter().zip(&m.values).zip(&self.sigma[r]) {
+                residual.push((x[scale_at + r] * sign * y[(d, s)] - v) / sigma);
+            }
+        }
+        Ok(Evaluation {
+            configured,
+            modal,
+            residual,
+        })
+    }
+
+    /// d residual / dx (rows: residuals; columns: unknowns).
+    fn jacobian(&self, x: &[f64], eval: &Evaluation, pairing: &Pairing) -> Mat<f64> {
+        let params: Vec<(Parameter, f64)> = eval
+            .configured
+            .model
+            .joint_parameters()
+            .into_iter()
+            .map(|p| {
+                let v = p.value;
+                (p, v)
+            })
+            .chain(
+                eval.configured
+                    .effect_parameters()
+                    .into_iter()
+                    .zip(self.scales())
+                    .map(|(p, s)| (p, s)),
+            )
+            .collect();
+        let unknowns = x.len();
+        let rows = eval.residual.len();
+        let scale_at = self.joint_count() + self.effect_count();
+        let mut jac = Mat::zeros(rows, unknowns);
+        let mut row = 0;
+        for (r, m) in self.measured.modes().iter().enumerate() {
+            let s = pairing.model_index[r];
+            let sign = model_sign(&eval.modal, s, m);
+            let f = eval.modal.frequency_hz(s);
+            for (col, (p, chain)) in params.iter().enumerate() {
+                let (d_lambda, dy) = eigen_derivative(&eval.modal, s, &p.stiffness, &p.mass);
+                let df = d_lambda
+                    / (8.0
+                        * std::f64::consts::PI
+                        * std::f64::consts::PI
+                        * f.max(f64::MIN_POSITIVE));
+                jac[(row, col)] = chain * df / (self.noise.frequency * m.frequency_hz);
+                for (k, (&d, &sigma)) in m.dofs.iter().zip(&self.sigma[r]).enumerate() {
+                    jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * dy[d] / sigma;
+                }
+            }
+            for (k, (&d, &sigma)) in m.dofs.iter().zip(&self.sigma[r]).enumerate() {
+                jac[(row + 1 + k, scale_at + r)] = sign * eval.modal.vectors()[(d, s)] / sigma;
+            }
+            row += 1 + m.dofs.len();
+        }
+        jac
+    }
+
+    /// Indices of the unknowns that must stay >= 0.
+    fn non_negative(&self) -> Vec<usize> {
+        let mut at = self.joint_count();
+        let mut out = Vec::new();
+        for (e, _) in &self.effects {
+            for p in e.parameters(self.ctx) {
+                if p.non_negative {
+                    out.push(at);
+                }
+                at += 1;
+            }
+        }
+        out
+    }
+}
+
+/// +1 or -1: the sign that makes model mode `s` agree with the measured shape.
+fn model_sign(modal: &ModalSolution, s: usize, m: &crate::measured::MeasuredMode) -> f64 {
+    let dot: f64 = m
+        .dofs
+        .iter()
+        .zip(&m.values)
+        .map(|(&d, v)| modal.vectors()[(d, s)] * v)
+        .sum();
+    if dot < 0.0 { -1.0 } else { 1.0 }
+}
+
+fn chi2(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+/// The model as given (`ctx.model`, no effect), only the shape scales c_r fitted: the
+/// starting point, described in the same terms as a fit.
+pub fn as_given(
+    ctx: &EffectContext,
+    measured: &MeasuredModes,
+    noise: Noise,
+) -> Result<Fitted, FitError> {
+    run(ctx, measured, noise, &[], false)
+}
+
+/// Fits the joints of `ctx.model` (and the parameters of `effects`, starting at zero) to the
+/// measured modes.
+pub fn fit(
+    ctx: &EffectContext,
+    measured: &MeasuredModes,
+    noise: Noise,
+    effects: &[Arc<dyn Effect>],
+) -> Result<Fitted, FitError> {
+    run(ctx, measured, noise, effects, true)
+}
+
+fn run(
+    ctx: &EffectContext,
+    measured: &MeasuredModes,
+    noise: Noise,
+    effects: &[Arc<dyn Effect>],
+    iterate: bool,
+) -> Result<Fitted, FitError> {
+    let joint_p0: Vec<f64> = ctx
+        .model
+        .joint_parameters()
+        .iter()
+        .map(|p| p.value)
+        .collect();
+    let problem = Problem {
+        ctx,
+        measured,
+        noise,
+        effects: effects
+            .iter()
+            .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
+            .collect(),
+        sigma: measured
+            .modes()
+            .iter()
+            .map(|m| {
+                let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                m.values
+                    .iter()
+                    .map(|v| noise.shape * (v * v + (SHAPE_FLOOR * peak).powi(2)).sqrt())
+                    .collect()
+            })
+            .collect(),
+        joint_p0,
+    };
+    let unknowns = problem.joint_count() + problem.effect_count() + measured.modes().len();
+    let data: usize = measured.modes().iter().map(|m| 1 + m.dofs.len()).sum();
+    if data <= unknowns {
+        return Err(FitError::TooFewData {
+            data,
+            parameters: unknowns,
+        });
+    }
+    let name = effects
+        .iter()
+        .map(|e| e.name())
+        .collect::<Vec<_>>()
+        .join(" + ");
+    let mut x = vec![0.0; unknowns];
+    let start = problem.configured(&x);
+    let start_modal = ModalSolution::solve(&start.assemble())?;
+    let mut pairing = pair(&start_modal, measured, RIGID_BODY_MODES)?;
+    initial_scales(&problem, &start_modal, &pairing, &mut x);
+    if !iterate {
+        let eval = problem.evaluate(&x, &pairing)?;
+        let dof = data - measured.modes().len();
+        return Ok(finish(&problem, x, eval, pairing, 0, dof));
+    }
+    let mut total_iterations = 0;
+    // Levenberg-Marquardt; once converged, re-pair with the fitted model and go on if the
+    // pairing changed (a mode swap the nominal model hid).
+    for _ in 0..3 {
+        let (x_new, iterations) =
+            levenberg_marquardt(&problem, x, &pairing).map_err(|e| match e {
+                LmError::Modal(m) => FitError::Modal(m),
+                LmError::NotConverged(iterations, chi2) => FitError::NotConverged {
+                    effect: name.clone(),
+                    iterations,
+                    chi2,
+                },
+            })?;
+        x = x_new;
+        total_iterations += iterations;
+        let eval = problem.evaluate(&x, &pairing)?;
+        let repaired = pair(&eval.modal, measured, RIGID_BODY_MODES)?;
+        if repaired.model_index == pairing.model_index {
+            return Ok(finish(
+                &problem,
+                x,
+                eval,
+                repaired,
+                total_iterations,
+                data - unknowns,
+            ));
+        }
+        pairing = repaired;
+        initial_scales(
+            &problem,
+            &ModalSolution::solve(&problem.configured(&x).assemble())?,
+            &pairing,
+            &mut x,
+        );
+    }
+    Err(FitError::NotConverged {
+        effect: name,
+        iterations: total_iterations,
+        chi2: f64::NAN,
+    })
+}
+
+/// c_r by weighted least squares of the measured shape on the paired model shape.
+fn initial_scales(problem: &Problem, modal: &ModalSolution, pairing: &Pairing, x: &mut [f64]) {
+    let at = problem.joint_count() + problem.effect_count();
+    for (r, m) in problem.measured.modes().iter().enumerate() {
+        let s = pairing.model_index[r];
+        let sign = model_sign(modal, s, m);
+        let (mut num, mut den) = (0.0, 0.0);
+        for ((&d, &v), &sigma) in m.dofs.iter().zip(&m.values).zip(&problem.sigma[r]) {
+            let yhat = sign * modal.vectors()[(d, s)];
+            num += yhat * v / (sigma * sigma);
+            den += yhat * yhat / (sigma * sigma);
+        }
+        x[at + r] = num / den;
+    }
+}
+
+enum LmError {
+    Modal(ModalError),
+    NotConverged(usize, f64),
+}
+
+fn levenberg_marquardt(
+    problem: &Problem,
+    mut x: Vec<f64>,
+    pairing: &Pairing,
+) -> Result<(Vec<f64>, usize), LmError> {
+    let mut eval = problem.evaluate(&x, pairing).map_err(LmError::Modal)?;
+    let mut current = chi2(&eval.residual);
+    let mut mu = 1e-3;
+    for iteration in 1..=MAX_ITERATIONS {
+        let jac = problem.jacobian(&x, &eval, pairing);
+        let jtj = jac.transpose() * &jac;
+        let r = Mat::from_fn(eval.residual.len(), 1, |i, _| eval.residual[i]);
+        let mut g = jac.transpose() * &r;
+        let n = x.len();
+        // Active set: an unknown at its bound whose descent direction points out of the
+        // feasible side is frozen for this step (clamping a full step instead stalls the
+        // iteration at the bound).
+        let bounded = problem.non_negative();
+        let frozen: Vec<bool> = (0..n)
+            .map(|i| bounded.contains(&i) && x[i] <= 0.0 && g[(i, 0)] > 0.0)
+            .collect();
+        for i in (0..n).filter(|&i| frozen[i]) {
+            g[(i, 0)] = 0.0;
+        }
+        // Converged when a full Gauss-Newton step would lower chi^2 by less than 1e-8 of it
+        // (an absolute 1e-8 for chi^2 below 1).
+        let free = Mat::from_fn(n, n, |i, j| {
+            if frozen[i] || frozen[j] {
+                if i == j { 1.0 } else { 0.0 }
+            } else {
+                jtj[(i, j)] + if i == j { 1e-12 * jtj[(i, i)] } else { 0.0 }
+            }
+        });
+        if let Ok(llt) = free.llt(Side::Lower) {
+            let newton = llt.solve(&g);
+            let decrement: f64 = (0..n).map(|i| g[(i, 0)] * newton[(i, 0)]).sum();
+            if decrement < 1e-8 * current.max(1.0) {
+                return Ok((x, iteration));
+            }
+        }
+        let mut accepted = false;
+        while mu < 1e12 {
+            let a = Mat::from_fn(n, n, |i, j| {
+                if frozen[i] || frozen[j] {
+                    return if i == j { 1.0 } else { 0.0 };
+                }
+                jtj[(i, j)]
+                    + if i == j {
+                        mu * jtj[(i, i)].max(1e-12)
+                    } else {
+                        0.0
+                    }
+            });
+            let Ok(llt) = a.llt(Side::Lower) else {
+                mu *= 10.0;
+                continue;
+            };
+            let step = llt.solve(-&g);
+            let mut trial: Vec<f64> = (0..n).map(|i| x[i] + step[(i, 0)]).collect();
+            for &i in &bounded {
+                trial[i] = trial[i].max(0.0);
+            }
+            if !problem.admissible(&problem.configured(&trial)) {
+                mu *= 10.0;
+                continue;
+            }
+            let candidate = problem.evaluate(&trial, pairing).map_err(LmError::Modal)?;
+            let value = chi2(&candidate.residual);
+            if value <= current {
+                x = trial;
+                eval = candidate;
+                current = value;
+                mu = (mu / 3.0).max(1e-12);
+                accepted = true;
+                break;
+            }
+            mu *= 4.0;
+        }
+        if !accepted {
+            // No step lowers chi^2 even at tiny lengths: a minimum (or a bound).
+            return Ok((x, iteration));
+        }
+    }
+    Err(LmError::NotConverged(MAX_ITERATIONS, current))
+}
+
+fn finish(
+    problem: &Problem,
+    x: Vec<f64>,
+    eval: Evaluation,
+    pairing: Pairing,
+    iterations: usize,
+    dof: usize,
+) -> Fitted {
+    let jac = problem.jacobian(&x, &eval, &pairing);
+    let jtj = jac.transpose() * &jac;
+    let n = x.len();
+    let covariance = jtj
+        .llt(Side::Lower)
+        .map(|llt| llt.solve(Mat::<f64>::identity(n, n)))
+        .unwrap_or_else(|_| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
+    let mut estimates: Vec<Estimate> = eval
+        .configured
+        .model
+        .joint_parameters()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Estimate {
+            name: p.name.clone(),
+            unit: p.unit,
+            value: p.value,
+            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
+        })
+        .collect();
+    let j = problem.joint_count();
+    let scales = problem.scales();
+    for (k, p) in eval.configured.effect_parameters().iter().enumerate() {
+        estimates.push(Estimate {
+            name: p.name.clone(),
+            unit: p.unit,
+            value: p.value,
+            se: scales[k] * covariance[(j + k, j + k)].max(0.0).sqrt(),
+        });
+    }
+    let chi2 = chi2(&eval.residual);
+    let scales = x[j + problem.effect_count()..].to_vec();
+    Fitted {
+        scales,
+        configured: eval.configured,
+        modal: eval.modal,
+        pairing,
+        chi2,
+        dof,
+        estimates,
+        iterations,
+    }
+}

@@ -1,0 +1,246 @@
+//! Diagnosis of measured data: calibrate the invariant joint on every measured mode, look at
+//! what the calibrated model still misses, try every candidate effect of the library, select
+//! by a likelihood-ratio test under the stated noise, and report before and after.
+//!
+//! Selection, stated: with chi^2_0 the calibrated joint-only fit (dof_0) and chi^2_c the fit
+//! with candidate c (k_c more unknowns), the likelihood-ratio statistic
+//! D_c = chi^2_0 - chi^2_c is chi-square with k_c degrees of freedom when c is absent. A
+//! candidate is significant when P(chi^2_{k_c} > D_c), times the number of candidates tried
+//! (Bonferroni), is below [`ALPHA`]. Goodness of fit: P(chi^2_dof > chi^2) >= [`FIT_ALPHA`].
+//! - no significant candidate: `none` if the joint-only fit is good, else `unexplained`;
+//! - otherwise the significant candidate with the largest D_c: `effect` if its fit is good,
+//!   else `unexplained` (it helps, but the residual stays above the noise).
+//!
+//! - [`pairing`]: MAC pairing of measured and model modes;
+//! - [`sensitivity`]: eigenpair derivatives;
+//! - [`fit`]: the weighted nonlinear least squares (Levenberg-Marquardt);
+//! - [`report`]: summaries, per-mode corrections, the report.
+
+pub mod fit;
+pub mod pairing;
+pub mod report;
+pub mod sensitivity;
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+pub use fit::{Estimate, FitError, Fitted, Noise};
+pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
+
+use crate::identify::{Settings, Weighting};
+use crate::measured::MeasuredModes;
+use crate::modal::{ModalError, ModalSolution};
+use crate::model::effects::{Effect, EffectContext, candidates};
+use crate::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
+use crate::stats::chi2_sf;
+
+/// Family-wise false-alarm probability of the candidate search.
+pub const ALPHA: f64 = 0.01;
+/// Smallest goodness-of-fit probability of a model that explains the data.
+pub const FIT_ALPHA: f64 = 0.001;
+
+/// Why a diagnosis cannot be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DiagnoseError {
+    /// The nominal model has no eigensolution.
+    #[error("the model has no eigensolution: {0}")]
+    Modal(#[from] ModalError),
+    /// The joint-only calibration failed.
+    #[error("calibration of the joint: {0}")]
+    Fit(#[from] FitError),
+    /// Fewer modes than joint parameters.
+    #[error(
+        "{modes} measured mode(s) cannot calibrate {parameters} joint parameters: measure at least {parameters} modes"
+    )]
+    TooFewModes {
+        /// Measured modes.
+        modes: usize,
+        /// Joint parameters.
+        parameters: usize,
+    },
+}
+
+/// Settings of a diagnosis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiagnoseSettings {
+    /// The stated measurement noise.
+    pub noise: Noise,
+    /// The paper's per-mode identification (None: n = the fewest identified DOFs of a mode,
+    /// at most N; m = min(n - 2, 6); inverse weighting).
+    pub per_mode: Option<Settings>,
+}
+
+/// Diagnoses `measured` against `model`.
+pub fn diagnose(
+    model: &Model,
+    measured: &MeasuredModes,
+    settings: DiagnoseSettings,
+) -> Result<Report, DiagnoseError> {
+    let joint_parameters = model.joint_parameters().len();
+    if measured.modes().len() < joint_parameters {
+        return Err(DiagnoseError::TooFewModes {
+            modes: measured.modes().len(),
+            parameters: joint_parameters,
+        });
+    }
+    let nominal = ModalSolution::solve(&model.assemble())?;
+    let mut sensor_nodes: Vec<usize> = measured
+        .modes()
+        .iter()
+        .flat_map(|m| m.dofs.iter().map(|&d| dof_of_index(d)))
+        .filter(|(_, dof)| *dof == Dof::W)
+        .map(|(node, _)| node)
+        .collect();
+    sensor_nodes.sort_unstable();
+    sensor_nodes.dedup();
+    let ctx = EffectContext {
+        model: model.clone(),
+        sensor_nodes,
+        first_elastic_hz: nominal.frequency_hz(RIGID_BODY_MODES),
+    };
+    let noise = settings.noise;
+    let initial = fit::as_given(&ctx, measured, noise)?;
+    let base = fit::fit(&ctx, measured, noise, &[])?;
+    let library: Vec<Arc<dyn Effect>> = candidates()
+        .into_iter()
+        .filter(|c| applicable(c.as_ref(), &ctx))
+        .collect();
+    let tried = library.len() as f64;
+    let fits: Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> = library
+        .into_par_iter()
+        .map(|c| {
+            let result = fit::fit(&ctx, measured, noise, std::slice::from_ref(&c));
+            (c, result)
+        })
+        .collect();
+    let joint_count = base.estimates.len();
+    let candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
+        .iter()
+        .map(|(c, result)| match result {
+            Ok(f) => {
+                let k = f.estimates.len() - joint_count;
+                let lrt = (base.chi2 - f.chi2).max(0.0);
+                let parameters = f.estimates[joint_count..].to_vec();
+                let theta: Vec<f64> = parameters.iter().map(|e| e.value).collect();
+                let size = c.size_of_theta(&ctx, &theta);
+                // Linear propagation of the parameters' standard errors to the size.
+                let size_se = parameters
+                    .iter()
+                    .enumerate()
+                    .map(|(i, e)| {
+                        let h = 1e-6 * e.value.abs().max(e.se).max(f64::MIN_POSITIVE);
+                        let mut t = theta.clone();
+                        t[i] += h;
+                        ((c.size_of_theta(&ctx, &t) - size) / h * e.se).powi(2)
+                    })
+                    .sum::<f64>()
+                    .sqrt();
+                let report = CandidateReport {
+                    name: c.name().to_string(),
+                    parameters,
+                    size: Some(size),
+                    size_se: Some(size_se),
+                    describe: c.describe().to_string(),
+                    chi2: Some(f.chi2),
+                    dof: Some(f.dof),
+                    lrt: Some(lrt),
+                    criterion: Some((chi2_sf(lrt, k as f64) * tried).min(1.0)),
+                    fit_p_value: Some(chi2_sf(f.chi2, f.dof as f64)),
+                    summary: Some(ErrorSummary::of(f, measured)),
+                    error: None,
+                };
+                (report, Some(f))
+            }
+            Err(e) => (
+                CandidateReport {
+                    name: c.name().to_string(),
+                    parameters: Vec::new(),
+                    size: None,
+                    size_se: None,
+                    describe: c.describe().to_string(),
+                    chi2: None,
+                    dof: None,
+                    lrt: None,
+                    criterion: None,
+                    fit_p_value: None,
+                    summary: None,
+                    error: Some(e.to_string()),
+                },
+                None,
+            ),
+        })
+        .collect();
+    let base_p = chi2_sf(base.chi2, base.dof as f64);
+    let best = candidates
+        .iter()
+        .filter(|(c, _)| c.criterion.is_some_and(|p| p < ALPHA))
+        .max_by(|a, b| a.0.lrt.unwrap_or(0.0).total_cmp(&b.0.lrt.unwrap_or(0.0)));
+    let (verdict, after) = match best {
+        Some((c, Some(f))) if c.fit_p_value.is_some_and(|p| p >= FIT_ALPHA) => {
+            (Verdict::Effect, (*f, Some(c.name.clone())))
+        }
+        Some(_) => (Verdict::Unexplained, (&base, None)),
+        None if base_p >= FIT_ALPHA => (Verdict::None, (&base, None)),
+        None => (Verdict::Unexplained, (&base, None)),
+    };
+    let per_mode = settings
+        .per_mode
+        .unwrap_or_else(|| default_per_mode(model, measured));
+    let per_mode_before = report::per_mode_corrections(&base, measured, noise, per_mode);
+    let per_mode_after = report::per_mode_corrections(after.0, measured, noise, per_mode);
+    let warnings = base
+        .pairing
+        .model_index
+        .iter()
+        .zip(measured.modes())
+        .filter(|(s, m)| **s != m.mode - 1 + RIGID_BODY_MODES)
+        .map(|(s, m)| format!("measured mode {} pairs with model mode {} (MAC): a swapped or missing mode; it is compared with that model mode", m.mode, s + 1 - RIGID_BODY_MODES))
+        .collect();
+    Ok(Report {
+        verdict,
+        selected: after.1,
+        criterion: format!(
+            "likelihood-ratio test under the stated noise: a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}"
+        ),
+        noise,
+        warnings,
+        initial: ErrorSummary::of(&initial, measured),
+        before: ErrorSummary::of(&base, measured),
+        after: ErrorSummary::of(after.0, measured),
+        candidates: candidates.into_iter().map(|(c, _)| c).collect(),
+        flatness_before: report::flatness(&per_mode_before),
+        flatness_after: report::flatness(&per_mode_after),
+        per_mode_before,
+        per_mode_after,
+        per_mode_settings: format!(
+            "n = {}, m = {}, weighting = {}",
+            per_mode.n, per_mode.m, per_mode.weighting
+        ),
+        shape_floor: Report::SHAPE_FLOOR,
+    })
+}
+
+/// Whether an effect can act on this data (a sensor mass needs measured translations).
+fn applicable(effect: &dyn Effect, ctx: &EffectContext) -> bool {
+    let theta: Vec<f64> = effect.parameters(ctx).iter().map(|p| p.scale).collect();
+    effect
+        .derivatives(ctx, &theta)
+        .iter()
+        .any(|(k, m)| !k.is_zero() || !m.is_zero())
+}
+
+fn default_per_mode(model: &Model, measured: &MeasuredModes) -> Settings {
+    let fewest = measured
+        .modes()
+        .iter()
+        .map(|m| m.dofs.len())
+        .min()
+        .unwrap_or(0);
+    let n = fewest.min(model.dof_count()).max(RIGID_BODY_MODES + 2);
+    Settings {
+        n,
+        m: (n - RIGID_BODY_MODES).min(6),
+        weighting: Weighting::Inverse,
+    }
+}

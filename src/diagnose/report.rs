@@ -1,0 +1,334 @@
+//! What a diagnosis reports: error summaries of a model against the data, per-mode joint
+//! corrections with their uncertainties, candidates, the verdict. Plain data, serialisable.
+
+use serde::Serialize;
+
+use super::fit::{Estimate, Fitted, Noise, SHAPE_FLOOR};
+use super::pairing::mac;
+use crate::identify::propagation::{jacobian, propagated_std};
+use crate::identify::{Identifier, Projector, Settings};
+use crate::measured::MeasuredModes;
+use crate::model::RIGID_BODY_MODES;
+use crate::stats::chi2_sf;
+
+/// The verdict of a diagnosis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// The calibrated model explains the data within the stated noise; no candidate is
+    /// significant.
+    None,
+    /// A candidate is significant and brings the residual down to the noise.
+    Effect,
+    /// The residual stays above the noise with every candidate: a frequency-dependent joint,
+    /// or an effect outside the library.
+    Unexplained,
+}
+
+/// How one measured mode compares with its paired model mode.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModeError {
+    /// Measured mode r.
+    pub mode: usize,
+    /// Paired model mode (deformable numbering, 1 = first elastic).
+    pub model_mode: usize,
+    /// Measured frequency, Hz.
+    pub frequency_measured_hz: f64,
+    /// Model frequency, Hz.
+    pub frequency_model_hz: f64,
+    /// (model - measured) / measured, %.
+    pub frequency_error_pct: f64,
+    /// MAC over the measured DOFs.
+    pub mac: f64,
+    /// RMS of (c y_model - y_measured) over the measured DOFs, % of the largest measured
+    /// component.
+    pub shape_rms_pct: f64,
+}
+
+/// How a model compares with all the data.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ErrorSummary {
+    /// RMS of the relative frequency errors, %.
+    pub frequency_rms_pct: f64,
+    /// Smallest MAC.
+    pub min_mac: f64,
+    /// Mean MAC.
+    pub mean_mac: f64,
+    /// chi^2 of the residuals under the stated noise.
+    pub chi2: f64,
+    /// Its degrees of freedom (data minus fitted unknowns).
+    pub dof: usize,
+    /// chi^2 / dof (about 1 at the noise level; below 1 where the shape floor dominates).
+    pub chi2_per_dof: f64,
+    /// P(chi^2_dof > chi^2): the goodness of fit.
+    pub p_value: f64,
+    /// The fitted parameters (joints, then effect), with standard errors.
+    pub parameters: Vec<Estimate>,
+    /// Mode by mode.
+    pub modes: Vec<ModeError>,
+}
+
+impl ErrorSummary {
+    /// The summary of a fitted (or as-given) model.
+    pub fn of(fitted: &Fitted, measured: &MeasuredModes) -> Self {
+        let y = fitted.modal.vectors();
+        let modes: Vec<ModeError> = measured
+            .modes()
+            .iter()
+            .enumerate()
+            .map(|(r, m)| {
+                let s = fitted.pairing.model_index[r];
+                let model: Vec<f64> = m.dofs.iter().map(|&d| y[(d, s)]).collect();
+                let sign = if model.iter().zip(&m.values).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                let ss: f64 = model
+                    .iter()
+                    .zip(&m.values)
+                    .map(|(a, b)| (fitted.scales[r] * sign * a - b).powi(2))
+                    .sum();
+                let f = fitted.modal.frequency_hz(s);
+                ModeError {
+                    mode: m.mode,
+                    model_mode: s + 1 - RIGID_BODY_MODES,
+                    frequency_measured_hz: m.frequency_hz,
+                    frequency_model_hz: f,
+                    frequency_error_pct: 100.0 * (f - m.frequency_hz) / m.frequency_hz,
+                    mac: mac(&model, &m.values),
+                    shape_rms_pct: 100.0 * (ss / m.values.len() as f64).sqrt() / peak,
+                }
+            })
+            .collect();
+        let count = modes.len() as f64;
+        ErrorSummary {
+            frequency_rms_pct: (modes
+                .iter()
+                .map(|e| e.frequency_error_pct.powi(2))
+                .sum::<f64>()
+                / count)
+                .sqrt(),
+            min_mac: modes.iter().map(|e| e.mac).fold(f64::INFINITY, f64::min),
+            mean_mac: modes.iter().map(|e| e.mac).sum::<f64>() / count,
+            chi2: fitted.chi2,
+            dof: fitted.dof,
+            chi2_per_dof: fitted.chi2 / fitted.dof as f64,
+            p_value: chi2_sf(fitted.chi2, fitted.dof as f64),
+            parameters: fitted.estimates.clone(),
+            modes,
+        }
+    }
+}
+
+/// The paper's per-mode correction of one joint parameter on one mode (eq. (13)) on a
+/// calibrated model, with its standard deviation from the stated noise.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModeCorrection {
+    /// Measured mode r.
+    pub mode: usize,
+    /// Measured frequency, Hz.
+    pub frequency_hz: f64,
+    /// Parameter name.
+    pub param: String,
+    /// Delta p_i / p_i (None when S_r is rank deficient).
+    pub relative: Option<f64>,
+    /// Delta p_i.
+    pub correction: Option<f64>,
+    /// Standard deviation of Delta p_i, first order.
+    pub std: Option<f64>,
+}
+
+/// Whether the per-mode corrections of one parameter are consistent with a constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Flatness {
+    /// Parameter name.
+    pub param: String,
+    /// Weighted mean of Delta p_i over the modes.
+    pub mean: f64,
+    /// chi^2 of the deviations from that mean (dof = modes - 1).
+    pub chi2: f64,
+    /// Its degrees of freedom.
+    pub dof: usize,
+    /// P(chi^2_dof > chi2): small when the corrections really change from mode to mode.
+    pub p_value: f64,
+    /// Least-squares slope of Delta p_i against the mode's frequency, per kHz.
+    pub slope_per_khz: f64,
+}
+
+/// The per-mode corrections of every joint parameter on the calibrated `fitted` model.
+pub fn per_mode_corrections(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    noise: Noise,
+    settings: Settings,
+) -> Vec<ModeCorrection> {
+    let params = fitted.configured.model.joint_parameters();
+    let values: Vec<f64> = params.iter().map(|p| p.value).collect();
+    let Ok(identifier) = Identifier::new(&fitted.modal, params.clone(), RIGID_BODY_MODES, settings)
+    else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for (r, m) in measured.modes().iter().enumerate() {
+        let s = fitted.pairing.model_index[r];
+        let outcome = identifier.identify_paired(m, s).ok();
+        let std = Projector::new(identifier.basis(), &m.dofs)
+            .ok()
+            .and_then(|projector| {
+                let jac = jacobian(
+                    &projector,
+                    &identifier.mode_system(s),
+                    &m.values,
+                    m.lambda(),
+                )?;
+                let shape_variance = noise.shape * noise.shape;
+                Some(propagated_std(
+                    &jac,
+                    &m.values,
+                    m.lambda(),
+                    &values,
+                    shape_variance,
+                    noise.frequency * noise.frequency,
+                ))
+            });
+        for (i, p) in params.iter().enumerate() {
+            let relative = outcome
+                .as_ref()
+                .and_then(|o| o.relative.as_ref().ok())
+                .map(|z| z[i]);
+            out.push(ModeCorrection {
+                mode: m.mode,
+                frequency_hz: m.frequency_hz,
+                param: p.name.clone(),
+                relative,
+                correction: relative.map(|z| z * p.value),
+                std: std.as_ref().map(|s| s[i]),
+            });
+        }
+    }
+    out
+}
+
+/// Flatness of the per-mode corrections of every parameter.
+pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
+    let mut names: Vec<&str> = corrections.iter().map(|c| c.param.as_str()).collect();
+    names.dedup();
+    names.sort_unstable();
+    names.dedup();
+    names
+        .into_iter()
+        .filter_map(|name| {
+            let points: Vec<(f64, f64, f64)> = corrections
+                .iter()
+                .filter(|c| c.param == name)
+                .filter_map(|c| {
+                    Some((
+                        c.frequency_hz / 1000.0,
+                        c.correction?,
+                        c.std.filter(|s| *s > 0.0)?,
+                    ))
+                })
+                .collect();
+            if points.len() < 2 {
+                return None;
+            }
+            let wsum: f64 = points.iter().map(|(_, _, s)| 1.0 / (s * s)).sum();
+            let mean = points.iter().map(|(_, x, s)| x / (s * s)).sum::<f64>() / wsum;
+            let chi2: f64 = points
+                .iter()
+                .map(|(_, x, s)| ((x - mean) / s).powi(2))
+                .sum();
+            let fbar = points.iter().map(|(f, _, s)| f / (s * s)).sum::<f64>() / wsum;
+            let sxx: f64 = points
+                .iter()
+                .map(|(f, _, s)| (f - fbar).powi(2) / (s * s))
+                .sum();
+            let sxy: f64 = points
+                .iter()
+                .map(|(f, x, s)| (f - fbar) * (x - mean) / (s * s))
+                .sum();
+            let dof = points.len() - 1;
+            Some(Flatness {
+                param: name.to_string(),
+                mean,
+                chi2,
+                dof,
+                p_value: chi2_sf(chi2, dof as f64),
+                slope_per_khz: if sxx > 0.0 { sxy / sxx } else { 0.0 },
+            })
+        })
+        .collect()
+}
+
+/// One candidate's fit, or why it failed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CandidateReport {
+    /// Candidate name.
+    pub name: String,
+    /// The effect's fitted parameters (joints are in `summary`).
+    pub parameters: Vec<Estimate>,
+    /// Fitted size in the unit of `jointid simulate --effect` (see `describe`).
+    pub size: Option<f64>,
+    /// Standard error of the size.
+    pub size_se: Option<f64>,
+    /// What the effect is and what its size means.
+    pub describe: String,
+    /// chi^2 with the candidate.
+    pub chi2: Option<f64>,
+    /// Degrees of freedom with the candidate.
+    pub dof: Option<usize>,
+    /// Likelihood-ratio statistic chi^2(joint only) - chi^2(with candidate).
+    pub lrt: Option<f64>,
+    /// The criterion: the likelihood-ratio p-value P(chi^2_k > lrt), Bonferroni-adjusted for
+    /// the number of candidates tried (smaller is more significant).
+    pub criterion: Option<f64>,
+    /// Goodness of fit with the candidate, P(chi^2_dof > chi^2).
+    pub fit_p_value: Option<f64>,
+    /// The fit's summary with the candidate.
+    #[serde(skip)]
+    pub summary: Option<ErrorSummary>,
+    /// Why the fit failed, if it did.
+    pub error: Option<String>,
+}
+
+/// A whole diagnosis.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// none, effect or unexplained.
+    pub verdict: Verdict,
+    /// The selected candidate, when the verdict is `effect`.
+    pub selected: Option<String>,
+    /// The statistical criterion, in words.
+    pub criterion: String,
+    /// The stated noise.
+    pub noise: Noise,
+    /// Pairing remarks: modes paired with another model mode than their number.
+    pub warnings: Vec<String>,
+    /// The model as given (joints uncalibrated).
+    pub initial: ErrorSummary,
+    /// The invariant joint calibrated on every mode, no effect.
+    pub before: ErrorSummary,
+    /// With the selected effect (equal to `before` when none is selected).
+    pub after: ErrorSummary,
+    /// Every candidate.
+    pub candidates: Vec<CandidateReport>,
+    /// The paper's per-mode corrections on the `before` model.
+    pub per_mode_before: Vec<ModeCorrection>,
+    /// The same on the `after` model.
+    pub per_mode_after: Vec<ModeCorrection>,
+    /// Flatness of the per-mode corrections before.
+    pub flatness_before: Vec<Flatness>,
+    /// Flatness after.
+    pub flatness_after: Vec<Flatness>,
+    /// The per-mode identification settings (n, m, weighting).
+    pub per_mode_settings: String,
+    /// The shape-noise floor used in the weights.
+    pub shape_floor: f64,
+}
+
+impl Report {
+    /// The floor documented in [`super::fit`].
+    pub const SHAPE_FLOOR: f64 = SHAPE_FLOOR;
+}

@@ -1,0 +1,57 @@
+//! `sensor_mass`: accelerometers load the beam. One lumped mass m_s at every node where a
+//! translation is measured (the same sensor everywhere).
+
+use super::{Effect, EffectContext, EffectParameter};
+use crate::model::{Dof, SparseSym, dof_index};
+
+/// See the module docs.
+#[derive(Debug, Clone, Copy)]
+pub struct SensorMass;
+
+fn pattern(ctx: &EffectContext) -> SparseSym {
+    let mut s = SparseSym::zero();
+    for &node in &ctx.sensor_nodes {
+        s.add(dof_index(node, Dof::W), dof_index(node, Dof::W), 1.0);
+    }
+    s
+}
+
+impl Effect for SensorMass {
+    fn name(&self) -> &'static str {
+        "sensor_mass"
+    }
+
+    fn describe(&self) -> &'static str {
+        "one lumped mass at every node where a translation is measured; size = total sensor mass / mass of all beams"
+    }
+
+    fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
+        let sensors = ctx.sensor_nodes.len().max(1) as f64;
+        vec![EffectParameter {
+            name: "sensor_mass.m".into(),
+            unit: "kg",
+            scale: 0.01 * ctx.model.mass() / sensors,
+            non_negative: true,
+        }]
+    }
+
+    fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
+        let mut m = SparseSym::zero();
+        if theta[0] != 0.0 {
+            m.extend_scaled(&pattern(ctx), theta[0]);
+        }
+        (SparseSym::zero(), m)
+    }
+
+    fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
+        vec![(SparseSym::zero(), pattern(ctx))]
+    }
+
+    fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
+        vec![size * ctx.model.mass() / ctx.sensor_nodes.len().max(1) as f64]
+    }
+
+    fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
+        theta[0] * ctx.sensor_nodes.len().max(1) as f64 / ctx.model.mass()
+    }
+}

@@ -1,0 +1,66 @@
+//! `suspension`: a free-free test is never perfectly free. Grounded translational springs of
+//! stiffness k_s at the two free ends of the chain (first node of the first beam, last node of
+//! the last beam).
+
+use super::{Effect, EffectContext, EffectParameter};
+use crate::model::{Dof, Model, SparseSym, dof_index};
+
+/// See the module docs.
+#[derive(Debug, Clone, Copy)]
+pub struct Suspension;
+
+fn pattern(model: &Model) -> SparseSym {
+    let last = model.last_node(model.beams().len() - 1);
+    let mut s = SparseSym::zero();
+    s.add(dof_index(0, Dof::W), dof_index(0, Dof::W), 1.0);
+    s.add(dof_index(last, Dof::W), dof_index(last, Dof::W), 1.0);
+    s
+}
+
+/// k_s putting the rigid bounce frequency sqrt(2 k_s / M) at `fraction` of the first elastic
+/// frequency.
+fn stiffness_of_bounce(ctx: &EffectContext, fraction: f64) -> f64 {
+    let w = 2.0 * std::f64::consts::PI * fraction * ctx.first_elastic_hz;
+    w * w * ctx.model.mass() / 2.0
+}
+
+impl Effect for Suspension {
+    fn name(&self) -> &'static str {
+        "suspension"
+    }
+
+    fn describe(&self) -> &'static str {
+        "grounded translational springs at the two free ends; size = rigid bounce frequency sqrt(2 k_s / M) / first elastic frequency of the nominal model"
+    }
+
+    fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
+        vec![EffectParameter {
+            name: "suspension.k".into(),
+            unit: "N/m",
+            scale: stiffness_of_bounce(ctx, 0.1),
+            non_negative: true,
+        }]
+    }
+
+    fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
+        let mut k = SparseSym::zero();
+        if theta[0] != 0.0 {
+            k.extend_scaled(&pattern(&ctx.model), theta[0]);
+        }
+        (k, SparseSym::zero())
+    }
+
+    fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
+        vec![(pattern(&ctx.model), SparseSym::zero())]
+    }
+
+    fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
+        vec![stiffness_of_bounce(ctx, size.abs()).copysign(size)]
+    }
+
+    fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
+        (theta[0].abs() / stiffness_of_bounce(ctx, 1.0))
+            .sqrt()
+            .copysign(theta[0])
+    }
+}

@@ -1,0 +1,209 @@
+//! The diagnosis report for the terminal. (The JSON form is the report's serde serialisation.)
+
+use std::io::{self, Write};
+
+use super::table::{sci, write_table};
+use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
+use crate::diagnose::{Report, Verdict};
+
+fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
+    vec![
+        label.to_string(),
+        format!("{:.3}", s.frequency_rms_pct),
+        format!("{:.4}", s.min_mac),
+        format!("{:.4}", s.mean_mac),
+        format!("{:.1}/{}", s.chi2, s.dof),
+        format!("{:.2}", s.chi2_per_dof),
+        format!("{:.2e}", s.p_value),
+    ]
+}
+
+fn corrections(
+    out: &mut dyn Write,
+    title: &str,
+    list: &[ModeCorrection],
+    flat: &[Flatness],
+) -> io::Result<()> {
+    writeln!(out, "\n{title}")?;
+    let rows: Vec<Vec<String>> = list
+        .iter()
+        .map(|c| {
+            vec![
+                c.mode.to_string(),
+                format!("{:.2}", c.frequency_hz),
+                c.param.clone(),
+                c.correction
+                    .map(sci)
+                    .unwrap_or_else(|| "rank-deficient".into()),
+                c.std.map(sci).unwrap_or_default(),
+                c.relative.map(|z| format!("{:+.4}", z)).unwrap_or_default(),
+            ]
+        })
+        .collect();
+    write_table(
+        out,
+        &[
+            "mode",
+            "f (Hz)",
+            "param",
+            "Delta p",
+            "+- std",
+            "Delta p / p",
+        ],
+        &rows,
+    )?;
+    for f in flat {
+        writeln!(
+            out,
+            "  {}: weighted mean {}, slope {} per kHz, flatness chi^2 {:.1}/{} (p = {:.2e}){}",
+            f.param,
+            sci(f.mean),
+            sci(f.slope_per_khz),
+            f.chi2,
+            f.dof,
+            f.p_value,
+            if f.p_value < 0.001 {
+                ": changes with the mode"
+            } else {
+                ": constant within noise"
+            }
+        )?;
+    }
+    Ok(())
+}
+
+/// Writes the report as text.
+pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
+    let verdict = match (r.verdict, &r.selected) {
+        (Verdict::Effect, Some(name)) => format!("effect: {name}"),
+        (Verdict::None, _) => "none: the calibrated model explains the data within the stated noise".to_string(),
+        _ => "unexplained: the residual stays above the noise with every candidate (a frequency-dependent joint, or an effect outside the library)".to_string(),
+    };
+    writeln!(out, "verdict: {verdict}")?;
+    writeln!(
+        out,
+        "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
+        r.noise.frequency, r.noise.shape, r.shape_floor
+    )?;
+    for w in &r.warnings {
+        writeln!(out, "warning: {w}")?;
+    }
+    writeln!(out)?;
+    write_table(
+        out,
+        &[
+            "model",
+            "f RMS (%)",
+            "min MAC",
+            "mean MAC",
+            "chi^2/dof",
+            "ratio",
+            "P(fit)",
+        ],
+        &[
+            summary_line("as given", &r.initial),
+            summary_line("joint calibrated", &r.before),
+            summary_line("after", &r.after),
+        ],
+    )?;
+    writeln!(
+        out,
+        "\nper mode (joint calibrated -> after): frequency error %, MAC"
+    )?;
+    let rows: Vec<Vec<String>> = r
+        .before
+        .modes
+        .iter()
+        .zip(&r.after.modes)
+        .map(|(b, a)| {
+            vec![
+                b.mode.to_string(),
+                b.model_mode.to_string(),
+                format!("{:.3}", b.frequency_measured_hz),
+                format!("{:+.3}", b.frequency_error_pct),
+                format!("{:+.3}", a.frequency_error_pct),
+                format!("{:.4}", b.mac),
+                format!("{:.4}", a.mac),
+            ]
+        })
+        .collect();
+    write_table(
+        out,
+        &[
+            "mode",
+            "model mode",
+            "f meas (Hz)",
+            "err before",
+            "err after",
+            "MAC before",
+            "MAC after",
+        ],
+        &rows,
+    )?;
+    writeln!(out, "\ncandidates ({})", r.criterion)?;
+    let rows: Vec<Vec<String>> = r
+        .candidates
+        .iter()
+        .map(|c| match &c.error {
+            Some(e) => vec![
+                c.name.clone(),
+                "fit failed".into(),
+                String::new(),
+                String::new(),
+                String::new(),
+                e.clone(),
+            ],
+            None => vec![
+                c.name.clone(),
+                format!(
+                    "{} +- {}",
+                    sci(c.size.unwrap_or(0.0)),
+                    sci(c.size_se.unwrap_or(0.0))
+                ),
+                format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
+                format!("{:.1}", c.lrt.unwrap_or(0.0)),
+                format!("{:.2e}", c.criterion.unwrap_or(1.0)),
+                format!("{:.2e}", c.fit_p_value.unwrap_or(0.0)),
+            ],
+        })
+        .collect();
+    write_table(
+        out,
+        &[
+            "candidate",
+            "size",
+            "chi^2/dof",
+            "LR stat",
+            "p (adj.)",
+            "P(fit)",
+        ],
+        &rows,
+    )?;
+    writeln!(out, "\nfitted parameters after:")?;
+    for e in &r.after.parameters {
+        writeln!(
+            out,
+            "  {} = {} +- {} {}",
+            e.name,
+            sci(e.value),
+            sci(e.se),
+            e.unit
+        )?;
+    }
+    corrections(
+        out,
+        &format!(
+            "per-mode joint corrections, joint calibrated ({})",
+            r.per_mode_settings
+        ),
+        &r.per_mode_before,
+        &r.flatness_before,
+    )?;
+    corrections(
+        out,
+        "per-mode joint corrections, after",
+        &r.per_mode_after,
+        &r.flatness_after,
+    )?;
+    Ok(())
+}
