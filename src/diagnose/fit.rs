@@ -556,3 +556,88 @@ fn finish(
         iterations,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::effects::by_name;
+    use crate::model::fixtures::paper_model;
+    use crate::simulate::{Errors, simulate};
+    use crate::study::NoiseKind;
+
+    /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
+    /// shape scales) against central differences of the residuals, at a point away from zero.
+    #[test]
+    fn residual_jacobian_matches_central_differences() {
+        let model = paper_model(1e7, 1e4);
+        let dofs: Vec<usize> = (0..38).step_by(2).collect();
+        let errors = Errors {
+            shape: 0.02,
+            frequency: 0.001,
+            kind: NoiseKind::Gaussian,
+            seed: 3,
+        };
+        let measured = simulate(
+            &model,
+            &[("shear".into(), 0.5)],
+            &[1, 2, 3, 4],
+            &dofs,
+            errors,
+        )
+        .unwrap();
+        let nominal = ModalSolution::solve(&model.assemble()).unwrap();
+        let ctx = EffectContext {
+            model: model.clone(),
+            sensor_nodes: (0..19).collect(),
+            first_elastic_hz: nominal.frequency_hz(2),
+        };
+        let noise = Noise {
+            frequency: 0.001,
+            shape: 0.02,
+        };
+        let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
+        let problem = Problem {
+            ctx: &ctx,
+            measured: &measured,
+            noise,
+            effects: effects.iter().map(|e| (e.clone(), vec![0.0])).collect(),
+            joint_p0: vec![1e7, 1e4],
+            sigma: measured
+                .modes()
+                .iter()
+                .map(|m| {
+                    m.values
+                        .iter()
+                        .map(|v| 0.02 * (v * v + 1e-4).sqrt())
+                        .collect()
+                })
+                .collect(),
+        };
+        let x = vec![0.1, -0.2, 2.0, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
+        let pairing = pair(&nominal, &measured, RIGID_BODY_MODES).unwrap();
+        let eval = problem.evaluate(&x, &pairing).unwrap();
+        let jac = problem.jacobian(&x, &eval, &pairing);
+        // Eigenvalues are accurate to about eps * lambda_max (2e-3 here) in absolute terms: the
+        // step must be large for the difference quotient, small for its truncation error.
+        for col in 0..x.len() {
+            let h = 1e-3;
+            let at = |sign: f64| {
+                let mut t = x.clone();
+                t[col] += sign * h;
+                problem.evaluate(&t, &pairing).unwrap().residual
+            };
+            let (plus, minus) = (at(1.0), at(-1.0));
+            let scale = (0..plus.len())
+                .map(|r| jac[(r, col)].abs())
+                .fold(0.0, f64::max);
+            for r in 0..plus.len() {
+                let fd = (plus[r] - minus[r]) / (2.0 * h);
+                assert!(
+                    (fd - jac[(r, col)]).abs() < 1e-5 * scale,
+                    "column {col}, row {r}: {fd} vs {}",
+                    jac[(r, col)]
+                );
+            }
+        }
+    }
+}

@@ -153,8 +153,10 @@ pub struct Flatness {
     pub dof: usize,
     /// P(chi^2_dof > chi2): small when the corrections really change from mode to mode.
     pub p_value: f64,
-    /// Least-squares slope of Delta p_i against the mode's frequency, per kHz.
+    /// Weighted least-squares slope of Delta p_i against the mode's frequency, per kHz.
     pub slope_per_khz: f64,
+    /// Standard error of the slope: a slope beyond 3 of them is a trend with frequency.
+    pub slope_se_per_khz: f64,
 }
 
 /// The per-mode corrections of every joint parameter on the calibrated `fitted` model.
@@ -250,13 +252,19 @@ pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
                 .map(|(f, x, s)| (f - fbar) * (x - mean) / (s * s))
                 .sum();
             let dof = points.len() - 1;
+            let (slope, slope_se) = if sxx > 0.0 {
+                (sxy / sxx, 1.0 / sxx.sqrt())
+            } else {
+                (0.0, f64::INFINITY)
+            };
             Some(Flatness {
                 param: name.to_string(),
                 mean,
                 chi2,
                 dof,
                 p_value: chi2_sf(chi2, dof as f64),
-                slope_per_khz: if sxx > 0.0 { sxy / sxx } else { 0.0 },
+                slope_per_khz: slope,
+                slope_se_per_khz: slope_se,
             })
         })
         .collect()

@@ -55,17 +55,18 @@ fn corrections(
     for f in flat {
         writeln!(
             out,
-            "  {}: weighted mean {}, slope {} per kHz, flatness chi^2 {:.1}/{} (p = {:.2e}){}",
+            "  {}: weighted mean {}, slope {} +- {} per kHz, flatness chi^2 {:.1}/{} (p = {:.2e}): {}",
             f.param,
             sci(f.mean),
             sci(f.slope_per_khz),
+            sci(f.slope_se_per_khz),
             f.chi2,
             f.dof,
             f.p_value,
-            if f.p_value < 0.001 {
-                ": changes with the mode"
+            if f.p_value < 0.001 || f.slope_per_khz.abs() > 3.0 * f.slope_se_per_khz {
+                "changes with the mode"
             } else {
-                ": constant within noise"
+                "constant within noise"
             }
         )?;
     }
