@@ -214,8 +214,7 @@ impl Problem<'_> {
                 eval.configured
                     .effect_parameters()
                     .into_iter()
-                    .zip(self.scales())
-                    .map(|(p, s)| (p, s)),
+                    .zip(self.scales()),
             )
             .collect();
         let unknowns = x.len();

@@ -46,7 +46,8 @@ mod tests {
     use crate::model::fixtures::paper_model;
 
     /// Against central differences of the eigensolution, for a stiffness parameter (k2 of the
-    /// joint) and a mass parameter (the joint mass), at a point with both present.
+    /// joint) and a mass parameter (the joint mass), at a point with both present. The step is
+    /// 1e-3 relative: eigenvalues are accurate to about eps * lambda_max in absolute terms.
     #[test]
     fn eigen_derivatives_match_central_differences() {
         let model = paper_model(1e7, 1e4);
@@ -80,10 +81,14 @@ mod tests {
         for (param, (plus, minus), h) in [
             (
                 k2_param,
-                (at(k2 * (1.0 + 1e-5), m), at(k2 * (1.0 - 1e-5), m)),
-                k2 * 1e-5,
+                (at(k2 * (1.0 + 1e-3), m), at(k2 * (1.0 - 1e-3), m)),
+                k2 * 1e-3,
             ),
-            (mass_param, (at(k2, m + 1e-5), at(k2, m - 1e-5)), 1e-5),
+            (
+                mass_param,
+                (at(k2, m * (1.0 + 1e-3)), at(k2, m * (1.0 - 1e-3))),
+                m * 1e-3,
+            ),
         ] {
             for s in [2, 3, 5] {
                 let (dl, dy) = eigen_derivative(&base, s, &param.stiffness, &param.mass);
@@ -94,13 +99,12 @@ mod tests {
                     param.name
                 );
                 let scale = dy.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
-                for i in 0..38 {
+                for (i, dyi) in dy.iter().enumerate() {
                     let fd = (plus.vectors()[(i, s)] - minus.vectors()[(i, s)]) / (2.0 * h);
                     assert!(
-                        (dy[i] - fd).abs() < 1e-4 * scale,
-                        "{}: mode {s}, dof {i}: {} vs {fd}",
-                        param.name,
-                        dy[i]
+                        (dyi - fd).abs() < 1e-4 * scale,
+                        "{}: mode {s}, dof {i}: {dyi} vs {fd}",
+                        param.name
                     );
                 }
             }

@@ -34,6 +34,18 @@ impl SparseSym {
         s
     }
 
+    /// Adds the symmetric 4x4 element block `block * scale` on DOFs `base..base + 4`
+    /// (zero entries skipped).
+    pub fn add_block(&mut self, base: usize, block: &[[f64; 4]; 4], scale: f64) {
+        for (i, row) in block.iter().enumerate() {
+            for (j, &v) in row.iter().enumerate().take(i + 1) {
+                if v != 0.0 {
+                    self.add(base + i, base + j, scale * v);
+                }
+            }
+        }
+    }
+
     /// Appends `scale * other`.
     pub fn extend_scaled(&mut self, other: &SparseSym, scale: f64) {
         self.entries

@@ -2,7 +2,7 @@
 //! beam loses a fraction of its bending stiffness, as a crack or a weld defect would. No
 //! candidate models it; simulated data with it must come out `unexplained`.
 
-use super::{Effect, EffectContext, EffectParameter};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution};
 use crate::model::{Dof, Model, SparseSym, dof_index};
 
 /// See the module docs.
@@ -14,14 +14,14 @@ fn pattern(model: &Model) -> SparseSym {
     let b = model.beams().len() - 1;
     let beam = &model.beams()[b];
     let base = dof_index(model.first_node(b) + beam.elements / 2, Dof::W);
-    let k = beam.element_stiffness();
     let mut s = SparseSym::zero();
-    for i in 0..4 {
-        for j in 0..=i {
-            s.add(base + i, base + j, -k[i][j]);
-        }
-    }
+    s.add_block(base, &beam.element_stiffness(), -1.0);
     s
+}
+
+/// dK/dfraction.
+fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    vec![(pattern(&ctx.model), SparseSym::zero())]
 }
 
 impl Effect for ElementDamage {
@@ -43,15 +43,11 @@ impl Effect for ElementDamage {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let mut k = SparseSym::zero();
-        if theta[0] != 0.0 {
-            k.extend_scaled(&pattern(&ctx.model), theta[0]);
-        }
-        (k, SparseSym::zero())
+        linear_contribution(&patterns(ctx), theta)
     }
 
     fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        vec![(pattern(&ctx.model), SparseSym::zero())]
+        patterns(ctx)
     }
 
     fn theta_of_size(&self, _ctx: &EffectContext, size: f64) -> Vec<f64> {

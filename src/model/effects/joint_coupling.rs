@@ -3,7 +3,7 @@
 //! 1/2 [k1 dw^2 + 2 k12 dw dtheta + k2 dtheta^2] with dw = w_a - w_b, dtheta = theta_a - theta_b,
 //! positive semidefinite while k12^2 <= k1 k2.
 
-use super::{Effect, EffectContext, EffectParameter, per_joint_name};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
 use crate::model::{Dof, Model, SparseSym, dof_index};
 
 /// See the module docs.
@@ -31,6 +31,13 @@ fn geometric_mean(model: &Model, joint: usize) -> f64 {
     (j.k1 * j.k2).sqrt()
 }
 
+/// dK/dk12 of every joint.
+fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    (0..ctx.model.joints().len())
+        .map(|j| (pattern(&ctx.model, j), SparseSym::zero()))
+        .collect()
+}
+
 impl Effect for JointCoupling {
     fn name(&self) -> &'static str {
         "joint_coupling"
@@ -53,19 +60,11 @@ impl Effect for JointCoupling {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let mut k = SparseSym::zero();
-        for (j, &t) in theta.iter().enumerate() {
-            if t != 0.0 {
-                k.extend_scaled(&pattern(&ctx.model, j), t);
-            }
-        }
-        (k, SparseSym::zero())
+        linear_contribution(&patterns(ctx), theta)
     }
 
-    fn derivatives(&self, ctx: &EffectContext, theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        (0..theta.len())
-            .map(|j| (pattern(&ctx.model, j), SparseSym::zero()))
-            .collect()
+    fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
+        patterns(ctx)
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {

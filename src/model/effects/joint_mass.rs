@@ -2,7 +2,7 @@
 //! does not carry: mass m per joint, half lumped at each of its two nodes, with the rotary
 //! inertia (m/2) r^2 of a body of the adjacent beam's radius of gyration r^2 = I/A.
 
-use super::{Effect, EffectContext, EffectParameter, per_joint_name};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
 use crate::model::{Dof, Model, SparseSym, dof_index};
 
 /// See the module docs.
@@ -22,6 +22,13 @@ fn pattern(model: &Model, joint: usize) -> SparseSym {
         );
     }
     s
+}
+
+/// dM/dm of every joint.
+fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    (0..ctx.model.joints().len())
+        .map(|j| (SparseSym::zero(), pattern(&ctx.model, j)))
+        .collect()
 }
 
 impl Effect for JointMass {
@@ -46,19 +53,11 @@ impl Effect for JointMass {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let mut m = SparseSym::zero();
-        for (j, &t) in theta.iter().enumerate() {
-            if t != 0.0 {
-                m.extend_scaled(&pattern(&ctx.model, j), t);
-            }
-        }
-        (SparseSym::zero(), m)
+        linear_contribution(&patterns(ctx), theta)
     }
 
-    fn derivatives(&self, ctx: &EffectContext, theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        (0..theta.len())
-            .map(|j| (SparseSym::zero(), pattern(&ctx.model, j)))
-            .collect()
+    fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
+        patterns(ctx)
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {

@@ -149,6 +149,22 @@ impl Configured {
     }
 }
 
+/// K(theta) - K(0), M(theta) - M(0) of an effect linear in its parameters, whose
+/// dK/dtheta_i, dM/dtheta_i are `patterns[i]`.
+pub(crate) fn linear_contribution(
+    patterns: &[(SparseSym, SparseSym)],
+    theta: &[f64],
+) -> (SparseSym, SparseSym) {
+    let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
+    for ((dk, dm), &t) in patterns.iter().zip(theta) {
+        if t != 0.0 {
+            k.extend_scaled(dk, t);
+            m.extend_scaled(dm, t);
+        }
+    }
+    (k, m)
+}
+
 /// `name` or `name.jointK.suffix` for an effect with one parameter per joint.
 pub(crate) fn per_joint_name(effect: &str, joint: usize, joints: usize, suffix: &str) -> String {
     if joints == 1 {

@@ -1,7 +1,7 @@
 //! `sensor_mass`: accelerometers load the beam. One lumped mass m_s at every node where a
 //! translation is measured (the same sensor everywhere).
 
-use super::{Effect, EffectContext, EffectParameter};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution};
 use crate::model::{Dof, SparseSym, dof_index};
 
 /// See the module docs.
@@ -14,6 +14,11 @@ fn pattern(ctx: &EffectContext) -> SparseSym {
         s.add(dof_index(node, Dof::W), dof_index(node, Dof::W), 1.0);
     }
     s
+}
+
+/// dM/dm_s.
+fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    vec![(SparseSym::zero(), pattern(ctx))]
 }
 
 impl Effect for SensorMass {
@@ -36,15 +41,11 @@ impl Effect for SensorMass {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let mut m = SparseSym::zero();
-        if theta[0] != 0.0 {
-            m.extend_scaled(&pattern(ctx), theta[0]);
-        }
-        (SparseSym::zero(), m)
+        linear_contribution(&patterns(ctx), theta)
     }
 
     fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        vec![(SparseSym::zero(), pattern(ctx))]
+        patterns(ctx)
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {

@@ -69,14 +69,7 @@ fn every_element(model: &Model, mut f: impl FnMut(&Beam) -> ElementMatrix) -> Sp
     for (b, beam) in model.beams().iter().enumerate() {
         let e_matrix = f(beam);
         for e in 0..beam.elements {
-            let base = dof_index(model.first_node(b) + e, Dof::W);
-            for i in 0..4 {
-                for j in 0..=i {
-                    if e_matrix[i][j] != 0.0 {
-                        s.add(base + i, base + j, e_matrix[i][j]);
-                    }
-                }
-            }
+            s.add_block(dof_index(model.first_node(b) + e, Dof::W), &e_matrix, 1.0);
         }
     }
     s

@@ -2,7 +2,7 @@
 //! stiffness k_s at the two free ends of the chain (first node of the first beam, last node of
 //! the last beam).
 
-use super::{Effect, EffectContext, EffectParameter};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution};
 use crate::model::{Dof, Model, SparseSym, dof_index};
 
 /// See the module docs.
@@ -24,6 +24,11 @@ fn stiffness_of_bounce(ctx: &EffectContext, fraction: f64) -> f64 {
     w * w * ctx.model.mass() / 2.0
 }
 
+/// dK/dk_s.
+fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    vec![(pattern(&ctx.model), SparseSym::zero())]
+}
+
 impl Effect for Suspension {
     fn name(&self) -> &'static str {
         "suspension"
@@ -43,15 +48,11 @@ impl Effect for Suspension {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let mut k = SparseSym::zero();
-        if theta[0] != 0.0 {
-            k.extend_scaled(&pattern(&ctx.model), theta[0]);
-        }
-        (k, SparseSym::zero())
+        linear_contribution(&patterns(ctx), theta)
     }
 
     fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        vec![(pattern(&ctx.model), SparseSym::zero())]
+        patterns(ctx)
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
