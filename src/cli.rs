@@ -32,6 +32,8 @@ pub enum Command {
     /// Diagnose measured data: calibrate the joint, trace the residual to a missing effect,
     /// report before and after.
     Diagnose(DiagnoseArgs),
+    /// Figures of a study CSV and a page that shows them (`DIR/index.html`).
+    Report(ReportArgs),
     /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
     Bench(BenchArgs),
 }
@@ -98,6 +100,19 @@ pub struct SimulateArgs {
     /// Output CSV.
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// `jointid report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// A study result CSV (the output of `jointid study`).
+    pub results: PathBuf,
+    /// Directory for the SVG figures and index.html (created if absent).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Title of the page and figures (default: the CSV's file name).
+    #[arg(long)]
+    pub title: Option<String>,
 }
 
 /// `jointid bench`.
@@ -175,6 +190,9 @@ pub struct DiagnoseArgs {
     /// Also write the report as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Also write the figures (SVG) and an index.html into this directory.
+    #[arg(long)]
+    pub plots: Option<PathBuf>,
     /// Basis size n of the per-mode corrections (default: the fewest identified DOFs of a mode).
     #[arg(long)]
     pub n: Option<usize>,

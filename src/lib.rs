@@ -18,6 +18,7 @@ pub mod measured;
 pub mod modal;
 pub mod model;
 pub mod output;
+pub mod report;
 pub mod simulate;
 pub mod stats;
 pub mod study;

@@ -154,6 +154,23 @@ pub fn chi2_sf(x: f64, dof: f64) -> f64 {
     }
 }
 
+/// The x with P(chi^2_dof > x) = p (bisection on [`chi2_sf`]), 0 < p < 1.
+pub fn chi2_isf(p: f64, dof: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, dof.max(1.0));
+    while chi2_sf(hi, dof) > p {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if chi2_sf(mid, dof) > p {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    0.5 * (lo + hi)
+}
+
 /// ln Gamma(x) for x > 0 (Lanczos, g = 7, 9 coefficients; relative error below 1e-15).
 fn ln_gamma(x: f64) -> f64 {
     const G: [f64; 9] = [
@@ -240,6 +257,8 @@ mod tests {
             );
         }
         assert_eq!(chi2_sf(0.0, 3.0), 1.0);
+        assert!((chi2_isf(0.05, 1.0) - 3.841_458_820_694_124).abs() < 1e-9);
+        assert!((chi2_isf(0.002, 1.0) - 9.549_535_945_653_99).abs() < 1e-6);
         // ln Gamma at integers and halves.
         assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-13);
         assert!((ln_gamma(0.5) - std::f64::consts::PI.sqrt().ln()).abs() < 1e-13);

@@ -7,7 +7,10 @@ use jointid::diagnose::{DiagnoseSettings, Noise, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::model::Model;
+use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::{diagnose as out, write_atomically};
+
+use crate::commands::report::write_figures;
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     for (name, v) in [
@@ -45,6 +48,18 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             serde_json::to_writer_pretty(&mut *w, &report).map_err(std::io::Error::other)
         })
         .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    if let Some(dir) = &args.plots {
+        let figures = diagnose_figures(&report, &measured, &model)?;
+        let title = format!(
+            "Diagnosis of {}: verdict {}",
+            args.measured.display(),
+            report.selected.as_deref().unwrap_or(match report.verdict {
+                jointid::diagnose::Verdict::None => "none",
+                _ => "unexplained",
+            })
+        );
+        write_figures(dir, &title, &figures)?;
     }
     out::write_text(&mut std::io::stdout().lock(), &report)?;
     Ok(())

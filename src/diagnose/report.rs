@@ -43,6 +43,10 @@ pub struct ModeError {
     /// RMS of (c y_model - y_measured) over the measured DOFs, % of the largest measured
     /// component.
     pub shape_rms_pct: f64,
+    /// The model shape at the measured DOFs, scaled and signed to the measured one (for
+    /// plots; not in the JSON).
+    #[serde(skip)]
+    pub model_shape: Vec<f64>,
 }
 
 /// How a model compares with all the data.
@@ -99,6 +103,7 @@ impl ErrorSummary {
                     frequency_error_pct: 100.0 * (f - m.frequency_hz) / m.frequency_hz,
                     mac: mac(&model, &m.values),
                     shape_rms_pct: 100.0 * (ss / m.values.len() as f64).sqrt() / peak,
+                    model_shape: model.iter().map(|a| fitted.scales[r] * sign * a).collect(),
                 }
             })
             .collect();

@@ -3,8 +3,11 @@
 
 pub mod atomic;
 pub mod diagnose;
+pub mod diagnose_plots;
 pub mod identify;
+pub mod plot;
 pub mod study;
+pub mod study_report;
 pub mod table;
 
 pub use atomic::write_atomically;

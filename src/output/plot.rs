@@ -1,0 +1,535 @@
+//! Figures as SVG strings (plotters' SVG backend: no fonts or system libraries; text is left
+//! to the viewer). Every figure has a title, axis labels with units, a legend where there are
+//! several series, and log axes where the values span decades.
+
+use std::ops::Range;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// Series colours, in order.
+pub const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(127, 127, 127),
+];
+
+/// A drawing failure (plotters' errors are not Send; kept as text).
+#[derive(Debug, thiserror::Error)]
+#[error("drawing a figure: {0}")]
+pub struct PlotError(pub String);
+
+fn err<E: std::fmt::Debug>(e: E) -> PlotError {
+    PlotError(format!("{e:?}"))
+}
+
+const FONT: &str = "sans-serif";
+
+/// Renders `draw` on an SVG canvas of `size` pixels.
+pub fn svg(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> Result<(), PlotError>,
+) -> Result<String, PlotError> {
+    let mut out = String::new();
+    {
+        let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        draw(&root)?;
+        root.present().map_err(err)?;
+    }
+    Ok(start_rotated_labels(&out))
+}
+
+/// plotters centres a rotated label on its tick, so half of it lies above the axis: anchor
+/// rotated labels at their start instead, centred across the tick.
+fn start_rotated_labels(svg: &str) -> String {
+    svg.lines()
+        .map(|line| {
+            if line.starts_with("<text") && line.contains("transform=\"rotate(90,") {
+                line.replace("text-anchor=\"middle\"", "text-anchor=\"start\"")
+                    .replace("dy=\"0.76em\"", "dy=\"0.35em\"")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A box of quantiles: q05, q25, median, q75, q95.
+pub type Quantiles = [f64; 5];
+
+/// Engineering number for ticks: 3 significant digits, exponent when large or small.
+pub fn tick(v: f64) -> String {
+    if v.abs() < 1e-12 {
+        "0".into()
+    } else if v.abs() >= 1e4 || v.abs() < 1e-2 {
+        format!("{v:.2e}")
+    } else {
+        format!("{}", (v * 1000.0).round() / 1000.0)
+    }
+}
+
+/// Box plots from stored quantiles, one per category, with a dashed reference line. The y
+/// range is the union of the Tukey fences [q25 - 1.5 IQR, q75 + 1.5 IQR] (and the reference);
+/// whiskers (q05, q95) beyond it stop at the edge with an open triangle.
+#[allow(clippy::too_many_arguments)]
+pub fn boxes(
+    area: &DrawingArea<SVGBackend, Shift>,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    labels: &[String],
+    boxes: &[Option<Quantiles>],
+    reference: f64,
+    reference_label: &str,
+) -> Result<(), PlotError> {
+    let present: Vec<&Quantiles> = boxes.iter().flatten().collect();
+    let mut lo = reference;
+    let mut hi = reference;
+    for q in &present {
+        let iqr = q[3] - q[1];
+        lo = lo.min(q[0].max(q[1] - 1.5 * iqr));
+        hi = hi.max(q[4].min(q[3] + 1.5 * iqr));
+    }
+    let pad = 0.05 * (hi - lo).max(reference.abs() * 1e-3).max(f64::MIN_POSITIVE);
+    let (lo, hi) = (lo - pad, hi + pad);
+    let count = boxes.len();
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, (FONT, 18))
+        .margin(12)
+        .x_label_area_size(70)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5f64..count as f64 - 0.5, lo..hi)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_labels(count.min(40))
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < labels.len() {
+                labels[i as usize].clone()
+            } else {
+                String::new()
+            }
+        })
+        .x_label_style((FONT, 11).into_font().transform(FontTransform::Rotate90))
+        .y_label_formatter(&|v| tick(*v))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    let blue = PALETTE[0];
+    for (i, q) in boxes.iter().enumerate() {
+        let Some(q) = q else { continue };
+        let x = i as f64;
+        let clip = |v: f64| v.clamp(lo, hi);
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x - 0.3, clip(q[1])), (x + 0.3, clip(q[3]))],
+                blue.mix(0.25).filled(),
+            )))
+            .map_err(err)?;
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x - 0.3, clip(q[1])), (x + 0.3, clip(q[3]))],
+                blue.stroke_width(1),
+            )))
+            .map_err(err)?;
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(x - 0.3, clip(q[2])), (x + 0.3, clip(q[2]))],
+                blue.stroke_width(2),
+            )))
+            .map_err(err)?;
+        for (from, to) in [(q[1], q[0]), (q[3], q[4])] {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(x, clip(from)), (x, clip(to))],
+                    blue.stroke_width(1),
+                )))
+                .map_err(err)?;
+            if to < lo || to > hi {
+                let edge = clip(to);
+                chart
+                    .draw_series(std::iter::once(TriangleMarker::new(
+                        (x, edge),
+                        5,
+                        blue.stroke_width(1),
+                    )))
+                    .map_err(err)?;
+            } else {
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        vec![(x - 0.15, to), (x + 0.15, to)],
+                        blue.stroke_width(1),
+                    )))
+                    .map_err(err)?;
+            }
+        }
+    }
+    let red = PALETTE[1];
+    chart
+        .draw_series(DashedLineSeries::new(
+            vec![(-0.5, reference), (count as f64 - 0.5, reference)],
+            8,
+            5,
+            red.stroke_width(2),
+        ))
+        .map_err(err)?
+        .label(reference_label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red.stroke_width(2)));
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(-10.0, -1.0), (-10.0, -1.0)],
+            blue.mix(0.25).filled(),
+        )))
+        .map_err(err)?
+        .label("median, [q25, q75] box, [q05, q95] whiskers (triangle: beyond the plot)")
+        .legend(move |(x, y)| {
+            Rectangle::new([(x, y - 5), (x + 20, y + 5)], blue.mix(0.25).filled())
+        });
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font((FONT, 12))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(err)
+}
+
+/// One series of a line chart.
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// Points (x, y); non-positive values are dropped on a log axis.
+    pub points: Vec<(f64, f64)>,
+    /// Error bar half-widths, when any.
+    pub errors: Option<Vec<f64>>,
+    /// Whether the points are joined (false: markers alone, as for measured data).
+    pub line: bool,
+}
+
+/// Axis ranges and scales of a line chart.
+pub struct LineAxes {
+    /// x label with unit.
+    pub x_desc: String,
+    /// y label with unit.
+    pub y_desc: String,
+    /// Logarithmic x.
+    pub log_x: bool,
+    /// Logarithmic y.
+    pub log_y: bool,
+    /// A horizontal reference line (value, legend), if any.
+    pub reference: Option<(f64, String)>,
+    /// Whether the y range follows the points only (error bars beyond it are cut at the
+    /// edge): for estimates whose uncertainty spans decades more than their spread.
+    pub clip_errors: bool,
+}
+
+fn span(values: impl Iterator<Item = f64>, log: bool) -> Range<f64> {
+    let v: Vec<f64> = values
+        .filter(|v| v.is_finite() && (!log || *v > 0.0))
+        .collect();
+    let (mut lo, mut hi) = v
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    if !lo.is_finite() {
+        return if log { 0.1..10.0 } else { -1.0..1.0 };
+    }
+    if log {
+        (lo / 1.5)..(hi * 1.5)
+    } else {
+        if hi - lo < 1e-12 * hi.abs().max(1e-300) {
+            lo -= 0.5 * lo.abs().max(1.0);
+            hi += 0.5 * hi.abs().max(1.0);
+        }
+        let pad = 0.08 * (hi - lo);
+        (lo - pad)..(hi + pad)
+    }
+}
+
+/// Whether every x of the series is a whole number (then only whole ticks are labelled).
+fn integer_x(series: &[Series]) -> bool {
+    series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .all(|p| p.0.fract() == 0.0)
+}
+
+/// A legend in its own strip: a marker and the name of every series (and the reference).
+fn legend(
+    area: &DrawingArea<SVGBackend, Shift>,
+    entries: &[(String, RGBColor, bool)],
+) -> Result<(), PlotError> {
+    for (i, (name, colour, dashed)) in entries.iter().enumerate() {
+        let y = 50 + 20 * i as i32;
+        if *dashed {
+            area.draw(&PathElement::new(
+                vec![(5, y), (25, y)],
+                colour.stroke_width(2),
+            ))
+            .map_err(err)?;
+        } else {
+            area.draw(&Circle::new((15, y), 4, colour.filled()))
+                .map_err(err)?;
+        }
+        area.draw(&Text::new(
+            name.clone(),
+            (32, y - 6),
+            (FONT, 12).into_font(),
+        ))
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Splits off a strip on the right wide enough for the legend's longest entry.
+fn with_legend_strip<'a>(
+    whole: &DrawingArea<SVGBackend<'a>, Shift>,
+    entries: &[(String, RGBColor, bool)],
+) -> (
+    DrawingArea<SVGBackend<'a>, Shift>,
+    DrawingArea<SVGBackend<'a>, Shift>,
+) {
+    let width = whole.dim_in_pixel().0 as i32;
+    let longest = entries
+        .iter()
+        .map(|e| e.0.chars().count())
+        .max()
+        .unwrap_or(0) as i32;
+    let strip = (40 + 7 * longest).clamp(120, width / 2);
+    whole.split_horizontally(width - strip)
+}
+
+/// Lines with markers (and error bars), log axes on request; the legend in a strip on the
+/// right.
+pub fn lines(
+    whole: &DrawingArea<SVGBackend, Shift>,
+    title: &str,
+    axes: &LineAxes,
+    series: &[Series],
+) -> Result<(), PlotError> {
+    let mut entries: Vec<(String, RGBColor, bool)> = Vec::new();
+    if let Some((_, label)) = &axes.reference {
+        entries.push((label.clone(), PALETTE[1], true));
+    }
+    for (k, s) in series.iter().enumerate() {
+        let colour = if axes.reference.is_some() {
+            PALETTE[(k + 2) % PALETTE.len()]
+        } else {
+            PALETTE[k % PALETTE.len()]
+        };
+        entries.push((s.name.clone(), colour, false));
+    }
+    let (area, legend_area) = with_legend_strip(whole, &entries);
+    legend(&legend_area, &entries)?;
+    let whole_x = integer_x(series);
+    let area = &area;
+    let xs = span(
+        series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+        axes.log_x,
+    );
+    let y_span = span(
+        series
+            .iter()
+            .flat_map(|s| {
+                s.points.iter().enumerate().flat_map(move |(i, p)| {
+                    let e = if axes.clip_errors {
+                        0.0
+                    } else {
+                        s.errors.as_ref().map_or(0.0, |e| e[i])
+                    };
+                    [p.1 - e, p.1 + e, p.1]
+                })
+            })
+            .chain(axes.reference.iter().map(|r| r.0)),
+        axes.log_y,
+    );
+    let ys = if axes.clip_errors && !axes.log_y {
+        let pad = 0.3 * (y_span.end - y_span.start);
+        (y_span.start - pad)..(y_span.end + pad)
+    } else {
+        y_span
+    };
+    let (y_lo, y_hi) = (ys.start, ys.end);
+    macro_rules! draw {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart
+                .configure_mesh()
+                .light_line_style(RGBColor(245, 245, 245))
+                .y_labels(if axes.log_y { 6 } else { 10 })
+                .x_labels(if axes.log_x { 6 } else { 10 })
+                .x_desc(axes.x_desc.as_str())
+                .y_desc(axes.y_desc.as_str())
+                .x_label_formatter(&|v| {
+                    if whole_x && v.fract().abs() > 1e-9 {
+                        String::new()
+                    } else {
+                        tick(*v)
+                    }
+                })
+                .y_label_formatter(&|v| tick(*v))
+                .axis_desc_style((FONT, 14))
+                .draw()
+                .map_err(err)?;
+            if let Some((value, label)) = &axes.reference {
+                let red = PALETTE[1];
+                let _ = label;
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        vec![(xs.start, *value), (xs.end, *value)],
+                        8,
+                        5,
+                        red.stroke_width(2),
+                    ))
+                    .map_err(err)?;
+            }
+            for (k, s) in series.iter().enumerate() {
+                let colour = if axes.reference.is_some() {
+                    PALETTE[(k + 2) % PALETTE.len()]
+                } else {
+                    PALETTE[k % PALETTE.len()]
+                };
+                let ok = |p: &(f64, f64)| {
+                    (!axes.log_x || p.0 > 0.0) && (!axes.log_y || p.1 > 0.0) && p.1.is_finite()
+                };
+                let points: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
+                if let Some(errors) = &s.errors {
+                    for (p, e) in s.points.iter().zip(errors) {
+                        let (lo, hi) = ((p.1 - e).max(y_lo), (p.1 + e).min(y_hi));
+                        if ok(p) && (!axes.log_y || lo > 0.0) {
+                            chart
+                                .draw_series(std::iter::once(PathElement::new(
+                                    vec![(p.0, lo), (p.0, hi)],
+                                    colour.stroke_width(1),
+                                )))
+                                .map_err(err)?;
+                        }
+                    }
+                }
+                if s.line {
+                    chart
+                        .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
+                        .map_err(err)?;
+                }
+                chart
+                    .draw_series(points.iter().map(|p| Circle::new(*p, 4, colour.filled())))
+                    .map_err(err)?;
+            }
+        }};
+    }
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(title, (FONT, 16))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80);
+    match (axes.log_x, axes.log_y) {
+        (false, false) => draw!(builder.build_cartesian_2d(xs.clone(), ys).map_err(err)?),
+        (true, false) => draw!(
+            builder
+                .build_cartesian_2d(xs.clone().log_scale(), ys)
+                .map_err(err)?
+        ),
+        (false, true) => draw!(
+            builder
+                .build_cartesian_2d(xs.clone(), ys.log_scale())
+                .map_err(err)?
+        ),
+        (true, true) => draw!(
+            builder
+                .build_cartesian_2d(xs.clone().log_scale(), ys.log_scale())
+                .map_err(err)?
+        ),
+    }
+    Ok(())
+}
+
+/// Vertical bars on a log axis with a horizontal threshold line.
+/// Bar `highlight`, when given, is drawn in another colour with its own legend entry.
+pub fn bars(
+    whole: &DrawingArea<SVGBackend, Shift>,
+    title: &str,
+    y_desc: &str,
+    labels: &[String],
+    values: &[f64],
+    threshold: (f64, &str),
+    highlight: Option<(usize, &str)>,
+) -> Result<(), PlotError> {
+    let mut entries = vec![("likelihood-ratio statistic".to_string(), PALETTE[0], false)];
+    if let Some((_, name)) = highlight {
+        entries.push((name.to_string(), PALETTE[2], false));
+    }
+    entries.push((threshold.1.to_string(), PALETTE[1], true));
+    let (area, legend_area) = with_legend_strip(whole, &entries);
+    legend(&legend_area, &entries)?;
+    let area = &area;
+    let floor = 1e-2;
+    let ys = span(
+        values
+            .iter()
+            .map(|v| v.max(floor))
+            .chain([threshold.0, floor]),
+        true,
+    );
+    let count = labels.len();
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, (FONT, 16))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5f64..count as f64 - 0.5, ys.log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_desc("candidate effect")
+        .y_desc(y_desc)
+        .x_labels(count)
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < labels.len() {
+                labels[i as usize].clone()
+            } else {
+                String::new()
+            }
+        })
+        .y_label_formatter(&|v| tick(*v))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    chart
+        .draw_series(values.iter().enumerate().map(|(i, v)| {
+            let colour = if highlight.is_some_and(|(h, _)| h == i) {
+                PALETTE[2]
+            } else {
+                PALETTE[0]
+            };
+            Rectangle::new(
+                [(i as f64 - 0.3, floor), (i as f64 + 0.3, v.max(floor))],
+                colour.mix(0.6).filled(),
+            )
+        }))
+        .map_err(err)?;
+    chart
+        .draw_series(DashedLineSeries::new(
+            vec![(-0.5, threshold.0), (count as f64 - 0.5, threshold.0)],
+            8,
+            5,
+            PALETTE[1].stroke_width(2),
+        ))
+        .map_err(err)?;
+    Ok(())
+}
