@@ -11,6 +11,7 @@
 use std::collections::BTreeMap;
 
 use super::plot::{LineAxes, PlotError, Series, boxes, lines, svg, tick};
+use super::table::sci;
 use crate::report::{Axis, StudyResults};
 
 /// One figure of a report.
@@ -274,7 +275,7 @@ pub fn index_html(title: &str, source: &str, results: &StudyResults, figures: &[
         for mode in &modes {
             for p in &params {
                 let text = match results.row(*cell, *mode, p).and_then(|r| r.quantiles) {
-                    Some(q) => format!("{} [{}, {}]", tick(q[2]), tick(q[0]), tick(q[4])),
+                    Some(q) => format!("{} [{}, {}]", sci(q[2]), sci(q[0]), sci(q[4])),
                     None => "all failed".into(),
                 };
                 html.push_str(&format!("<td>{text}</td>"));
