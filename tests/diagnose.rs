@@ -6,10 +6,7 @@
 
 mod common;
 
-use std::path::PathBuf;
-use std::process::Command;
-
-use common::paper_model;
+use common::{jointid, paper_model, scratch};
 use jointid::diagnose::{DiagnoseSettings, FIT_ALPHA, Noise, Report, Verdict, diagnose};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
@@ -177,23 +174,9 @@ fn a_swapped_mode_is_paired_by_shape_and_reported() {
 
 // ---- the binary ----
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("jointid-diag-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn jointid(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_jointid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn simulate_then_diagnose_writes_the_json_report() {
-    let dir = scratch("json");
+    let dir = scratch("diag", "json");
     let (data, json) = (dir.join("d.csv"), dir.join("r.json"));
     let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/paper-case-1.toml");
     let sim = jointid(&[
@@ -253,7 +236,7 @@ fn simulate_then_diagnose_writes_the_json_report() {
 
 #[test]
 fn bad_diagnose_and_simulate_inputs_are_explained() {
-    let dir = scratch("bad");
+    let dir = scratch("diag", "bad");
     let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/paper-case-1.toml");
     let one_mode = dir.join("one.csv");
     std::fs::write(

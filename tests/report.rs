@@ -1,24 +1,13 @@
 //! `jointid report` and `jointid diagnose --plots`: the expected figures exist, parse as XML,
 //! carry their axis labels and reference lines, and the pages reference only files that exist.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
+
+use std::path::Path;
+
+use common::{jointid, scratch};
 
 const MODEL: &str = include_str!("../models/paper-case-1.toml");
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("jointid-report-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn jointid(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_jointid"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 /// The texts of an SVG, after checking that it parses as XML.
 fn svg_texts(path: &Path) -> Vec<String> {
@@ -54,7 +43,7 @@ fn assert_page_references_exist(page: &Path) -> usize {
 
 #[test]
 fn study_report_has_every_figure_with_labels_and_reference_lines() {
-    let dir = scratch("study");
+    let dir = scratch("report", "study");
     std::fs::write(dir.join("model.toml"), MODEL).unwrap();
     std::fs::write(
         dir.join("s.toml"),
@@ -125,7 +114,7 @@ fn study_report_has_every_figure_with_labels_and_reference_lines() {
 
 #[test]
 fn a_csv_that_is_not_a_study_output_is_refused_naming_the_missing_columns() {
-    let dir = scratch("bad");
+    let dir = scratch("report", "bad");
     let csv = dir.join("identify.csv");
     std::fs::write(&csv, "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition\n1,k1,1e7,2e6,1.2e7,0.2,150,149,3\n").unwrap();
     let out = dir.join("r");
@@ -144,7 +133,7 @@ fn a_csv_that_is_not_a_study_output_is_refused_naming_the_missing_columns() {
 
 #[test]
 fn diagnose_plots_show_shapes_errors_corrections_and_candidates() {
-    let dir = scratch("diag");
+    let dir = scratch("report", "diag");
     let model = dir.join("model.toml");
     std::fs::write(&model, MODEL).unwrap();
     let data = dir.join("d.csv");

@@ -61,6 +61,16 @@ fn start_rotated_labels(svg: &str) -> String {
         .join("\n")
 }
 
+/// The label of the category at x (categories sit at 0, 1, 2, ...; nothing between them).
+fn category(labels: &[String], x: f64) -> String {
+    let i = x.round();
+    if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < labels.len() {
+        labels[i as usize].clone()
+    } else {
+        String::new()
+    }
+}
+
 /// A box of quantiles: q05, q25, median, q75, q95.
 pub type Quantiles = [f64; 5];
 
@@ -113,14 +123,7 @@ pub fn boxes(
         .x_desc(x_desc)
         .y_desc(y_desc)
         .x_labels(count.min(40))
-        .x_label_formatter(&|x| {
-            let i = x.round();
-            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < labels.len() {
-                labels[i as usize].clone()
-            } else {
-                String::new()
-            }
-        })
+        .x_label_formatter(&|x| category(labels, *x))
         .x_label_style((FONT, 11).into_font().transform(FontTransform::Rotate90))
         .y_label_formatter(&|v| tick(*v))
         .axis_desc_style((FONT, 14))
@@ -498,14 +501,7 @@ pub fn bars(
         .x_desc("candidate effect")
         .y_desc(y_desc)
         .x_labels(count)
-        .x_label_formatter(&|x| {
-            let i = x.round();
-            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < labels.len() {
-                labels[i as usize].clone()
-            } else {
-                String::new()
-            }
-        })
+        .x_label_formatter(&|x| category(labels, *x))
         .y_label_formatter(&|v| tick(*v))
         .axis_desc_style((FONT, 14))
         .draw()

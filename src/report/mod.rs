@@ -213,7 +213,7 @@ impl StudyResults {
                 frequency_noise: number("frequency_noise")?,
             });
             noise = field("noise").to_string();
-            let q = ["q05", "q25", "median", "q75", "q95"].map(|c| optional(c));
+            let q = ["q05", "q25", "median", "q75", "q95"].map(optional);
             let quantiles = match q {
                 [
                     Ok(Some(a)),
@@ -349,6 +349,16 @@ impl Axis {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_required_column_is_written_by_the_study() {
+        for column in REQUIRED {
+            assert!(
+                crate::output::study::RESULT_HEADER.contains(&column),
+                "{column}"
+            );
+        }
+    }
 
     #[test]
     fn a_csv_without_the_study_columns_names_what_is_missing() {

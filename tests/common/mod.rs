@@ -15,3 +15,19 @@ pub fn all_dofs(model: &Model) -> Vec<usize> {
 pub fn translations(model: &Model) -> Vec<usize> {
     (0..model.dof_count()).step_by(2).collect()
 }
+
+/// A fresh scratch directory for one test.
+pub fn scratch(prefix: &str, name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("jointid-{prefix}-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs the binary.
+pub fn jointid(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_jointid"))
+        .args(args)
+        .output()
+        .unwrap()
+}
