@@ -7,9 +7,15 @@
 //!    of the parameter derivatives dK/dp (eq. (8));
 //! 2. [`modal`]: the eigensolution of eq. (1)-(2);
 //! 3. [`measured`]: measured modes (eigenvalues and partial shapes);
-//! 4. [`identify`]: the per-mode method, eq. (5)-(16);
-//! 5. [`output`]: CSV and terminal tables;
-//! - [`simulate`]: exact modes of a model as measurements, for tests and studies.
+//! 4. [`identify`]: the per-mode method, eq. (5)-(16), and the first-order propagation of
+//!    measurement errors through it;
+//! 5. [`study`]: Monte-Carlo robustness studies of the method, summarised by [`stats`];
+//! 6. [`diagnose`]: calibration of the invariant joint on all modes, the candidate effects of
+//!    [`model::effects`], selection and the before/after report;
+//! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
+//!
+//! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
+//! with effects and errors, for tests, studies and rehearsals of a test campaign).
 
 pub mod diagnose;
 pub mod identify;
