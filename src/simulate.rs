@@ -41,8 +41,9 @@ pub struct Errors {
     pub seed: u64,
 }
 
-/// Exact modes as [`exact_modes`], each shape scaled to a largest component of +1, then
-/// every shape element multiplied by (1 + e) and every frequency by (1 + eps).
+/// Exact modes as [`exact_modes`], each shape scaled to a largest component of +1 (left as it
+/// is when every measured component is zero), then every shape element multiplied by (1 + e)
+/// and every frequency by (1 + eps).
 pub fn measured_modes(
     modal: &ModalSolution,
     modes: &[usize],
@@ -61,6 +62,7 @@ pub fn measured_modes(
                     .iter()
                     .copied()
                     .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
+                let peak = if peak == 0.0 { 1.0 } else { peak };
                 let values = m
                     .values
                     .iter()

@@ -356,6 +356,7 @@ fn run(
         return Ok(finish(&problem, x, eval, pairing, 0, dof));
     }
     let mut total_iterations = 0;
+    let mut last_chi2 = f64::INFINITY;
     // Levenberg-Marquardt; once converged, re-pair with the fitted model and go on if the
     // pairing changed (a mode swap the nominal model hid).
     for _ in 0..3 {
@@ -371,6 +372,7 @@ fn run(
         x = x_new;
         total_iterations += iterations;
         let eval = problem.evaluate(&x, &pairing)?;
+        last_chi2 = chi2(&eval.residual);
         let repaired = pair(&eval.modal, measured, RIGID_BODY_MODES)?;
         if repaired.model_index == pairing.model_index {
             return Ok(finish(
@@ -383,17 +385,12 @@ fn run(
             ));
         }
         pairing = repaired;
-        initial_scales(
-            &problem,
-            &ModalSolution::solve(&problem.configured(&x).assemble())?,
-            &pairing,
-            &mut x,
-        );
+        initial_scales(&problem, &eval.modal, &pairing, &mut x);
     }
     Err(FitError::NotConverged {
         effect: name,
         iterations: total_iterations,
-        chi2: f64::NAN,
+        chi2: last_chi2,
     })
 }
 

@@ -176,19 +176,19 @@ pub fn diagnose(
         .iter()
         .filter(|(c, _)| c.criterion.is_some_and(|p| p < ALPHA))
         .max_by(|a, b| a.0.lrt.unwrap_or(0.0).total_cmp(&b.0.lrt.unwrap_or(0.0)));
-    let (verdict, after) = match best {
+    let (verdict, after, selected): (Verdict, &Fitted, Option<String>) = match best {
         Some((c, Some(f))) if c.fit_p_value.is_some_and(|p| p >= FIT_ALPHA) => {
-            (Verdict::Effect, (*f, Some(c.name.clone())))
+            (Verdict::Effect, f, Some(c.name.clone()))
         }
-        Some(_) => (Verdict::Unexplained, (&base, None)),
-        None if base_p >= FIT_ALPHA => (Verdict::None, (&base, None)),
-        None => (Verdict::Unexplained, (&base, None)),
+        Some(_) => (Verdict::Unexplained, &base, None),
+        None if base_p >= FIT_ALPHA => (Verdict::None, &base, None),
+        None => (Verdict::Unexplained, &base, None),
     };
     let per_mode = settings
         .per_mode
         .unwrap_or_else(|| default_per_mode(model, measured));
     let per_mode_before = report::per_mode_corrections(&base, measured, noise, per_mode);
-    let per_mode_after = report::per_mode_corrections(after.0, measured, noise, per_mode);
+    let per_mode_after = report::per_mode_corrections(after, measured, noise, per_mode);
     let warnings = base
         .pairing
         .model_index
@@ -199,7 +199,7 @@ pub fn diagnose(
         .collect();
     Ok(Report {
         verdict,
-        selected: after.1,
+        selected,
         criterion: format!(
             "likelihood-ratio test under the stated noise: a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}"
         ),
@@ -207,7 +207,7 @@ pub fn diagnose(
         warnings,
         initial: ErrorSummary::of(&initial, measured),
         before: ErrorSummary::of(&base, measured),
-        after: ErrorSummary::of(after.0, measured),
+        after: ErrorSummary::of(after, measured),
         candidates: candidates.into_iter().map(|(c, _)| c).collect(),
         flatness_before: report::flatness(&per_mode_before),
         flatness_after: report::flatness(&per_mode_after),
@@ -217,7 +217,7 @@ pub fn diagnose(
             "n = {}, m = {}, weighting = {}",
             per_mode.n, per_mode.m, per_mode.weighting
         ),
-        shape_floor: Report::SHAPE_FLOOR,
+        shape_floor: fit::SHAPE_FLOOR,
     })
 }
 

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::fit::{Estimate, Fitted, Noise, SHAPE_FLOOR};
+use super::fit::{Estimate, Fitted, Noise};
 use super::pairing::mac;
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings};
@@ -221,7 +221,6 @@ pub fn per_mode_corrections(
 /// Flatness of the per-mode corrections of every parameter.
 pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
     let mut names: Vec<&str> = corrections.iter().map(|c| c.param.as_str()).collect();
-    names.dedup();
     names.sort_unstable();
     names.dedup();
     names
@@ -339,9 +338,4 @@ pub struct Report {
     pub per_mode_settings: String,
     /// The shape-noise floor used in the weights.
     pub shape_floor: f64,
-}
-
-impl Report {
-    /// The floor documented in [`super::fit`].
-    pub const SHAPE_FLOOR: f64 = SHAPE_FLOOR;
 }

@@ -148,7 +148,6 @@ pub fn diagnose_figures(
         .iter()
         .map(|c| c.param.clone())
         .collect();
-    params.dedup();
     params.sort();
     params.dedup();
     for param in params {

@@ -13,6 +13,7 @@ use std::collections::BTreeMap;
 use super::plot::{LineAxes, PlotError, Series, boxes, lines, svg, tick};
 use super::table::sci;
 use crate::report::{Axis, StudyResults};
+use crate::stats::quantile_sorted;
 
 /// One figure of a report.
 #[derive(Debug, Clone)]
@@ -146,12 +147,7 @@ fn spans_decades(series: &[Series]) -> bool {
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+    quantile_sorted(&v, 0.5)
 }
 
 /// (bias series, spread series) against `axis`.

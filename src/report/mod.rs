@@ -110,7 +110,7 @@ pub struct ResultRow {
     pub param: String,
     /// Introduced value.
     pub introduced: f64,
-    /// Trials and failures.
+    /// Trials run.
     pub trials: usize,
     /// Rank-deficient trials.
     pub failures: usize,

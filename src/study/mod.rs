@@ -115,7 +115,7 @@ impl StudyRun {
         )
     }
 
-    /// Total trial-modes of the study (for progress).
+    /// Total trials of the study, cells times trials per cell (for progress).
     pub fn trial_count(&self) -> u64 {
         (self.cells.len() * self.study.trials) as u64
     }
