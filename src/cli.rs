@@ -67,6 +67,8 @@ pub enum Measure {
     Theta,
     /// Every DOF.
     All,
+    /// The sensors the model declares (`[[sensor]]`).
+    Sensors,
 }
 
 /// `jointid simulate`.
@@ -135,7 +137,7 @@ pub struct IdentifyArgs {
     /// Model file (TOML).
     #[arg(long)]
     pub model: PathBuf,
-    /// Measured modes (CSV: mode,frequency_hz,node,dof,value).
+    /// Measured modes (CSV: mode,frequency_hz, then node,dof or x,dof or label, then value).
     #[arg(long)]
     pub measured: PathBuf,
     /// Basis size n: calculated eigenpairs, rigid-body modes included.

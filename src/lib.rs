@@ -27,4 +27,5 @@ pub mod output;
 pub mod report;
 pub mod simulate;
 pub mod stats;
+pub mod structure;
 pub mod study;

@@ -9,6 +9,7 @@ use std::process::Command;
 use common::{all_dofs, paper_model};
 use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;
+use jointid::structure::Observation;
 
 struct Scratch(PathBuf);
 
@@ -37,15 +38,16 @@ impl Drop for Scratch {
 
 const MODEL: &str = include_str!("../models/paper-case-1.toml");
 
-fn simulated_csv(dofs: &[usize]) -> String {
+fn simulated_csv(dofs: &[Observation]) -> String {
     let truth = paper_model(1.2e7, 1.2e4);
     let modes = exact_modes(
         &ModalSolution::solve(&truth.assemble()).unwrap(),
+        2,
         &[1, 2, 3, 4],
         dofs,
     );
     let mut buf = Vec::new();
-    modes.write_csv(&mut buf).unwrap();
+    modes.write_csv(&mut buf, &truth).unwrap();
     String::from_utf8(buf).unwrap()
 }
 
@@ -182,7 +184,7 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         MODEL,
         &format!("{header}1,150,0,w,1\n1,150,0,w,1\n"),
         &std_args,
-        "d.csv:3: mode 1, node 0, dof w is given twice (first on line 2)",
+        "d.csv:3: mode 1, point 0:w is given twice (first on line 2)",
     );
     assert_fails(
         "frequencies",
@@ -268,6 +270,6 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         "",
         &good,
         &std_args,
-        "m.toml:1: missing field `beam`",
+        "m.toml: beam = 0 beam(s) is invalid: a chain has 1 to 9 [[beam]] tables",
     );
 }

@@ -6,7 +6,6 @@ use crate::cli::DiagnoseArgs;
 use jointid::diagnose::{DiagnoseSettings, Noise, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
-use jointid::model::Model;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::{diagnose as out, write_atomically};
 
@@ -23,8 +22,8 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let model = Model::from_path(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, model.node_count())?;
+    let model = jointid::model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let per_mode = match (args.n, args.m) {
         (None, None) => None,
         (Some(n), Some(m)) => Some(Settings {
@@ -50,7 +49,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     if let Some(dir) = &args.plots {
-        let figures = diagnose_figures(&report, &measured, &model)?;
+        let figures = diagnose_figures(&report, &measured)?;
         let title = format!(
             "Diagnosis of {}: verdict {}",
             args.measured.display(),

@@ -8,12 +8,11 @@ use crate::cli::IdentifyArgs;
 use jointid::identify::{Identifier, Settings};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
-use jointid::model::Model;
 use jointid::output::{identify as out, write_atomically};
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
-    let model = Model::from_path(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, model.node_count())?;
+    let model = jointid::model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let modal = ModalSolution::solve(&model.assemble())
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     let settings = Settings {
@@ -21,7 +20,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         m: args.m,
         weighting: args.weighting,
     };
-    let identifier = Identifier::for_joints(&model, &modal, settings)?;
+    let identifier = Identifier::for_structure(&model, &modal, settings)?;
     let modes: Vec<usize> = match &args.modes {
         Some(list) => list.clone(),
         None => measured.modes().iter().map(|m| m.mode).collect(),

@@ -59,7 +59,10 @@ pub fn pair(
                 .map(|t| {
                     mac(
                         &m.values,
-                        &m.dofs.iter().map(|&d| y[(d, t)]).collect::<Vec<_>>(),
+                        &m.points
+                            .iter()
+                            .map(|p| p.read_column(y, t))
+                            .collect::<Vec<_>>(),
                     )
                 })
                 .collect()
@@ -105,12 +108,17 @@ mod tests {
     use crate::measured::MeasuredModes;
     use crate::model::fixtures::paper_model;
     use crate::simulate::exact_modes;
+    use crate::structure::Observation;
 
     #[test]
     fn exact_modes_pair_with_themselves_and_a_swap_is_found() {
-        let modal = ModalSolution::solve(&paper_model(1e7, 1e4).assemble()).unwrap();
-        let dofs: Vec<usize> = (0..38).step_by(2).collect();
-        let exact = exact_modes(&modal, &[1, 2, 3, 4], &dofs);
+        let model = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let dofs: Vec<Observation> = (0..38)
+            .step_by(2)
+            .map(|d| Observation::dof(&model.dofs, d))
+            .collect();
+        let exact = exact_modes(&modal, 2, &[1, 2, 3, 4], &dofs);
         let p = pair(&modal, &exact, 2).unwrap();
         assert_eq!(p.model_index, vec![2, 3, 4, 5]);
         assert!(p.mac.iter().all(|&m| (m - 1.0).abs() < 1e-12));
@@ -124,11 +132,12 @@ mod tests {
 
     #[test]
     fn a_shape_like_no_mode_is_unpaired() {
-        let modal = ModalSolution::solve(&paper_model(1e7, 1e4).assemble()).unwrap();
+        let model = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
         // A pseudo-random pattern over all 38 DOFs resembles no mode (with few DOFs, some high
         // mode always does).
-        let all: Vec<usize> = (0..38).collect();
-        let mut modes = exact_modes(&modal, &[1], &all).modes().to_vec();
+        let all: Vec<Observation> = (0..38).map(|d| Observation::dof(&model.dofs, d)).collect();
+        let mut modes = exact_modes(&modal, 2, &[1], &all).modes().to_vec();
         modes[0].values = (0..38).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
         let err = pair(&modal, &MeasuredModes::new(modes), 2).unwrap_err();
         assert_eq!(err.mode, 1);

@@ -26,7 +26,7 @@ pub use wls::RankDeficient;
 
 use crate::measured::MeasuredMode;
 use crate::modal::{ModalSolution, lambda_to_hz};
-use crate::model::{Model, Parameter, RIGID_BODY_MODES};
+use crate::structure::{Parameter, Structure, observe};
 
 /// The method's settings: basis size n, retained equations m, weighting W.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -129,14 +129,14 @@ pub struct ModeOutcome {
 }
 
 impl Identifier {
-    /// The joint identification of the paper: parameters k1, k2 of every joint of `model`,
-    /// sub-basis from its modal solution.
-    pub fn for_joints(
-        model: &Model,
+    /// The identification of the paper on a structure: its identified parameters (k1, k2 of
+    /// every joint of a chain, less those held fixed), sub-basis from its modal solution.
+    pub fn for_structure(
+        structure: &Structure,
         modal: &ModalSolution,
         settings: Settings,
     ) -> Result<Self, IdentifyError> {
-        Self::new(modal, model.joint_parameters(), RIGID_BODY_MODES, settings)
+        Self::new(modal, structure.identified(), structure.rigid, settings)
     }
 
     /// General form: any parameters with their derivatives, `rigid` rigid-body modes first.
@@ -194,18 +194,17 @@ impl Identifier {
         self.settings
     }
 
-    /// Basis index s_r (0-based) of deformable mode r, checked to lie in the sub-basis.
+    /// Basis index s_r (0-based) of deformable mode r >= 1, checked to lie in the sub-basis.
     pub fn basis_index(&self, mode: usize) -> Result<usize, IdentifyError> {
-        let s = mode - 1 + self.rigid;
-        if s >= self.settings.n {
-            return Err(IdentifyError::ModeBeyondBasis {
+        match (mode - 1).checked_add(self.rigid) {
+            Some(s) if s < self.settings.n => Ok(s),
+            _ => Err(IdentifyError::ModeBeyondBasis {
                 mode,
-                index: s + 1,
+                index: (mode - 1).saturating_add(self.rigid).saturating_add(1),
                 rigid: self.rigid,
                 n: self.settings.n,
-            });
+            }),
         }
-        Ok(s)
     }
 
     /// The retained, weighted system of the mode paired with basis index `s_r`.
@@ -236,7 +235,7 @@ impl Identifier {
                 n: self.settings.n,
             });
         }
-        let projector = Projector::new(&self.y, &measured.dofs)
+        let projector = Projector::new(&observe(&self.y, &measured.points))
             .map_err(|source| IdentifyError::Projection { mode, source })?;
         let mut g = vec![0.0; self.settings.n];
         projector.project(&measured.values, &mut g);

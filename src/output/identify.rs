@@ -9,7 +9,7 @@ use std::io::{self, Write};
 
 use super::table::{sci, write_table};
 use crate::identify::ModeOutcome;
-use crate::model::Parameter;
+use crate::structure::Parameter;
 
 /// The CSV header.
 pub const HEADER: [&str; 9] = [
