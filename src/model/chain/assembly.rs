@@ -3,8 +3,9 @@
 //!
 //! DOFs: `w` then `theta` of every node in node order, less those a support removes, then the
 //! translation of every mass that hangs on a spring. Base matrices are summed in the order
-//! elements, support springs, masses, sensor masses; the joints' p_i dK/dp_i come after
-//! (see [`Structure::assemble`]). A free-free chain of uniform beams therefore has
+//! elements, support springs, masses, sensor masses; the parameters' p_i dK/dp_i come after
+//! (see [`Structure::assemble`]): k1, k2 of every joint, then the support stiffnesses and the
+//! masses the model identifies (`identify`). A free-free chain of uniform beams therefore has
 //! DOF index 2 node + (0 for w, 1 for theta) and bitwise the matrices of a dense assembly
 //! element by element.
 
@@ -15,7 +16,7 @@ use super::setup::rigid_body_modes;
 use super::{Chain, SupportKind};
 use crate::structure::{
     Direction, DofInfo, DofMap, ElementSite, EndSite, JointSite, LineElement, Matrices, Parameter,
-    Sites, SparseSym, Structure, SymMatrix,
+    Role, Sites, SparseSym, Structure, SymMatrix,
 };
 
 /// Abscissae closer than this fraction of the chain's length are one position.
@@ -106,40 +107,81 @@ impl Chain {
                 }
             }
         }
-        for s in &self.supports {
+        // Grounded springs of the supports: in the base, or parameters after the joints'.
+        let mut extra: Vec<Parameter> = Vec::new();
+        for (i, s) in self.supports.iter().enumerate() {
             if let SupportKind::Spring {
                 translational,
                 rotational,
             } = s.kind
             {
-                for (node, dofs) in mesh.nodes.iter().zip(&node_dofs) {
-                    if same(node.x, s.x) {
-                        for (&d, value) in dofs.iter().zip([translational, rotational]) {
-                            if let Some(d) = d.filter(|_| value > 0.0) {
-                                k.push((d, d, value));
-                            }
+                let values = [translational, rotational];
+                for (slot, name) in ["translational", "rotational"].into_iter().enumerate() {
+                    let dofs: Vec<usize> = mesh
+                        .nodes
+                        .iter()
+                        .zip(&node_dofs)
+                        .filter(|(node, _)| same(node.x, s.x))
+                        .filter_map(|(_, d)| d[slot])
+                        .collect();
+                    if values[slot] <= 0.0 {
+                        continue;
+                    }
+                    if s.identify[slot] {
+                        let mut pattern = SparseSym::zero();
+                        for &d in &dofs {
+                            pattern.push(d, d, 1.0);
                         }
+                        extra.push(Parameter {
+                            name: format!("support{i}.{name}"),
+                            unit: if slot == 0 { "N/m" } else { "N m/rad" },
+                            value: values[slot],
+                            stiffness: pattern,
+                            mass: SparseSym::zero(),
+                            role: Role::Identified,
+                        });
+                    } else {
+                        k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
                     }
                 }
             }
         }
         let mut hanging_dof = hanging.iter();
-        for p in &self.masses {
+        for (i, p) in self.masses.iter().enumerate() {
             let [w, theta] = node_dofs[node_at(p.x)];
-            match p.spring {
-                None => {
-                    if let Some(w) = w {
-                        m.push((w, w, p.mass));
-                    }
-                    if let Some(theta) = theta.filter(|_| p.rotary_inertia > 0.0) {
-                        m.push((theta, theta, p.rotary_inertia));
-                    }
-                }
+            // (DOF, mass on it): translation m, rotation J of a rigidly attached mass.
+            let carried: Vec<(usize, f64)> = match p.spring {
+                None => w
+                    .map(|w| (w, p.mass))
+                    .into_iter()
+                    .chain(
+                        theta
+                            .filter(|_| p.rotary_inertia > 0.0)
+                            .map(|t| (t, p.rotary_inertia)),
+                    )
+                    .collect(),
                 Some(spring) => {
                     let own = *hanging_dof.next().expect("a DOF per hanging mass");
-                    m.push((own, own, p.mass));
                     spring_entries(&mut k, w, Some(own), spring);
+                    vec![(own, p.mass)]
                 }
+            };
+            if p.identify {
+                // dM/dm: the rotary inertia scales with the mass.
+                let mut dm = SparseSym::zero();
+                for &(d, value) in &carried {
+                    dm.push(d, d, value / p.mass);
+                }
+                extra.push(Parameter {
+                    name: format!("mass{i}.m"),
+                    unit: "kg",
+                    value: p.mass,
+                    stiffness: SparseSym::zero(),
+                    mass: dm,
+                    role: Role::Identified,
+                });
+            } else {
+                m.extend(carried.iter().map(|&(d, value)| (d, d, value)));
             }
         }
         for s in self.sensors.iter().filter(|s| s.mass > 0.0) {
@@ -185,6 +227,7 @@ impl Chain {
                 parameters: [first, first + 1],
             });
         }
+        parameters.extend(extra);
         let elements = mesh
             .elements
             .iter()

@@ -28,12 +28,14 @@
 //! kind = "clamped"           # clamped | pinned | guided | spring
 //! # translational = 1e5      # spring: N/m
 //! # rotational = 10.0        # spring: N m/rad
+//! # identify = ["rotational"] # spring: stiffnesses identified beside the joints
 //!
 //! [[mass]]                   # a point mass
 //! x = 0.085
 //! mass = 0.02                # kg
 //! rotary_inertia = 1e-6      # kg m^2, optional
 //! # spring = 5e4             # N/m: the mass hangs on a spring (its own DOF)
+//! # identify = true          # the mass is identified beside the joints
 //!
 //! [[sensor]]                 # a sensor position: a node goes there
 //! x = 0.5
@@ -128,6 +130,8 @@ struct RawSupport {
     kind: String,
     translational: Option<f64>,
     rotational: Option<f64>,
+    #[serde(default)]
+    identify: Vec<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -137,6 +141,8 @@ struct RawMass {
     mass: f64,
     rotary_inertia: Option<f64>,
     spring: Option<f64>,
+    #[serde(default)]
+    identify: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -252,7 +258,26 @@ impl RawChain {
                     ));
                 }
             };
-            supports.push(Support { x, kind });
+            let mut identify = [false; 2];
+            for (k, name) in s.identify.iter().enumerate() {
+                let slot = match (name.as_str(), kind) {
+                    ("translational", SupportKind::Spring { translational, .. })
+                        if translational > 0.0 =>
+                    {
+                        0
+                    }
+                    ("rotational", SupportKind::Spring { rotational, .. }) if rotational > 0.0 => 1,
+                    _ => {
+                        return Err(check.invalid(
+                            p(&format!("identify[{k}]")),
+                            format!("\"{name}\""),
+                            "a spring support identifies its \"translational\" and/or \"rotational\" stiffness, when that stiffness is given and > 0",
+                        ));
+                    }
+                };
+                identify[slot] = true;
+            }
+            supports.push(Support { x, kind, identify });
         }
         let masses = self
             .mass
@@ -279,6 +304,7 @@ impl RawChain {
                         .spring
                         .map(|k| check.positive(p("spring"), k, "N/m"))
                         .transpose()?,
+                    identify: m.identify,
                 })
             })
             .collect::<Result<Vec<_>, InputError>>()?;
@@ -322,6 +348,45 @@ impl RawChain {
                     .transpose()?
                     .unwrap_or(0.0),
             });
+        }
+        let tol = 1e-9 * length;
+        for (i, sensor) in sensors.iter().enumerate() {
+            if let Some((k, support)) = supports
+                .iter()
+                .enumerate()
+                .find(|(_, s)| (s.x - sensor.x).abs() <= tol && s.kind.removes(sensor.direction))
+            {
+                return Err(check.invalid(
+                    format!("sensor[{i}].x"),
+                    sensor.x,
+                    format!(
+                        "support[{k}] ({}) holds {} there: a sensor reads a motion that exists",
+                        support.kind.name(),
+                        sensor.direction
+                    ),
+                ));
+            }
+        }
+        let identified = joints
+            .iter()
+            .flat_map(|j| j.roles)
+            .filter(|r| *r == Role::Identified)
+            .count()
+            + supports
+                .iter()
+                .flat_map(|s| s.identify)
+                .filter(|&b| b)
+                .count()
+            + masses.iter().filter(|m| m.identify).count();
+        if identified > crate::identify::wls::MAX_Q {
+            return Err(check.invalid(
+                "joint",
+                format!("{identified} identified parameters"),
+                format!(
+                    "at most {} parameters can be identified: hold some fixed (`fixed = [...]`)",
+                    crate::identify::wls::MAX_Q
+                ),
+            ));
         }
         let nodes_at = self
             .mesh

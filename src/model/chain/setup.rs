@@ -10,6 +10,9 @@ pub struct Support {
     pub x: f64,
     /// What it holds.
     pub kind: SupportKind,
+    /// For a spring support: whether its translational and rotational stiffnesses are
+    /// identified parameters (otherwise part of the model).
+    pub identify: [bool; 2],
 }
 
 /// What a support holds.
@@ -76,6 +79,8 @@ pub struct PointMass {
     /// `Some(k)`: the mass hangs on a translational spring of stiffness k (N/m) and moves on
     /// its own DOF; `None`: rigidly attached.
     pub spring: Option<f64>,
+    /// Whether the mass is an identified parameter (its rotary inertia scales with it).
+    pub identify: bool,
 }
 
 /// A sensor declared in the model: a node is placed at it, `simulate` can read it, and its
@@ -124,7 +129,11 @@ mod tests {
     use super::*;
 
     fn at(x: f64, kind: SupportKind) -> Support {
-        Support { x, kind }
+        Support {
+            x,
+            kind,
+            identify: [false; 2],
+        }
     }
 
     #[test]
