@@ -401,3 +401,29 @@ fn a_clamped_set_up_is_identified_exactly_from_noise_free_modes() {
         }
     }
 }
+
+#[test]
+fn the_unesp_bert_set_up_is_a_model_file_without_tricks() {
+    let s = jointid::model::from_path(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/models/unesp-bert.toml"
+    )))
+    .unwrap();
+    assert_eq!(s.rigid, 0);
+    let labels: Vec<&str> = s.sensors.iter().map(|o| o.label.as_str()).collect();
+    assert_eq!(labels, ["acc1", "acc2", "acc3", "acc4"]);
+    // Every sensor and the stinger sit on nodes; the lap is a segment on either side of the
+    // joint at its centre.
+    assert!(s.sensors.iter().all(|o| o.terms.len() == 1));
+    assert!(
+        s.dofs
+            .dofs()
+            .iter()
+            .any(|d| (d.position[0] - 0.085).abs() < 1e-12)
+    );
+    assert_eq!(s.sites.joints.len(), 1);
+    assert!((s.sites.joints[0].x - 0.25).abs() < 1e-12);
+    assert_eq!(s.sites.joints[0].sections[0].area, 3.2258e-4);
+    let names: Vec<String> = s.identified().iter().map(|p| p.name.clone()).collect();
+    assert_eq!(names, ["k1", "k2"]);
+}

@@ -282,8 +282,9 @@ impl MeasuredModes {
         Ok(Self { modes })
     }
 
-    /// Writes the modes in the file format above: by node where every point is a node's DOF,
-    /// by position where every point lies on a chain, by label otherwise.
+    /// Writes the modes in the file format above: by label where every point is a sensor the
+    /// model declares, by node where every point is a node's DOF, by position where every
+    /// point lies on a chain, by label otherwise.
     pub fn write_csv<W: std::io::Write>(
         &self,
         out: W,
@@ -291,7 +292,10 @@ impl MeasuredModes {
     ) -> Result<(), ::csv::Error> {
         let points = self.points();
         let node_of = |o: &Observation| o.single_dof().and_then(|d| structure.dofs.get(d).node);
-        let location = if points.iter().all(|o| node_of(o).is_some()) {
+        let declared = |o: &Observation| structure.sensors.iter().any(|s| s == o);
+        let location = if !structure.sensors.is_empty() && points.iter().all(declared) {
+            Location::Label
+        } else if points.iter().all(|o| node_of(o).is_some()) {
             Location::Node
         } else if !structure.dofs.lines().is_empty()
             && points
