@@ -204,4 +204,26 @@ pub struct DiagnoseArgs {
     /// Weighting of the per-mode corrections.
     #[arg(long, value_parser = parse_weighting, default_value = "inverse")]
     pub weighting: Weighting,
+    /// Half-width of the frequency window in which a measured mode looks for its model mode,
+    /// relative to its frequency (0 < w <= 10).
+    #[arg(long, default_value_t = jointid::diagnose::pairing::DEFAULT_WINDOW)]
+    pub pairing_window: f64,
+    /// Pairs given by number, `r:t` (measured mode r with the model's deformable mode t),
+    /// comma-separated; the other modes pair by MAC within the window.
+    #[arg(long, value_delimiter = ',', value_parser = parse_pair)]
+    pub pair: Vec<(usize, usize)>,
+}
+
+fn parse_pair(s: &str) -> Result<(usize, usize), String> {
+    let (r, t) = s
+        .split_once(':')
+        .ok_or_else(|| format!("`{s}` is not r:t, e.g. 3:4 (measured mode 3 with model mode 4)"))?;
+    let number = |text: &str| {
+        text.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| (1..=100_000).contains(&n))
+            .ok_or_else(|| format!("`{text}` in `{s}` is not a mode number from 1 to 100000"))
+    };
+    Ok((number(r)?, number(t)?))
 }

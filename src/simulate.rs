@@ -122,7 +122,7 @@ pub enum SimulateError {
         deformable: usize,
     },
     /// The simulated model has no eigensolution.
-    #[error("the simulated model has no eigensolution: {0}")]
+    #[error("the simulated model has no eigensolution")]
     Modal(#[from] crate::modal::ModalError),
 }
 

@@ -7,7 +7,9 @@
 mod common;
 
 use common::{jointid, paper_model, scratch};
-use jointid::diagnose::{DiagnoseSettings, FIT_ALPHA, Noise, Report, Verdict, diagnose};
+use jointid::diagnose::{
+    DiagnoseSettings, FIT_ALPHA, Noise, PairingRule, Report, Verdict, diagnose,
+};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
 use jointid::model::effects::{EffectContext, by_name};
@@ -38,6 +40,7 @@ fn run(data: &MeasuredModes) -> Report {
         data,
         DiagnoseSettings {
             noise: NOISE,
+            pairing: PairingRule::default(),
             per_mode: None,
         },
     )
@@ -277,7 +280,10 @@ fn bad_diagnose_and_simulate_inputs_are_explained() {
     ]);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr.contains("pairs with no model mode"), "{stderr}");
+    assert!(
+        stderr.contains("measured mode 1 (150.0000 Hz) has no credible partner"),
+        "{stderr}"
+    );
     let run = jointid(&[
         "diagnose",
         "--model",

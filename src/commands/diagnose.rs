@@ -3,7 +3,7 @@
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
-use jointid::diagnose::{DiagnoseSettings, Noise, diagnose};
+use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_plots::diagnose_figures;
@@ -33,10 +33,23 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         }),
         _ => bail!("--n and --m go together (or leave both out for the defaults)"),
     };
+    if !(args.pairing_window.is_finite()
+        && args.pairing_window > 0.0
+        && args.pairing_window <= 10.0)
+    {
+        bail!(
+            "--pairing-window {} is invalid: it is a relative half-width above 0 and at most 10",
+            args.pairing_window
+        );
+    }
     let settings = DiagnoseSettings {
         noise: Noise {
             frequency: args.frequency_noise,
             shape: args.shape_noise,
+        },
+        pairing: PairingRule {
+            window: args.pairing_window,
+            given: args.pair.clone(),
         },
         per_mode,
     };

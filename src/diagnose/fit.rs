@@ -22,7 +22,7 @@ use std::sync::Arc;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
-use super::pairing::{Pairing, Unpaired, pair};
+use super::pairing::{Pairing, PairingRule, Unpaired, pair};
 use super::sensitivity::eigen_derivative;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
@@ -43,6 +43,19 @@ pub struct Noise {
     pub shape: f64,
 }
 
+/// Largest change of a fitted model parameter from its nominal value, as a factor either way
+/// (10^3): a fit that leaves this range has diverged or describes another structure.
+pub const RANGE_FACTOR: f64 = 1e3;
+
+/// What a calibration needs besides the model and the data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Calibration {
+    /// The stated measurement noise.
+    pub noise: Noise,
+    /// How measured modes pair with model modes.
+    pub pairing: PairingRule,
+}
+
 /// Why a fit failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FitError {
@@ -50,7 +63,7 @@ pub enum FitError {
     #[error(transparent)]
     Unpaired(#[from] Unpaired),
     /// A fitted model has no eigensolution.
-    #[error("the fitted model has no eigensolution: {0}")]
+    #[error("the fitted model has no eigensolution")]
     Modal(#[from] ModalError),
     /// More unknowns than data.
     #[error(
@@ -61,6 +74,20 @@ pub enum FitError {
         data: usize,
         /// Unknowns (joint and effect parameters, one scale per mode).
         parameters: usize,
+    },
+    /// A fitted parameter left its physical range.
+    #[error("the fit{with} took {name} to {value:.4e} {unit}, beyond a factor {RANGE_FACTOR:e} from its nominal {nominal:.4e}: refused (the data and the model disagree on more than this parameter; check the pairing, units and set-up)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
+    OutOfRange {
+        /// Effect fitted, if any.
+        effect: String,
+        /// The parameter.
+        name: String,
+        /// Its fitted value.
+        value: f64,
+        /// Its unit.
+        unit: &'static str,
+        /// Its nominal value.
+        nominal: f64,
     },
     /// Levenberg-Marquardt did not converge.
     #[error("the fit{with} did not converge in {iterations} iterations (chi^2 {chi2:.4e}): the data may be inconsistent with the model (check mode numbering, units and the stated noise)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
@@ -112,6 +139,7 @@ struct Problem<'a> {
     ctx: &'a Arc<EffectContext>,
     measured: &'a MeasuredModes,
     noise: Noise,
+    pairing: &'a PairingRule,
     effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
     joint_p0: Vec<f64>,
     /// Per measured mode, sigma of each shape component.
@@ -171,6 +199,23 @@ impl Problem<'_> {
 
     fn rigid(&self) -> usize {
         self.ctx.structure.rigid
+    }
+
+    /// Refuses a model parameter beyond [`RANGE_FACTOR`] of its nominal value.
+    fn in_range(&self, x: &[f64], effect: &str) -> Result<(), FitError> {
+        let params = self.ctx.structure.identified();
+        for ((p, &p0), &xi) in params.iter().zip(&self.joint_p0).zip(x) {
+            if xi.is_nan() || xi.abs() > RANGE_FACTOR.ln() {
+                return Err(FitError::OutOfRange {
+                    effect: effect.to_string(),
+                    name: p.name.clone(),
+                    value: p0 * xi.exp(),
+                    unit: p.unit,
+                    nominal: p0,
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
@@ -281,9 +326,9 @@ fn chi2(r: &[f64]) -> f64 {
 pub fn as_given(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, noise, &[], false)
+    run(ctx, measured, calibration, &[], false)
 }
 
 /// Fits the joints of `ctx.model` (and the parameters of `effects`, starting at zero) to the
@@ -291,24 +336,26 @@ pub fn as_given(
 pub fn fit(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, noise, effects, true)
+    run(ctx, measured, calibration, effects, true)
 }
 
 fn run(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
     iterate: bool,
 ) -> Result<Fitted, FitError> {
+    let noise = calibration.noise;
     let joint_p0: Vec<f64> = ctx.structure.identified().iter().map(|p| p.value).collect();
     let problem = Problem {
         ctx,
         measured,
         noise,
+        pairing: &calibration.pairing,
         effects: effects
             .iter()
             .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
@@ -342,7 +389,7 @@ fn run(
     let mut x = vec![0.0; unknowns];
     let start = problem.configured(&x);
     let start_modal = ModalSolution::solve(&start.assemble())?;
-    let mut pairing = pair(&start_modal, measured, problem.rigid())?;
+    let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
     initial_scales(&problem, &start_modal, &pairing, &mut x);
     if !iterate {
         let eval = problem.evaluate(&x, &pairing)?;
@@ -367,8 +414,9 @@ fn run(
         total_iterations += iterations;
         let eval = problem.evaluate(&x, &pairing)?;
         last_chi2 = chi2(&eval.residual);
-        let repaired = pair(&eval.modal, measured, problem.rigid())?;
+        let repaired = pair(&eval.modal, measured, problem.rigid(), problem.pairing)?;
         if repaired.model_index == pairing.model_index {
+            problem.in_range(&x, &name)?;
             return Ok(finish(
                 &problem,
                 x,
@@ -590,10 +638,12 @@ mod tests {
             shape: 0.02,
         };
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
+        let rule = PairingRule::default();
         let problem = Problem {
             ctx: &ctx,
             measured: &measured,
             noise,
+            pairing: &rule,
             effects: effects.iter().map(|e| (e.clone(), vec![0.0])).collect(),
             joint_p0: vec![1e7, 1e4],
             sigma: measured
@@ -608,7 +658,7 @@ mod tests {
                 .collect(),
         };
         let x = vec![0.1, -0.2, 2.0, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
-        let pairing = pair(&nominal, &measured, 2).unwrap();
+        let pairing = pair(&nominal, &measured, 2, &rule).unwrap();
         let eval = problem.evaluate(&x, &pairing).unwrap();
         let jac = problem.jacobian(&x, &eval, &pairing);
         // Eigenvalues are accurate to about eps * lambda_max (2e-3 here) in absolute terms: the

@@ -25,7 +25,8 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-pub use fit::{Estimate, FitError, Fitted, Noise};
+pub use fit::{Calibration, Estimate, FitError, Fitted, Noise};
+pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
 
 use crate::identify::{Settings, Weighting};
@@ -44,11 +45,21 @@ pub const FIT_ALPHA: f64 = 0.001;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DiagnoseError {
     /// The nominal model has no eigensolution.
-    #[error("the model has no eigensolution: {0}")]
+    #[error("the model has no eigensolution")]
     Modal(#[from] ModalError),
     /// The joint-only calibration failed.
-    #[error("calibration of the joint: {0}")]
+    #[error("calibration of the joint")]
     Fit(#[from] FitError),
+    /// The calibration ended with a larger error than the model as given.
+    #[error(
+        "the calibration of the joint ended with chi^2 {after:.4e} above the model as given ({before:.4e}): refused (the pairing of modes changed on the way; check it with --pair)"
+    )]
+    ErrorGrew {
+        /// chi^2 of the model as given.
+        before: f64,
+        /// chi^2 after the calibration.
+        after: f64,
+    },
     /// Fewer modes than joint parameters.
     #[error(
         "{modes} measured mode(s) cannot calibrate {parameters} joint parameters: measure at least {parameters} modes"
@@ -62,10 +73,12 @@ pub enum DiagnoseError {
 }
 
 /// Settings of a diagnosis.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DiagnoseSettings {
     /// The stated measurement noise.
     pub noise: Noise,
+    /// How measured modes pair with model modes.
+    pub pairing: PairingRule,
     /// The paper's per-mode identification (None: n = the fewest identified DOFs of a mode,
     /// at most N; m = min(n - 2, 6); inverse weighting).
     pub per_mode: Option<Settings>,
@@ -92,8 +105,18 @@ pub fn diagnose(
         nominal.frequency_hz(rigid),
     ));
     let noise = settings.noise;
-    let initial = fit::as_given(&ctx, measured, noise)?;
-    let base = fit::fit(&ctx, measured, noise, &[])?;
+    let calibration = Calibration {
+        noise,
+        pairing: settings.pairing.clone(),
+    };
+    let initial = fit::as_given(&ctx, measured, &calibration)?;
+    let base = fit::fit(&ctx, measured, &calibration, &[])?;
+    if base.chi2 > initial.chi2 * (1.0 + 1e-9) {
+        return Err(DiagnoseError::ErrorGrew {
+            before: initial.chi2,
+            after: base.chi2,
+        });
+    }
     let library: Vec<Arc<dyn Effect>> = candidates()
         .into_iter()
         .filter(|c| c.applies(&ctx))
@@ -102,7 +125,7 @@ pub fn diagnose(
     let fits: Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> = library
         .into_par_iter()
         .map(|c| {
-            let result = fit::fit(&ctx, measured, noise, std::slice::from_ref(&c));
+            let result = fit::fit(&ctx, measured, &calibration, std::slice::from_ref(&c));
             (c, result)
         })
         .collect();

@@ -89,12 +89,12 @@ pub enum IdentifyError {
         n: usize,
     },
     /// The measured shape cannot be projected on the sub-basis.
-    #[error("mode {mode}: {source}")]
+    #[error("mode {mode}: {cause}")]
     Projection {
         /// Mode r.
         mode: usize,
         /// Why.
-        source: ProjectionError,
+        cause: ProjectionError,
     },
 }
 
@@ -236,7 +236,7 @@ impl Identifier {
             });
         }
         let projector = Projector::new(&observe(&self.y, &measured.points))
-            .map_err(|source| IdentifyError::Projection { mode, source })?;
+            .map_err(|cause| IdentifyError::Projection { mode, cause })?;
         let mut g = vec![0.0; self.settings.n];
         projector.project(&measured.values, &mut g);
         let system = self.mode_system(s_r);

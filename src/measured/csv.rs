@@ -25,12 +25,12 @@ use crate::structure::{Direction, Observation, Structure};
 #[derive(Debug, thiserror::Error)]
 pub enum MeasuredError {
     /// The file cannot be read.
-    #[error("{file}: cannot read the file: {source}")]
+    #[error("{file}: cannot read the file: {cause}")]
     Read {
         /// The file.
         file: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// A line is invalid.
     #[error("{file}:{line}: {message}")]
@@ -128,9 +128,9 @@ fn header(fields: &[&str]) -> Result<Header, String> {
 impl MeasuredModes {
     /// Reads and validates a file against `structure`.
     pub fn from_path(path: &Path, structure: &Structure) -> Result<Self, MeasuredError> {
-        let file = std::fs::File::open(path).map_err(|source| MeasuredError::Read {
+        let file = std::fs::File::open(path).map_err(|cause| MeasuredError::Read {
             file: path.to_path_buf(),
-            source,
+            cause,
         })?;
         Self::from_reader(file, path, structure)
     }
