@@ -152,6 +152,10 @@ pub struct IdentifyArgs {
     /// Modes to identify (default: every measured mode), e.g. 1,2,3.
     #[arg(long, value_delimiter = ',')]
     pub modes: Option<Vec<usize>>,
+    /// Parameters to identify, e.g. k2 (the others held at their values), or `auto`: on each
+    /// mode, the parameters the mode determines (default: every identified parameter).
+    #[arg(long, value_delimiter = ',')]
+    pub params: Option<Vec<String>>,
     /// Write CSV here instead of printing a table.
     #[arg(long)]
     pub out: Option<PathBuf>,

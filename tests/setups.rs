@@ -427,3 +427,56 @@ fn the_unesp_bert_set_up_is_a_model_file_without_tricks() {
     let names: Vec<String> = s.identified().iter().map(|p| p.name.clone()).collect();
     assert_eq!(names, ["k1", "k2"]);
 }
+
+#[test]
+fn a_parameter_a_mode_cannot_see_is_held_instead_of_failing_the_mode() {
+    // A joint on a pinned support: its transversal spring k1 connects two held DOFs and no
+    // mode can see it; k2 is seen by every mode.
+    let mut chain = Chain::free(
+        vec![steel_bar(0.25, 8), steel_bar(0.25, 8)],
+        vec![Joint::identified(1e7, 5e3)],
+    );
+    chain.supports = vec![
+        support(0.0, SupportKind::Clamped),
+        support(0.25, SupportKind::Pinned),
+    ];
+    let s = chain.build();
+    let truth = s.with_delta(&[0.0, 1e3]);
+    let points: Vec<Observation> = (0..s.dof_count())
+        .map(|d| Observation::dof(&s.dofs, d))
+        .collect();
+    let measured = exact_modes(
+        &ModalSolution::solve(&truth.assemble()).unwrap(),
+        0,
+        &[1, 2, 3],
+        &points,
+    );
+    let modal = ModalSolution::solve(&s.assemble()).unwrap();
+    let settings = Settings {
+        n: s.dof_count(),
+        m: 5,
+        weighting: Weighting::Inverse,
+    };
+    let id = Identifier::for_structure(&s, &modal, settings).unwrap();
+    for mode in measured.modes() {
+        let s_r = id.basis_index(mode.mode).unwrap();
+        let all = id.identify_paired(mode, s_r).unwrap();
+        assert!(
+            all.relative.is_err(),
+            "k1 is invisible: S_r is rank deficient"
+        );
+        assert_eq!(all.resolution[0], 0.0);
+        let auto = id
+            .identify_selected(mode, s_r, jointid::identify::Selection::Auto)
+            .unwrap();
+        assert_eq!(auto.solved, vec![false, true]);
+        let z = auto.relative.unwrap();
+        assert_eq!(z[0], 0.0);
+        assert!(
+            (5e3 * z[1] - 1e3).abs() < 1e-6 * 1e3,
+            "mode {}: {}",
+            mode.mode,
+            5e3 * z[1]
+        );
+    }
+}
