@@ -169,6 +169,28 @@ pub(crate) fn integers(
         .collect()
 }
 
+/// Exactly `n` integers: by blanks when the line has `n` of them, else by the columns
+/// `widths` (a blank field is 0).
+pub(crate) fn integers_n(
+    text: &str,
+    n: usize,
+    widths: &[usize],
+    field: &'static str,
+) -> Result<Vec<i64>, Problem> {
+    let tokens: Vec<&str> = text.split_whitespace().collect();
+    if tokens.len() == n
+        && let Ok(v) = tokens.iter().map(|t| integer(t, field)).collect()
+    {
+        return Ok(v);
+    }
+    let mut fields = cut(text, widths);
+    fields.resize(n, "");
+    fields[..n]
+        .iter()
+        .map(|f| if f.is_empty() { Ok(0) } else { integer(f, field) })
+        .collect()
+}
+
 /// `count` real values spread over the next lines, read with the columns `widths`. Values
 /// come in groups of `group` (a point of an uneven complex function is x, Re, Im); errors
 /// count groups and call them `what`. Blank lines are skipped. The line that completes the
@@ -242,14 +264,15 @@ mod tests {
             [-1.111111E-01, 4.111111E+01, 4.111111E+03, -3.111111E+03, -1.111110E+05, -2.111110E+05]
         );
         // 2(E13.5,E20.12) with the second pair run together
-        let line = "  1.00000E+00  -2.000000000000E+00  3.00000E+00-4.000000000000E+00";
+        let line = "  1.00000E+00 -2.000000000000E+00  3.00000E+00-4.000000000000E+00";
         assert_eq!(reals(line, &[13, 20], "data").unwrap(), [1.0, -2.0, 3.0, -4.0]);
     }
 
     #[test]
     fn blank_integer_columns_read_as_zero() {
         let line = "    4         0              0";
-        assert_eq!(integers(line, &[5, 10, 5, 10], "r6").unwrap(), [4, 0, 0, 0]);
+        assert_eq!(integers_n(line, 4, &[5, 10, 5, 10], "r6").unwrap(), [4, 0, 0, 0]);
+        assert_eq!(integers_n("1 2 3 4", 4, &[5], "r6").unwrap(), [1, 2, 3, 4]);
         // by blanks when possible
         assert_eq!(integers(" 1 2  3", &[5], "r6").unwrap(), [1, 2, 3]);
     }

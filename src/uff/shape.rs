@@ -25,7 +25,7 @@ use faer::c64;
 
 use super::Values;
 use super::error::{Located, Problem};
-use super::fields::{Cursor, Line, collect_reals, integers};
+use super::fields::{Cursor, Line, collect_reals, integers, integers_n};
 use super::function::Precision;
 use super::split::RawDataset;
 
@@ -212,14 +212,7 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
     }
     let r6 = cursor.next("the data definition parameters (record 6)")?;
     let at6 = |p| Located::new(r6.number, p);
-    let f = integers(&r6.text, &[10], "data definition parameters (record 6)").map_err(at6)?;
-    if f.len() < 6 {
-        return Err(at6(Problem::TooFew {
-            what: "data definition parameters (record 6)",
-            expected: 6,
-            found: f.len(),
-        }));
-    }
+    let f = integers_n(&r6.text, 6, &[10], "data definition parameters (record 6)").map_err(at6)?;
     let model_type = small(f[0], "model type (record 6)", r6)?;
     let analysis_code = small(f[1], "analysis type (record 6)", r6)?;
     let characteristic = DataCharacteristic::from_code(small(f[2], "data characteristic (record 6)", r6)?);
