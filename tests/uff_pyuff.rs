@@ -26,7 +26,11 @@ fn round(v: f64, digits: usize) -> f64 {
 }
 
 fn strings(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|s| s.as_str().unwrap().parse().unwrap()).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s.as_str().unwrap().parse().unwrap())
+        .collect()
 }
 
 fn digits(v: &Value) -> usize {
@@ -35,7 +39,10 @@ fn digits(v: &Value) -> usize {
 
 /// The real inputs of `v`, rounded to the digits written.
 fn reals(v: &Value) -> Vec<f64> {
-    strings(&v["values"]).into_iter().map(|x| round(x, digits(v))).collect()
+    strings(&v["values"])
+        .into_iter()
+        .map(|x| round(x, digits(v)))
+        .collect()
 }
 
 fn complexes(v: &Value) -> Vec<c64> {
@@ -52,9 +59,14 @@ fn int(v: &Value) -> i64 {
 }
 
 fn check_function(record: &Record, e: &Value, encoding: Encoding) {
-    let Record::Function(f) = record else { panic!("function expected, got {record:?}") };
+    let Record::Function(f) = record else {
+        panic!("function expected, got {record:?}")
+    };
     assert_eq!(f.id_lines[0], e["id1"].as_str().unwrap());
-    assert_eq!(f.function_type, FunctionType::from_code(int(&e["func_type"]) as i32));
+    assert_eq!(
+        f.function_type,
+        FunctionType::from_code(int(&e["func_type"]) as i32)
+    );
     assert_eq!(f.response.node as i64, int(&e["rsp_node"]));
     assert_eq!(i64::from(f.response.direction), int(&e["rsp_dir"]));
     assert_eq!(f.response.entity, e["rsp_ent_name"].as_str().unwrap());
@@ -62,7 +74,14 @@ fn check_function(record: &Record, e: &Value, encoding: Encoding) {
     assert_eq!(i64::from(f.reference.direction), int(&e["ref_dir"]));
     assert_eq!(f.encoding, encoding);
     let double = e["double"].as_bool().unwrap();
-    assert_eq!(f.precision, if double { Precision::Double } else { Precision::Single });
+    assert_eq!(
+        f.precision,
+        if double {
+            Precision::Double
+        } else {
+            Precision::Single
+        }
+    );
     let axes = [
         (&f.abscissa_axis, &e["abscissa_axis"]),
         (&f.ordinate_axis, &e["ordinate_axis"]),
@@ -95,23 +114,39 @@ fn check_mixed(records: &[Record], expected: &[Value]) {
     for (record, e) in records.iter().zip(expected) {
         match int(&e["type"]) {
             151 => {
-                let Record::Header(h) = record else { panic!("header expected") };
+                let Record::Header(h) = record else {
+                    panic!("header expected")
+                };
                 assert_eq!(h.model_file, e["model_file"].as_str().unwrap());
                 assert_eq!(h.description, e["description"].as_str().unwrap());
                 assert_eq!(h.program, e["program"].as_str().unwrap());
             }
             164 => {
-                let Record::Units(u) = record else { panic!("units expected") };
-                assert_eq!(u.system, UnitSystem::from_code(int(&e["units_code"])).unwrap());
+                let Record::Units(u) = record else {
+                    panic!("units expected")
+                };
+                assert_eq!(
+                    u.system,
+                    UnitSystem::from_code(int(&e["units_code"])).unwrap()
+                );
                 assert_eq!(u.system, UnitSystem::MillimeterMillinewton);
                 assert_eq!(u.description, e["description"].as_str().unwrap());
                 assert_eq!(u.temperature_mode, Some(int(&e["temp_mode"]) as i32));
                 let f = reals(&e["factors"]);
-                assert_eq!([u.length, u.force, u.temperature, u.temperature_offset], f[..]);
+                assert_eq!(
+                    [u.length, u.force, u.temperature, u.temperature_offset],
+                    f[..]
+                );
             }
             kind @ (15 | 2411) => {
-                let Record::Nodes(n) = record else { panic!("nodes expected") };
-                let format = if kind == 15 { NodeFormat::Single15 } else { NodeFormat::Double2411 };
+                let Record::Nodes(n) = record else {
+                    panic!("nodes expected")
+                };
+                let format = if kind == 15 {
+                    NodeFormat::Single15
+                } else {
+                    NodeFormat::Double2411
+                };
                 assert_eq!(n.format, format);
                 let xyz = reals(&e["xyz"]);
                 assert_eq!(n.nodes.len(), xyz.len() / 3);
@@ -125,12 +160,15 @@ fn check_mixed(records: &[Record], expected: &[Value]) {
             }
             58 => check_function(record, e, Encoding::Ascii),
             55 => {
-                let Record::ModeShape(s) = record else { panic!("mode shape expected") };
+                let Record::ModeShape(s) = record else {
+                    panic!("mode shape expected")
+                };
                 assert_eq!(i64::from(s.characteristic.code()), int(&e["data_ch"]));
                 assert_eq!(i64::from(s.specific_data_type), int(&e["spec_data_type"]));
                 assert_eq!(s.values_per_node as i64, int(&e["ndv"]));
                 let nodes: Vec<i64> = s.nodes.iter().map(|&n| n as i64).collect();
-                let expected_nodes: Vec<i64> = e["nodes"].as_array().unwrap().iter().map(int).collect();
+                let expected_nodes: Vec<i64> =
+                    e["nodes"].as_array().unwrap().iter().map(int).collect();
                 assert_eq!(nodes, expected_nodes);
                 let p = reals(&e["params"]);
                 match (&s.analysis, int(&e["analysis_type"])) {
@@ -145,8 +183,19 @@ fn check_mixed(records: &[Record], expected: &[Value]) {
                         },
                         2,
                     ) => {
-                        assert_eq!((*load_case, *mode), (int(&e["load_case"]), int(&e["mode_n"])));
-                        assert_eq!([*frequency_hz, *modal_mass, *viscous_damping, *hysteretic_damping], p[..]);
+                        assert_eq!(
+                            (*load_case, *mode),
+                            (int(&e["load_case"]), int(&e["mode_n"]))
+                        );
+                        assert_eq!(
+                            [
+                                *frequency_hz,
+                                *modal_mass,
+                                *viscous_damping,
+                                *hysteretic_damping
+                            ],
+                            p[..]
+                        );
                     }
                     (
                         Analysis::ComplexMode {
@@ -159,7 +208,10 @@ fn check_mixed(records: &[Record], expected: &[Value]) {
                         },
                         3,
                     ) => {
-                        assert_eq!((*load_case, *mode), (int(&e["load_case"]), int(&e["mode_n"])));
+                        assert_eq!(
+                            (*load_case, *mode),
+                            (int(&e["load_case"]), int(&e["mode_n"]))
+                        );
                         assert_eq!(*eigenvalue, c64::new(p[0], p[1]));
                         assert_eq!(*modal_a, c64::new(p[2], p[3]));
                         assert_eq!(*modal_b, c64::new(p[4], p[5]));
@@ -197,7 +249,9 @@ fn pyuff_mixed_file_reads_as_written() {
 #[test]
 fn crlf_line_ends_read_the_same() {
     let (bytes, _) = fixture("pyuff_mixed");
-    let crlf = String::from_utf8(bytes.clone()).unwrap().replace('\n', "\r\n");
+    let crlf = String::from_utf8(bytes.clone())
+        .unwrap()
+        .replace('\n', "\r\n");
     let lf = read(&bytes, Path::new("lf.uff")).unwrap();
     assert_eq!(read(crlf.as_bytes(), Path::new("crlf.uff")).unwrap(), lf);
 }

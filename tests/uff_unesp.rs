@@ -12,14 +12,19 @@
 
 use std::path::PathBuf;
 
-use jointid::uff::{Abscissa, Encoding, FunctionType, NodeFormat, Precision, Record, Values, read_path};
+use jointid::uff::{
+    Abscissa, Encoding, FunctionType, NodeFormat, Precision, Record, Values, read_path,
+};
 
 fn data_dir() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/unesp-bert");
     if dir.is_dir() {
         Some(dir)
     } else {
-        eprintln!("skipped: {} is absent (UNESP-BERT data not shared here)", dir.display());
+        eprintln!(
+            "skipped: {} is absent (UNESP-BERT data not shared here)",
+            dir.display()
+        );
         None
     }
 }
@@ -73,9 +78,19 @@ fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
                 panic!("{}: record {} is not a function", file.display(), k + 1)
             };
             let frf = k < 4;
-            assert_eq!(f.function_type, if frf { FunctionType::Frf } else { FunctionType::Coherence });
+            assert_eq!(
+                f.function_type,
+                if frf {
+                    FunctionType::Frf
+                } else {
+                    FunctionType::Coherence
+                }
+            );
             assert_eq!(f.len(), 8193);
-            assert_eq!((f.response.node, f.response.direction), (k as u64 % 4 + 1, 2));
+            assert_eq!(
+                (f.response.node, f.response.direction),
+                (k as u64 % 4 + 1, 2)
+            );
             assert_eq!((f.reference.node, f.reference.direction), (100, 2));
             assert_eq!(f.precision, Precision::Double);
             assert_eq!(f.encoding, Encoding::Ascii);
@@ -84,7 +99,9 @@ fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
             assert_eq!(f.ordinate_axis.units, units);
             assert_eq!(f.ordinate.is_complex(), frf);
             // Uneven abscissa 0..512 Hz in 0.0625 Hz steps, stored to 6 significant digits.
-            let Abscissa::Uneven(x) = &f.abscissa else { panic!("uneven abscissa expected") };
+            let Abscissa::Uneven(x) = &f.abscissa else {
+                panic!("uneven abscissa expected")
+            };
             for (i, &xi) in x.iter().enumerate() {
                 let exact = i as f64 * 0.0625;
                 assert!((xi - exact).abs() <= 5e-6 * exact, "x[{i}] = {xi}");
@@ -114,9 +131,13 @@ fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
 fn first_value_of_the_first_frf_is_the_files_text() {
     let Some(dir) = data_dir() else { return };
     let records = read_path(&dir.join("frf_0p05V.uff")).unwrap();
-    let Record::Function(f) = &records[0] else { panic!("function expected") };
+    let Record::Function(f) = &records[0] else {
+        panic!("function expected")
+    };
     // Line 14 of the file: "  0.00000e+00   4.51675354004e+02   0.00000000000e+00"
-    let Values::Complex(h) = &f.ordinate else { panic!("complex FRF expected") };
+    let Values::Complex(h) = &f.ordinate else {
+        panic!("complex FRF expected")
+    };
     assert_eq!((h[0].re, h[0].im), (451.675354004, 0.0));
     assert_eq!((h[1].re, h[1].im), (-124.947723389, 268.566528320));
     assert_eq!(f.id_lines[0], "H1 Acc1/shaker voltage, 0p05 V random");
@@ -127,7 +148,9 @@ fn geometry_holds_the_five_nodes_of_the_readme() {
     let Some(dir) = data_dir() else { return };
     let records = read_path(&dir.join("geometry.uff")).unwrap();
     assert_eq!(records.len(), 1);
-    let Record::Nodes(nodes) = &records[0] else { panic!("nodes expected") };
+    let Record::Nodes(nodes) = &records[0] else {
+        panic!("nodes expected")
+    };
     assert_eq!(nodes.format, NodeFormat::Single15);
     let labels: Vec<u64> = nodes.nodes.iter().map(|n| n.label).collect();
     assert_eq!(labels, [1, 2, 3, 4, 100]);

@@ -77,7 +77,10 @@ pub(crate) fn real(text: &str, field: &'static str) -> Result<f64, Problem> {
         text: text.trim().to_string(),
     };
     let t = text.trim();
-    if t.is_empty() || t.bytes().any(|b| b.is_ascii_alphabetic() && !b"EeDd".contains(&b)) {
+    if t.is_empty()
+        || t.bytes()
+            .any(|b| b.is_ascii_alphabetic() && !b"EeDd".contains(&b))
+    {
         return Err(bad());
     }
     let mut s: String = t
@@ -138,7 +141,11 @@ fn cut<'t>(text: &'t str, widths: &[usize]) -> Vec<&'t str> {
 
 /// The real numbers of a line: by blanks, else by the columns `widths` (repeated cyclically;
 /// blank trailing fields are no values).
-pub(crate) fn reals(text: &str, widths: &[usize], field: &'static str) -> Result<Vec<f64>, Problem> {
+pub(crate) fn reals(
+    text: &str,
+    widths: &[usize],
+    field: &'static str,
+) -> Result<Vec<f64>, Problem> {
     let by_blanks: Result<Vec<f64>, Problem> =
         text.split_whitespace().map(|t| real(t, field)).collect();
     if by_blanks.is_ok() || widths.is_empty() {
@@ -148,7 +155,12 @@ pub(crate) fn reals(text: &str, widths: &[usize], field: &'static str) -> Result
     while fields.last().is_some_and(|f| f.is_empty()) {
         fields.pop();
     }
-    fields.into_iter().map(|f| real(f, field)).collect()
+    // When the columns fail too, the blank-separated token that failed says more.
+    fields
+        .into_iter()
+        .map(|f| real(f, field))
+        .collect::<Result<_, _>>()
+        .or(by_blanks)
 }
 
 /// The integers of a line: by blanks, else by the columns `widths` (a blank field is 0, as
@@ -165,8 +177,15 @@ pub(crate) fn integers(
     }
     cut(text, widths)
         .into_iter()
-        .map(|f| if f.is_empty() { Ok(0) } else { integer(f, field) })
-        .collect()
+        .map(|f| {
+            if f.is_empty() {
+                Ok(0)
+            } else {
+                integer(f, field)
+            }
+        })
+        .collect::<Result<_, _>>()
+        .or(by_blanks)
 }
 
 /// Exactly `n` integers: by blanks when the line has `n` of them, else by the columns
@@ -187,7 +206,13 @@ pub(crate) fn integers_n(
     fields.resize(n, "");
     fields[..n]
         .iter()
-        .map(|f| if f.is_empty() { Ok(0) } else { integer(f, field) })
+        .map(|f| {
+            if f.is_empty() {
+                Ok(0)
+            } else {
+                integer(f, field)
+            }
+        })
         .collect()
 }
 
@@ -261,17 +286,30 @@ mod tests {
         let v = reals(line, &[13], "data").unwrap();
         assert_eq!(
             v,
-            [-1.111111E-01, 4.111111E+01, 4.111111E+03, -3.111111E+03, -1.111110E+05, -2.111110E+05]
+            [
+                -1.111111E-01,
+                4.111111E+01,
+                4.111111E+03,
+                -3.111111E+03,
+                -1.111110E+05,
+                -2.111110E+05
+            ]
         );
         // 2(E13.5,E20.12) with the second pair run together
         let line = "  1.00000E+00 -2.000000000000E+00  3.00000E+00-4.000000000000E+00";
-        assert_eq!(reals(line, &[13, 20], "data").unwrap(), [1.0, -2.0, 3.0, -4.0]);
+        assert_eq!(
+            reals(line, &[13, 20], "data").unwrap(),
+            [1.0, -2.0, 3.0, -4.0]
+        );
     }
 
     #[test]
     fn blank_integer_columns_read_as_zero() {
         let line = "    4         0              0";
-        assert_eq!(integers_n(line, 4, &[5, 10, 5, 10], "r6").unwrap(), [4, 0, 0, 0]);
+        assert_eq!(
+            integers_n(line, 4, &[5, 10, 5, 10], "r6").unwrap(),
+            [4, 0, 0, 0]
+        );
         assert_eq!(integers_n("1 2 3 4", 4, &[5], "r6").unwrap(), [1, 2, 3, 4]);
         // by blanks when possible
         assert_eq!(integers(" 1 2  3", &[5], "r6").unwrap(), [1, 2, 3]);
@@ -300,14 +338,24 @@ mod tests {
     fn collect_allows_zero_padding_only() {
         let ls = lines(&["1 2 3", "4 5 0 0", "9"]);
         let mut c = Cursor::new(&ls, 4);
-        assert_eq!(collect_reals(&mut c, 5, 1, &[13], "v", "d").unwrap(), [1.0, 2.0, 3.0, 4.0, 5.0]);
+        assert_eq!(
+            collect_reals(&mut c, 5, 1, &[13], "v", "d").unwrap(),
+            [1.0, 2.0, 3.0, 4.0, 5.0]
+        );
         assert_eq!(c.rest().len(), 1);
 
         let ls = lines(&["1 2 3", "4 5 6"]);
         let mut c = Cursor::new(&ls, 3);
         let err = collect_reals(&mut c, 5, 1, &[13], "v", "d").unwrap_err();
         assert_eq!(err.line, 2);
-        assert!(matches!(err.problem, Problem::TooMany { expected: 5, found: 6, .. }));
+        assert!(matches!(
+            err.problem,
+            Problem::TooMany {
+                expected: 5,
+                found: 6,
+                ..
+            }
+        ));
 
         let ls = lines(&["1 2 3", "", "4"]);
         let mut c = Cursor::new(&ls, 4);

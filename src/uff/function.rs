@@ -218,7 +218,10 @@ fn data_form(line: &Line) -> Result<DataForm, Located> {
     } else {
         let cols = [(0, 10), (10, 10), (20, 10), (30, 13), (43, 13), (56, 13)];
         let f: Vec<&str> = cols.iter().map(|&(s, w)| column(t, s, w)).collect();
-        let n_reals = f[3..].iter().rposition(|s| !s.is_empty()).map_or(0, |i| i + 1);
+        let n_reals = f[3..]
+            .iter()
+            .rposition(|s| !s.is_empty())
+            .map_or(0, |i| i + 1);
         (f[..3].to_vec(), f[3..3 + n_reals].to_vec())
     };
     let int = |s: &str, field| {
@@ -293,13 +296,24 @@ fn dof_fields(line: &Line) -> Result<(FunctionType, [i64; 3], Dof, Dof), Located
     let t = &line.text;
     let tokens: Vec<&str> = t.split_whitespace().collect();
     let int_at = [0, 1, 2, 3, 5, 6, 8, 9];
-    let f: Vec<&str> = if tokens.len() == 10 && int_at.iter().all(|&i| integer(tokens[i], "").is_ok())
-    {
-        tokens
-    } else {
-        let cols = [(0, 5), (5, 10), (15, 5), (20, 10), (31, 10), (41, 10), (51, 4), (56, 10), (66, 10), (76, 4)];
-        cols.iter().map(|&(s, w)| column(t, s, w)).collect()
-    };
+    let f: Vec<&str> =
+        if tokens.len() == 10 && int_at.iter().all(|&i| integer(tokens[i], "").is_ok()) {
+            tokens
+        } else {
+            let cols = [
+                (0, 5),
+                (5, 10),
+                (15, 5),
+                (20, 10),
+                (31, 10),
+                (41, 10),
+                (51, 4),
+                (56, 10),
+                (66, 10),
+                (76, 4),
+            ];
+            cols.iter().map(|&(s, w)| column(t, s, w)).collect()
+        };
     let int = |s: &str, field| {
         if s.is_empty() {
             Ok(0)
@@ -335,13 +349,15 @@ fn dof_fields(line: &Line) -> Result<(FunctionType, [i64; 3], Dof, Dof), Located
         }));
     }
     let code = int(f[0], "function type (record 6)")?;
-    let function_type = i32::try_from(code).map(FunctionType::from_code).map_err(|_| {
-        at(Problem::Invalid {
-            field: "function type (record 6)",
-            value: code.to_string(),
-            allowed: "a code of the format's table (0-27)",
-        })
-    })?;
+    let function_type = i32::try_from(code)
+        .map(FunctionType::from_code)
+        .map_err(|_| {
+            at(Problem::Invalid {
+                field: "function type (record 6)",
+                value: code.to_string(),
+                allowed: "a code of the format's table (0-27)",
+            })
+        })?;
     let ids = [
         int(f[1], "function identification number (record 6)")?,
         int(f[2], "version number (record 6)")?,
@@ -368,13 +384,19 @@ fn axis(line: &Line, field: &'static str) -> Result<Axis, Located> {
         .iter()
         .map(|&(s, w)| {
             let c = column(t, s, w);
-            if c.is_empty() { Some(0) } else { integer(c, field).ok() }
+            if c.is_empty() {
+                Some(0)
+            } else {
+                integer(c, field).ok()
+            }
         })
         .collect();
     let (ints, label, units) = match by_cols {
-        Some(ints) if !column(t, 0, 10).is_empty() => {
-            (ints, column(t, 25, 21).to_string(), column(t, 46, 21).to_string())
-        }
+        Some(ints) if !column(t, 0, 10).is_empty() => (
+            ints,
+            column(t, 25, 21).to_string(),
+            column(t, 46, 21).to_string(),
+        ),
         _ => {
             let tokens: Vec<&str> = t.split_whitespace().collect();
             if tokens.len() < 4 {
@@ -419,7 +441,11 @@ pub(crate) fn binary_lengths(header: &[Line], number_line: usize) -> Result<Vec<
         ));
     }
     let form = data_form(&header[6])?;
-    let size = if form.precision == Precision::Double { 8 } else { 4 };
+    let size = if form.precision == Precision::Double {
+        8
+    } else {
+        4
+    };
     let ordinate = size * (1 + usize::from(form.complex));
     let per_point: Vec<usize> = if form.even {
         vec![ordinate]
@@ -448,15 +474,31 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<Function, Located> {
     let mut cursor = Cursor::new(&ds.lines, ds.end_line);
     let mut id_lines: [String; 5] = Default::default();
     for id in &mut id_lines {
-        *id = cursor.next("the ID lines (records 1-5)")?.text.trim_end().to_string();
+        *id = cursor
+            .next("the ID lines (records 1-5)")?
+            .text
+            .trim_end()
+            .to_string();
     }
     let (function_type, [function_id, version, load_case], response, reference) =
         dof_fields(cursor.next("the DOF identification (record 6)")?)?;
     let form = data_form(cursor.next("the data form (record 7)")?)?;
-    let abscissa_axis = axis(cursor.next("record 8")?, "abscissa characteristics (record 8)")?;
-    let ordinate_axis = axis(cursor.next("record 9")?, "ordinate characteristics (record 9)")?;
-    let denominator_axis = axis(cursor.next("record 10")?, "denominator characteristics (record 10)")?;
-    let z_axis = axis(cursor.next("record 11")?, "z-axis characteristics (record 11)")?;
+    let abscissa_axis = axis(
+        cursor.next("record 8")?,
+        "abscissa characteristics (record 8)",
+    )?;
+    let ordinate_axis = axis(
+        cursor.next("record 9")?,
+        "ordinate characteristics (record 9)",
+    )?;
+    let denominator_axis = axis(
+        cursor.next("record 10")?,
+        "denominator characteristics (record 10)",
+    )?;
+    let z_axis = axis(
+        cursor.next("record 11")?,
+        "z-axis characteristics (record 11)",
+    )?;
 
     let per_point = form.per_point();
     let (flat, encoding) = match (ds.binary, ds.payload) {
@@ -482,7 +524,14 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<Function, Located> {
                 },
             ))?;
             let what = "ordinate values";
-            let flat = collect_reals(&mut cursor, total, per_point, widths, what, "data value (record 12)")?;
+            let flat = collect_reals(
+                &mut cursor,
+                total,
+                per_point,
+                widths,
+                what,
+                "data value (record 12)",
+            )?;
             if let Some(extra) = cursor.next_non_blank() {
                 let more: usize = std::iter::once(extra)
                     .chain(cursor.rest())
@@ -549,25 +598,30 @@ fn binary_values(
     big_endian: bool,
     line: usize,
 ) -> Result<Vec<f64>, Located> {
-    let size = if form.precision == Precision::Double { 8 } else { 4 };
+    let size = if form.precision == Precision::Double {
+        8
+    } else {
+        4
+    };
     let ordinate = size * (1 + usize::from(form.complex));
-    let x_size = if form.even || bytes.len() == form.count * (ordinate + size) {
+    let x_size = if form.even || Some(bytes.len()) == form.count.checked_mul(ordinate + size) {
         size
     } else {
         4
     };
     let point = ordinate + if form.even { 0 } else { x_size };
-    if bytes.len() < form.count * point {
+    let needed = form.count.saturating_mul(point);
+    if bytes.len() < needed {
         return Err(Located::new(
             line,
             Problem::TooFew {
                 what: "bytes of binary data",
-                expected: form.count * point,
+                expected: needed,
                 found: bytes.len(),
             },
         ));
     }
-    let mut flat = Vec::with_capacity(form.count * form.per_point());
+    let mut flat = Vec::with_capacity(bytes.len() / 4);
     let mut pos = 0;
     let mut take = |n: usize| -> f64 {
         let b = &bytes[pos..pos + n];
@@ -592,7 +646,12 @@ fn binary_values(
             line,
             Problem::Invalid {
                 field: "binary data value (record 12)",
-                value: format!("{} (value {} of point {})", flat[i], i % form.per_point() + 1, i / form.per_point() + 1),
+                value: format!(
+                    "{} (value {} of point {})",
+                    flat[i],
+                    i % form.per_point() + 1,
+                    i / form.per_point() + 1
+                ),
                 allowed: "it must be finite",
             },
         ));

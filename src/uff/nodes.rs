@@ -112,7 +112,10 @@ fn coordinates(line: &Line, fields: &[&str]) -> Result<[f64; 3], Located> {
     let mut xyz = [0.0; 3];
     for ((slot, text), field) in xyz.iter_mut().zip(fields).zip(["X", "Y", "Z"]) {
         if text.is_empty() {
-            return Err(Located::new(line.number, Problem::Truncated { what: field }));
+            return Err(Located::new(
+                line.number,
+                Problem::Truncated { what: field },
+            ));
         }
         *slot = real(text, field).map_err(|p| Located::new(line.number, p))?;
     }
@@ -126,10 +129,16 @@ pub(crate) fn parse_15(ds: &RawDataset) -> Result<Nodes, Located> {
     let widths = [10, 10, 10, 10, 13, 13, 13];
     while let Some(line) = cursor.next_non_blank() {
         let f = split_fields(&line.text, 7, &widths);
-        let (label, definition_cs, displacement_cs, color, coordinates) =
-            node_ints(line, &f[..4])
-                .and_then(|(l, d, c, k)| Ok((l, d, c, k, coordinates(line, &f[4..7])?)))
-                .map_err(|e| layout_error(e, line, 7, "it must hold label, 2 coordinate systems, color, X, Y, Z (4I10,3E13.5)"))?;
+        let (label, definition_cs, displacement_cs, color, coordinates) = node_ints(line, &f[..4])
+            .and_then(|(l, d, c, k)| Ok((l, d, c, k, coordinates(line, &f[4..7])?)))
+            .map_err(|e| {
+                layout_error(
+                    e,
+                    line,
+                    7,
+                    "it must hold label, 2 coordinate systems, color, X, Y, Z (4I10,3E13.5)",
+                )
+            })?;
         nodes.push(Node {
             label,
             definition_cs,
@@ -150,8 +159,14 @@ pub(crate) fn parse_2411(ds: &RawDataset) -> Result<Nodes, Located> {
     let mut nodes = Vec::new();
     while let Some(line) = cursor.next_non_blank() {
         let f = split_fields(&line.text, 4, &[10, 10, 10, 10]);
-        let (label, definition_cs, displacement_cs, color) = node_ints(line, &f)
-            .map_err(|e| layout_error(e, line, 4, "it must hold label, 2 coordinate systems, color (4I10)"))?;
+        let (label, definition_cs, displacement_cs, color) = node_ints(line, &f).map_err(|e| {
+            layout_error(
+                e,
+                line,
+                4,
+                "it must hold label, 2 coordinate systems, color (4I10)",
+            )
+        })?;
         let coords = cursor.next("the coordinates of the node (record 2)")?;
         let c = split_fields(&coords.text, 3, &[25, 25, 25]);
         let coordinates = coordinates(coords, &c)

@@ -170,7 +170,10 @@ fn collect_ints(
         let line = cursor.next(field)?;
         let ints = integers(&line.text, &[10], field).map_err(|p| Located::new(line.number, p))?;
         if ints.is_empty() {
-            return Err(Located::new(line.number, Problem::Truncated { what: field }));
+            return Err(Located::new(
+                line.number,
+                Problem::Truncated { what: field },
+            ));
         }
         out.extend(ints);
     }
@@ -190,7 +193,12 @@ fn small(v: i64, field: &'static str, line: &Line) -> Result<i32, Located> {
     })
 }
 
-fn count(v: i64, field: &'static str, line: usize, allowed: &'static str) -> Result<usize, Located> {
+fn count(
+    v: i64,
+    field: &'static str,
+    line: usize,
+    allowed: &'static str,
+) -> Result<usize, Located> {
     usize::try_from(v).map_err(|_| {
         Located::new(
             line,
@@ -208,14 +216,19 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
     let mut cursor = Cursor::new(&ds.lines, ds.end_line);
     let mut id_lines: [String; 5] = Default::default();
     for id in &mut id_lines {
-        *id = cursor.next("the ID lines (records 1-5)")?.text.trim_end().to_string();
+        *id = cursor
+            .next("the ID lines (records 1-5)")?
+            .text
+            .trim_end()
+            .to_string();
     }
     let r6 = cursor.next("the data definition parameters (record 6)")?;
     let at6 = |p| Located::new(r6.number, p);
     let f = integers_n(&r6.text, 6, &[10], "data definition parameters (record 6)").map_err(at6)?;
     let model_type = small(f[0], "model type (record 6)", r6)?;
     let analysis_code = small(f[1], "analysis type (record 6)", r6)?;
-    let characteristic = DataCharacteristic::from_code(small(f[2], "data characteristic (record 6)", r6)?);
+    let characteristic =
+        DataCharacteristic::from_code(small(f[2], "data characteristic (record 6)", r6)?);
     let specific_data_type = small(f[3], "specific data type (record 6)", r6)?;
     let (complex, precision) = match f[4] {
         2 => (false, Precision::Single),
@@ -230,7 +243,12 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
             }));
         }
     };
-    let ndv = count(f[5], "number of values per node (record 6)", r6.number, "it must be >= 1")?;
+    let ndv = count(
+        f[5],
+        "number of values per node (record 6)",
+        r6.number,
+        "it must be >= 1",
+    )?;
     if ndv == 0 {
         return Err(at6(Problem::Invalid {
             field: "number of values per node (record 6)",
@@ -239,14 +257,31 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
         }));
     }
 
-    let r7_line = cursor.rest().first().map_or(cursor.end_line(), |l| l.number);
+    let r7_line = cursor
+        .rest()
+        .first()
+        .map_or(cursor.end_line(), |l| l.number);
     let head = collect_ints(&mut cursor, 2, "the parameter counts (record 7)")?;
     let allowed = "it must be >= 0";
-    let nint = count(head[0], "number of integer values (record 7)", r7_line, allowed)?;
-    let nrval = count(head[1], "number of real values (record 7)", r7_line, allowed)?;
+    let nint = count(
+        head[0],
+        "number of integer values (record 7)",
+        r7_line,
+        allowed,
+    )?;
+    let nrval = count(
+        head[1],
+        "number of real values (record 7)",
+        r7_line,
+        allowed,
+    )?;
     let mut ints = head[2..].to_vec();
     if ints.len() < nint {
-        ints.extend(collect_ints(&mut cursor, nint - ints.len(), "the integer parameters (record 7)")?);
+        ints.extend(collect_ints(
+            &mut cursor,
+            nint - ints.len(),
+            "the integer parameters (record 7)",
+        )?);
     }
     if ints.len() > nint {
         return Err(Located::new(
@@ -258,7 +293,14 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
             },
         ));
     }
-    let reals = collect_reals(&mut cursor, nrval, 1, &[13], "real parameters (record 8)", "real parameter (record 8)")?;
+    let reals = collect_reals(
+        &mut cursor,
+        nrval,
+        1,
+        &[13],
+        "real parameters (record 8)",
+        "real parameter (record 8)",
+    )?;
     let analysis = analysis(analysis_code, ints, reals, r7_line)?;
 
     let per_node = ndv * (1 + usize::from(complex));
@@ -274,8 +316,20 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
                 allowed: "record 9 holds the node number alone (I10)",
             }));
         }
-        nodes.push(count(ids[0], "node number (record 9)", line.number, "a node number must be >= 0")? as u64);
-        flat.extend(collect_reals(&mut cursor, per_node, 1, &[13], "data values of the node (record 10)", "data value (record 10)")?);
+        nodes.push(count(
+            ids[0],
+            "node number (record 9)",
+            line.number,
+            "a node number must be >= 0",
+        )? as u64);
+        flat.extend(collect_reals(
+            &mut cursor,
+            per_node,
+            1,
+            &[13],
+            "data values of the node (record 10)",
+            "data value (record 10)",
+        )?);
     }
     let values = if complex {
         Values::Complex(flat.chunks_exact(2).map(|p| c64::new(p[0], p[1])).collect())
@@ -298,17 +352,35 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
 fn analysis(code: i32, ints: Vec<i64>, reals: Vec<f64>, line: usize) -> Result<Analysis, Located> {
     let need = |n_int: usize, n_real: usize, what: &'static str| -> Result<(), Located> {
         if ints.len() < n_int {
-            return Err(Located::new(line, Problem::TooFew { what, expected: n_int, found: ints.len() }));
+            return Err(Located::new(
+                line,
+                Problem::TooFew {
+                    what,
+                    expected: n_int,
+                    found: ints.len(),
+                },
+            ));
         }
         if reals.len() < n_real {
-            return Err(Located::new(line, Problem::TooFew { what, expected: n_real, found: reals.len() }));
+            return Err(Located::new(
+                line,
+                Problem::TooFew {
+                    what,
+                    expected: n_real,
+                    found: reals.len(),
+                },
+            ));
         }
         Ok(())
     };
     let real_or_zero = |i: usize| reals.get(i).copied().unwrap_or(0.0);
     Ok(match code {
         2 => {
-            need(2, 1, "parameters of a normal mode (load case, mode; frequency)")?;
+            need(
+                2,
+                1,
+                "parameters of a normal mode (load case, mode; frequency)",
+            )?;
             Analysis::NormalMode {
                 load_case: ints[0],
                 mode: ints[1],
@@ -319,7 +391,11 @@ fn analysis(code: i32, ints: Vec<i64>, reals: Vec<f64>, line: usize) -> Result<A
             }
         }
         3 | 7 => {
-            need(2, 6, "parameters of a complex mode (load case, mode; eigenvalue, modal A, modal B)")?;
+            need(
+                2,
+                6,
+                "parameters of a complex mode (load case, mode; eigenvalue, modal A, modal B)",
+            )?;
             Analysis::ComplexMode {
                 second_order: code == 7,
                 load_case: ints[0],
@@ -330,7 +406,11 @@ fn analysis(code: i32, ints: Vec<i64>, reals: Vec<f64>, line: usize) -> Result<A
             }
         }
         5 => {
-            need(2, 1, "parameters of a frequency response (load case, step; frequency)")?;
+            need(
+                2,
+                1,
+                "parameters of a frequency response (load case, step; frequency)",
+            )?;
             Analysis::FrequencyResponse {
                 load_case: ints[0],
                 step: ints[1],

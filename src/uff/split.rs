@@ -109,14 +109,22 @@ impl<'a> Splitter<'a> {
         };
         if !is_delimiter(open) {
             let found = text(open).trim_end().chars().take(80).collect();
-            return Err((None, Located::new(open_line, Problem::NotADelimiter { found })));
+            return Err((
+                None,
+                Located::new(open_line, Problem::NotADelimiter { found }),
+            ));
         }
         self.index += 1;
         let index = self.index;
         let Some((number_line, id)) = self.next_line() else {
             return Err((
                 None,
-                Located::new(open_line, Problem::Truncated { what: "the dataset number" }),
+                Located::new(
+                    open_line,
+                    Problem::Truncated {
+                        what: "the dataset number",
+                    },
+                ),
             ));
         };
         let id = text(id);
@@ -124,7 +132,10 @@ impl<'a> Splitter<'a> {
         let digits = trimmed.bytes().take_while(u8::is_ascii_digit).count();
         let kind = trimmed[..digits].parse::<u32>().map_err(|_| {
             let found = id.trim_end().chars().take(80).collect();
-            (None, Located::new(number_line, Problem::NoDatasetNumber { found }))
+            (
+                None,
+                Located::new(number_line, Problem::NoDatasetNumber { found }),
+            )
         })?;
         let in_record = |located: Located| (Some((index, kind)), located);
         let binary_flag = trimmed[digits..].starts_with(['b', 'B']);
@@ -200,7 +211,10 @@ impl<'a> Splitter<'a> {
                 .or_else(|| after.strip_prefix(b"\n"))
                 .unwrap_or(after);
             let skipped = after.len() - after_nl.len();
-            let end = after_nl.iter().position(|&b| b == b'\n').unwrap_or(after_nl.len());
+            let end = after_nl
+                .iter()
+                .position(|&b| b == b'\n')
+                .unwrap_or(after_nl.len());
             if is_delimiter(&after_nl[..end]) {
                 let payload = &rest[..n];
                 let newlines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
@@ -323,7 +337,10 @@ mod tests {
         let crlf = String::from_utf8_lossy(lf).replace('\n', "\r\n");
         assert_eq!(kinds(crlf.as_bytes()), [(164, 2, 2, 5), (2412, 7, 1, 9)]);
         // no final terminator, blank lines between datasets
-        assert_eq!(kinds(b"\n  -1\n 15\n  -1\n\n  -1\n 18\n  -1"), [(15, 3, 0, 4), (18, 7, 0, 8)]);
+        assert_eq!(
+            kinds(b"\n  -1\n 15\n  -1\n\n  -1\n 18\n  -1"),
+            [(15, 3, 0, 4), (18, 7, 0, 8)]
+        );
     }
 
     #[test]

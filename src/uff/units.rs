@@ -61,7 +61,9 @@ impl UnitSystem {
             MillimeterKilogramForce,
             UserDefined,
         ];
-        usize::try_from(code - 1).ok().and_then(|i| ALL.get(i).copied())
+        usize::try_from(code - 1)
+            .ok()
+            .and_then(|i| ALL.get(i).copied())
     }
 }
 
@@ -152,7 +154,10 @@ pub(crate) fn parse_164(ds: &RawDataset) -> Result<Units, Located> {
             },
         ));
     }
-    for (v, field) in f[..3].iter().zip(["length factor", "force factor", "temperature factor"]) {
+    for (v, field) in f[..3]
+        .iter()
+        .zip(["length factor", "force factor", "temperature factor"])
+    {
         if *v == 0.0 {
             return Err(Located::new(
                 ds.end_line,

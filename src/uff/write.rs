@@ -78,7 +78,13 @@ impl<W: Write> Out<'_, W> {
 
     /// A text field of at most `width` characters (`NONE` when empty), left-justified and
     /// padded to `width` when `pad`.
-    fn text(&self, s: &str, width: usize, pad: bool, field: &'static str) -> Result<String, UffError> {
+    fn text(
+        &self,
+        s: &str,
+        width: usize,
+        pad: bool,
+        field: &'static str,
+    ) -> Result<String, UffError> {
         if s.contains(['\n', '\r']) || s.chars().count() > width {
             return Err(self.unwritable(
                 field,
@@ -87,11 +93,21 @@ impl<W: Write> Out<'_, W> {
             ));
         }
         let s = if s.trim().is_empty() { "NONE" } else { s };
-        Ok(if pad { format!("{s:<width$}") } else { s.to_string() })
+        Ok(if pad {
+            format!("{s:<width$}")
+        } else {
+            s.to_string()
+        })
     }
 
     /// A finite real in `Ewidth.decimals`.
-    fn real(&self, x: f64, width: usize, decimals: usize, field: &'static str) -> Result<String, UffError> {
+    fn real(
+        &self,
+        x: f64,
+        width: usize,
+        decimals: usize,
+        field: &'static str,
+    ) -> Result<String, UffError> {
         if !x.is_finite() {
             return Err(self.unwritable(field, x.to_string(), "it must be finite"));
         }
@@ -99,7 +115,14 @@ impl<W: Write> Out<'_, W> {
     }
 
     /// Reals in `Ewidth.decimals`, `per_line` to a line.
-    fn reals(&mut self, xs: &[f64], width: usize, decimals: usize, per_line: usize, field: &'static str) -> Result<(), UffError> {
+    fn reals(
+        &mut self,
+        xs: &[f64],
+        width: usize,
+        decimals: usize,
+        per_line: usize,
+        field: &'static str,
+    ) -> Result<(), UffError> {
         for chunk in xs.chunks(per_line.max(1)) {
             let mut s = String::with_capacity(chunk.len() * width);
             for &x in chunk {
@@ -141,10 +164,26 @@ fn dof<W: Write>(out: &Out<W>, d: &Dof, which: &'static str) -> Result<String, U
 fn axis<W: Write>(out: &Out<W>, a: &Axis) -> Result<String, UffError> {
     Ok(format!(
         "{}{}{}{} {} {}",
-        out.int(i64::from(a.data_type), 10, "specific data type (records 8-11, I10)")?,
-        out.int(i64::from(a.length_exponent), 5, "length units exponent (records 8-11, I5)")?,
-        out.int(i64::from(a.force_exponent), 5, "force units exponent (records 8-11, I5)")?,
-        out.int(i64::from(a.temperature_exponent), 5, "temperature units exponent (records 8-11, I5)")?,
+        out.int(
+            i64::from(a.data_type),
+            10,
+            "specific data type (records 8-11, I10)"
+        )?,
+        out.int(
+            i64::from(a.length_exponent),
+            5,
+            "length units exponent (records 8-11, I5)"
+        )?,
+        out.int(
+            i64::from(a.force_exponent),
+            5,
+            "force units exponent (records 8-11, I5)"
+        )?,
+        out.int(
+            i64::from(a.temperature_exponent),
+            5,
+            "temperature units exponent (records 8-11, I5)"
+        )?,
         out.text(&a.label, 20, true, "axis label (records 8-11)")?,
         out.text(&a.units, 20, true, "axis units label (records 8-11)")?,
     ))
@@ -177,8 +216,16 @@ pub fn write_function<W: Write>(w: &mut W, f: &Function) -> Result<(), UffError>
     };
     let record6 = format!(
         "{}{}{}{}{}{}",
-        out.int(i64::from(f.function_type.code()), 5, "function type (record 6, I5)")?,
-        out.int(f.function_id, 10, "function identification number (record 6, I10)")?,
+        out.int(
+            i64::from(f.function_type.code()),
+            5,
+            "function type (record 6, I5)"
+        )?,
+        out.int(
+            f.function_id,
+            10,
+            "function identification number (record 6, I10)"
+        )?,
         out.int(f.version, 5, "version number (record 6, I5)")?,
         out.int(f.load_case, 10, "load case (record 6, I10)")?,
         dof(&out, &f.response, "response entity name (record 6)")?,
@@ -187,7 +234,11 @@ pub fn write_function<W: Write>(w: &mut W, f: &Function) -> Result<(), UffError>
     let record7 = format!(
         "{:>10}{}{:>10}{}{}{}",
         ord_type,
-        out.int(i64::try_from(n).unwrap_or(i64::MAX), 10, "number of points (record 7, I10)")?,
+        out.int(
+            i64::try_from(n).unwrap_or(i64::MAX),
+            10,
+            "number of points (record 7, I10)"
+        )?,
         even,
         out.real(start, 13, 5, "abscissa minimum (record 7)")?,
         out.real(step, 13, 5, "abscissa increment (record 7)")?,
@@ -233,7 +284,9 @@ pub fn write_function<W: Write>(w: &mut W, f: &Function) -> Result<(), UffError>
         }
         (abscissa, false) => {
             let flat: Vec<f64> = match abscissa {
-                Abscissa::Even { .. } => ordinate.iter().flat_map(|y| y[..parts].to_vec()).collect(),
+                Abscissa::Even { .. } => {
+                    ordinate.iter().flat_map(|y| y[..parts].to_vec()).collect()
+                }
                 Abscissa::Uneven(x) => x
                     .iter()
                     .zip(&ordinate)
@@ -253,7 +306,11 @@ pub fn write_mode_shape<W: Write>(w: &mut W, s: &ModeShape) -> Result<(), UffErr
     if ndv == 0 || s.values.len() != s.nodes.len().saturating_mul(ndv) {
         return Err(out.unwritable(
             "values",
-            format!("{} for {} nodes of {ndv} values", s.values.len(), s.nodes.len()),
+            format!(
+                "{} for {} nodes of {ndv} values",
+                s.values.len(),
+                s.nodes.len()
+            ),
             "there must be values_per_node (>= 1) values per node",
         ));
     }
@@ -265,7 +322,16 @@ pub fn write_mode_shape<W: Write>(w: &mut W, s: &ModeShape) -> Result<(), UffErr
             modal_mass,
             viscous_damping,
             hysteretic_damping,
-        } => (2, vec![*load_case, *mode], vec![*frequency_hz, *modal_mass, *viscous_damping, *hysteretic_damping]),
+        } => (
+            2,
+            vec![*load_case, *mode],
+            vec![
+                *frequency_hz,
+                *modal_mass,
+                *viscous_damping,
+                *hysteretic_damping,
+            ],
+        ),
         Analysis::ComplexMode {
             second_order,
             load_case,
@@ -276,14 +342,25 @@ pub fn write_mode_shape<W: Write>(w: &mut W, s: &ModeShape) -> Result<(), UffErr
         } => (
             if *second_order { 7 } else { 3 },
             vec![*load_case, *mode],
-            vec![eigenvalue.re, eigenvalue.im, modal_a.re, modal_a.im, modal_b.re, modal_b.im],
+            vec![
+                eigenvalue.re,
+                eigenvalue.im,
+                modal_a.re,
+                modal_a.im,
+                modal_b.re,
+                modal_b.im,
+            ],
         ),
         Analysis::FrequencyResponse {
             load_case,
             step,
             frequency_hz,
         } => (5, vec![*load_case, *step], vec![*frequency_hz]),
-        Analysis::Other { code, integers, reals } => (*code, integers.clone(), reals.clone()),
+        Analysis::Other {
+            code,
+            integers,
+            reals,
+        } => (*code, integers.clone(), reals.clone()),
     };
     let data_type = if s.values.is_complex() { 5 } else { 2 };
     let record6 = [
@@ -316,7 +393,11 @@ pub fn write_mode_shape<W: Write>(w: &mut W, s: &ModeShape) -> Result<(), UffErr
     };
     let per_node = flat.len() / s.nodes.len().max(1);
     for (node, values) in s.nodes.iter().zip(flat.chunks(per_node.max(1))) {
-        let label = out.int(i64::try_from(*node).unwrap_or(i64::MAX), 10, "node number (record 9, I10)")?;
+        let label = out.int(
+            i64::try_from(*node).unwrap_or(i64::MAX),
+            10,
+            "node number (record 9, I10)",
+        )?;
         out.line(&label)?;
         out.reals(values, 13, 5, 6, "data value (record 10)")?;
     }
@@ -336,8 +417,16 @@ pub fn write_nodes<W: Write>(w: &mut W, nodes: &Nodes) -> Result<(), UffError> {
         let ints = format!(
             "{}{}{}{}",
             out.int(as_i64(n.label), 10, "node label (I10)")?,
-            out.int(as_i64(n.definition_cs), 10, "definition coordinate system (I10)")?,
-            out.int(as_i64(n.displacement_cs), 10, "displacement coordinate system (I10)")?,
+            out.int(
+                as_i64(n.definition_cs),
+                10,
+                "definition coordinate system (I10)"
+            )?,
+            out.int(
+                as_i64(n.displacement_cs),
+                10,
+                "displacement coordinate system (I10)"
+            )?,
             out.int(n.color, 10, "color (I10)")?,
         );
         let (width, decimals) = if dataset == 15 { (13, 5) } else { (25, 16) };
@@ -362,7 +451,12 @@ pub fn write_units<W: Write>(w: &mut W, u: &Units) -> Result<(), UffError> {
     let mut record1 = format!(
         "{:>10}{}",
         u.system.code(),
-        out.text(&u.description, 20, u.temperature_mode.is_some(), "units description (A20)")?
+        out.text(
+            &u.description,
+            20,
+            u.temperature_mode.is_some(),
+            "units description (A20)"
+        )?
     );
     if let Some(mode) = u.temperature_mode {
         record1.push_str(&out.int(i64::from(mode), 10, "temperature mode (I10)")?);
