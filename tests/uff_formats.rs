@@ -9,7 +9,9 @@
 use std::path::Path;
 
 use faer::c64;
-use jointid::uff::{Abscissa, Encoding, FunctionType, Precision, Problem, Record, UffError, Values, read};
+use jointid::uff::{
+    Abscissa, Encoding, FunctionType, Precision, Problem, Record, UffError, Values, read,
+};
 
 /// The ASCII header of a dataset 58 (records 1-11) for the given record 7 fields.
 fn header_58(ord_type: u32, n: usize, even: bool, start: f64, step: f64) -> String {
@@ -18,7 +20,11 @@ fn header_58(ord_type: u32, n: usize, even: bool, start: f64, step: f64) -> Stri
         s += &format!("{id:<80}\n");
     }
     s += "    4         1    0         0       NONE         7   3       NONE         9  -3\n";
-    s += &format!("{ord_type:>10}{n:>10}{:>10}{start:>13.5e}{step:>13.5e}{:>13.5e}\n", u8::from(even), 0.0);
+    s += &format!(
+        "{ord_type:>10}{n:>10}{:>10}{start:>13.5e}{step:>13.5e}{:>13.5e}\n",
+        u8::from(even),
+        0.0
+    );
     s += "        18    0    0    0 Frequency            Hz                  \n";
     s += "        12    0    0    0 Acceleration         m/s^2/V             \n";
     s += "         0    0    0    0 NONE                 NONE                \n";
@@ -58,7 +64,13 @@ fn binary_big_endian_real_single_even() {
     let f = only_function(&file);
     assert_eq!(f.encoding, Encoding::Binary { big_endian: true });
     assert_eq!(f.precision, Precision::Single);
-    assert_eq!(f.abscissa, Abscissa::Even { start: 10.0, step: 0.5 });
+    assert_eq!(
+        f.abscissa,
+        Abscissa::Even {
+            start: 10.0,
+            step: 0.5
+        }
+    );
     let expected: Vec<f64> = y.iter().map(|&v| f64::from(v)).collect();
     assert_eq!(f.ordinate, Values::Real(expected));
     assert_eq!((f.response.node, f.response.direction), (7, 3));
@@ -71,11 +83,20 @@ fn binary_little_endian_complex_double_uneven_with_single_abscissa_and_crlf() {
     // UC-SDRL layout: x single precision, then Re, Im double; CRLF header lines; the closing
     // -1 after a line terminator. A payload byte equal to '\n' must not end the data.
     let x = [0.0f32, 0.5, 1.25, 10.0];
-    let y = [c64::new(1.0, -1.0), c64::new(f64::from_bits(0x0A0A_0A0A_0A0A_0A0A), 2.0), c64::new(-3.5, 0.0), c64::new(1e-300, 1e300)];
+    let y = [
+        c64::new(1.0, -1.0),
+        c64::new(f64::from_bits(0x0A0A_0A0A_0A0A_0A0A), 2.0),
+        c64::new(-3.5, 0.0),
+        c64::new(1e-300, 1e300),
+    ];
     let n_bytes = x.len() * 20;
     let mut file = format!("    -1\r\n    58b     1     2          11{n_bytes:>12}     0     0           0           0\r\n")
         .into_bytes();
-    file.extend(header_58(6, x.len(), false, 0.0, 0.0).replace('\n', "\r\n").bytes());
+    file.extend(
+        header_58(6, x.len(), false, 0.0, 0.0)
+            .replace('\n', "\r\n")
+            .bytes(),
+    );
     for (xi, yi) in x.iter().zip(&y) {
         file.extend(xi.to_le_bytes());
         file.extend(yi.re.to_le_bytes());
@@ -83,15 +104,29 @@ fn binary_little_endian_complex_double_uneven_with_single_abscissa_and_crlf() {
     }
     file.extend(b"\r\n    -1\r\n    -1\r\n  2412\r\n    -1\r\n");
     let records = read(&file, Path::new("hand.uff")).unwrap();
-    let Record::Function(f) = &records[0] else { panic!("function expected") };
+    let Record::Function(f) = &records[0] else {
+        panic!("function expected")
+    };
     assert_eq!(f.encoding, Encoding::Binary { big_endian: false });
     assert_eq!(f.precision, Precision::Double);
-    assert_eq!(f.abscissa, Abscissa::Uneven(x.iter().map(|&v| f64::from(v)).collect()));
+    assert_eq!(
+        f.abscissa,
+        Abscissa::Uneven(x.iter().map(|&v| f64::from(v)).collect())
+    );
     assert_eq!(f.ordinate, Values::Complex(y.to_vec()));
     // The dataset after the binary one, on the line the file's text gives it: 2 + 11 header
     // lines, the payload (holding 8 + 8 newline bytes), the terminator, `-1`, `-1`, `2412`.
-    let newlines = file[..file.len() - 10].iter().filter(|&&b| b == b'\n').count();
-    assert_eq!(records[1], Record::Other { kind: 2412, first_line: newlines + 1 });
+    let newlines = file[..file.len() - 10]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    assert_eq!(
+        records[1],
+        Record::Other {
+            kind: 2412,
+            first_line: newlines + 1
+        }
+    );
 }
 
 #[test]
@@ -109,7 +144,13 @@ fn ascii_variants_of_real_files() {
     assert_eq!(f.function_type, FunctionType::TimeResponse);
     assert_eq!(f.abscissa, Abscissa::Uneven(vec![1e-3, 2e-3, 3e-3]));
     assert_eq!(f.ordinate, Values::Real(vec![-1.5, 2.5e-100, -1.0]));
-    assert_eq!((f.abscissa_axis.label.as_str(), f.abscissa_axis.units.as_str()), ("Time", "s"));
+    assert_eq!(
+        (
+            f.abscissa_axis.label.as_str(),
+            f.abscissa_axis.units.as_str()
+        ),
+        ("Time", "s")
+    );
     assert_eq!(f.ordinate_axis.units, "m/s^2");
     assert_eq!(f.response.node, 12);
 }
@@ -121,7 +162,16 @@ fn other_datasets_are_kept_by_number() {
     let records = read(s.as_bytes(), Path::new("x.uff")).unwrap();
     assert_eq!(
         records,
-        [Record::Other { kind: 2412, first_line: 2 }, Record::Other { kind: 18, first_line: 7 }]
+        [
+            Record::Other {
+                kind: 2412,
+                first_line: 2
+            },
+            Record::Other {
+                kind: 18,
+                first_line: 7
+            }
+        ]
     );
 }
 
@@ -132,7 +182,8 @@ fn error(text: &str) -> (String, UffError) {
 
 /// A file of two nodes then a dataset 58 with `data` as record 12.
 fn file_with_58(record7: &str, data: &str) -> String {
-    let mut s = String::from("    -1\n    15\n 1 0 0 1 0.0 0.0 0.0\n 2 0 0 1 1.0 0.0 0.0\n    -1\n");
+    let mut s =
+        String::from("    -1\n    15\n 1 0 0 1 0.0 0.0 0.0\n 2 0 0 1 1.0 0.0 0.0\n    -1\n");
     s += "    -1\n    58\nID\nNONE\nNONE\nNONE\nNONE\n";
     s += "    4         0    0         0       NONE         1   2       NONE       100   2\n";
     s += record7;
@@ -151,13 +202,25 @@ fn error_messages_name_file_record_line_and_what_was_expected() {
     // Lines: 1-5 the 15, 6 `-1`, 7 `58`, 8-12 ID lines, 13 record 6, 14 record 7, 15-18
     // records 8-11, 19.. data.
     let (msg, _) = error(&file_with_58(r7, "1 2 3 4\n"));
-    assert_eq!(msg, "frf.uff: record 2 (dataset 58), line 20: expected 8 ordinate values, the record ends after 4");
+    assert_eq!(
+        msg,
+        "frf.uff: record 2 (dataset 58), line 20: expected 8 ordinate values, the record ends after 4"
+    );
     let (msg, _) = error(&file_with_58(r7, "1 2 3 4\n5 6 7 8\n9\n"));
-    assert_eq!(msg, "frf.uff: record 2 (dataset 58), line 21: expected 8 ordinate values, found 9");
+    assert_eq!(
+        msg,
+        "frf.uff: record 2 (dataset 58), line 21: expected 8 ordinate values, found 9"
+    );
     let (msg, _) = error(&file_with_58(r7, "1 2 3 4\n5 6 7 8 9\n"));
-    assert_eq!(msg, "frf.uff: record 2 (dataset 58), line 20: expected 8 ordinate values, found 9");
+    assert_eq!(
+        msg,
+        "frf.uff: record 2 (dataset 58), line 20: expected 8 ordinate values, found 9"
+    );
     let (msg, _) = error(&file_with_58(r7, "1 2 3 4\n5 6 x7 8\n"));
-    assert_eq!(msg, "frf.uff: record 2 (dataset 58), line 20: data value (record 12): \"x7\" is not a finite real number");
+    assert_eq!(
+        msg,
+        "frf.uff: record 2 (dataset 58), line 20: data value (record 12): \"x7\" is not a finite real number"
+    );
     let bad_type = "         3         8         1  0.00000e+00  5.00000e-01  0.00000e+00\n";
     let (msg, _) = error(&file_with_58(bad_type, "1 2 3 4\n5 6 7 8\n"));
     assert_eq!(
@@ -176,17 +239,40 @@ fn structural_errors() {
     let unterminated = file_with_58(r7, "1 2\n");
     let unterminated = &unterminated[..unterminated.len() - "    -1\n".len()];
     let (msg, err) = error(unterminated);
-    assert!(matches!(err, UffError::Record { record: 2, dataset: 58, line: 19, problem: Problem::Unterminated, .. }), "{msg}");
+    assert!(
+        matches!(
+            err,
+            UffError::Record {
+                record: 2,
+                dataset: 58,
+                line: 19,
+                problem: Problem::Unterminated,
+                ..
+            }
+        ),
+        "{msg}"
+    );
     let (msg, _) = error("    -1\n    15\n    -1\n  1 0 0 0 1.0 2.0 3.0\n");
-    assert_eq!(msg, "frf.uff: line 4: expected a `-1` line opening a dataset, found \"  1 0 0 0 1.0 2.0 3.0\"");
+    assert_eq!(
+        msg,
+        "frf.uff: line 4: expected a `-1` line opening a dataset, found \"  1 0 0 0 1.0 2.0 3.0\""
+    );
     let (msg, _) = error("    -1\n    58\nID\nNONE\n    -1\n");
-    assert_eq!(msg, "frf.uff: record 1 (dataset 58), line 5: the record ends before the ID lines (records 1-5)");
-    let (msg, _) = error("    -1\n    58b     1     2          11         800     0     0           0           0\nID\n");
-    assert_eq!(msg, "frf.uff: record 1 (dataset 58), line 3: the record ends before the ASCII header lines of the binary dataset");
+    assert_eq!(
+        msg,
+        "frf.uff: record 1 (dataset 58), line 5: the record ends before the ID lines (records 1-5)"
+    );
+    let (msg, _) = error(
+        "    -1\n    58b     1     2          11         800     0     0           0           0\nID\n",
+    );
+    assert_eq!(
+        msg,
+        "frf.uff: record 1 (dataset 58), line 3: the record ends before the ASCII header lines of the binary dataset"
+    );
     let (msg, _) = error("    -1\n    15\n 1 0 0 1 0.0 0.0\n    -1\n");
     assert_eq!(
         msg,
-        "frf.uff: record 1 (dataset 15), line 3: node line = \" 1 0 0 1 0.0 0.0\" is invalid: \
+        "frf.uff: record 1 (dataset 15), line 3: node (record 1) = \" 1 0 0 1 0.0 0.0\" is invalid: \
          it must hold label, 2 coordinate systems, color, X, Y, Z (4I10,3E13.5)"
     );
 }
@@ -197,7 +283,10 @@ fn truncated_binary_payload_is_an_error() {
     file.extend(header_58(4, 8, true, 0.0, 1.0).bytes());
     file.extend([0u8; 40]);
     let (msg, _) = error(&String::from_utf8_lossy(&file));
-    assert_eq!(msg, "frf.uff: record 1 (dataset 58), line 14: expected 64 bytes of binary data, the record ends after 40");
+    assert_eq!(
+        msg,
+        "frf.uff: record 1 (dataset 58), line 14: expected 64 bytes of binary data, the record ends after 40"
+    );
     file.extend([0u8; 24]);
     file.extend(b"garbage\n");
     let (msg, _) = error(&String::from_utf8_lossy(&file));
@@ -219,10 +308,19 @@ fn mode_shape_with_run_together_values_and_an_ideas_id_line() {
              \x20   111111\n\
              \x200.000000E+00 0.000000E+00 1.111111E-01 9.111111E-02 7.111111E-03 4.111111E-03\n    -1\n";
     let records = read(s.as_bytes(), Path::new("m.uff")).unwrap();
-    let Record::ModeShape(m) = &records[0] else { panic!("mode shape expected") };
+    let Record::ModeShape(m) = &records[0] else {
+        panic!("mode shape expected")
+    };
     assert_eq!(m.nodes, [111111]);
     assert_eq!(m.values_per_node, 3);
-    let jointid::uff::Analysis::ComplexMode { eigenvalue, modal_a, modal_b, mode, .. } = m.analysis else {
+    let jointid::uff::Analysis::ComplexMode {
+        eigenvalue,
+        modal_a,
+        modal_b,
+        mode,
+        ..
+    } = m.analysis
+    else {
         panic!("complex mode expected")
     };
     assert_eq!(mode, 1);

@@ -252,7 +252,7 @@ pub(crate) fn collect_reals(
                     Problem::TooMany {
                         what,
                         expected: count / group,
-                        found: (values.len() + read.len()) / group,
+                        found: (values.len() + read.len()).div_ceil(group),
                     },
                 ));
             }

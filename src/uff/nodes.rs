@@ -94,14 +94,20 @@ fn split_fields<'t>(text: &'t str, n: usize, widths: &[usize]) -> Vec<&'t str> {
 
 /// A field error on a line that does not have the `n` blank-separated fields of its format
 /// becomes a layout error naming the format.
-fn layout_error(e: Located, line: &Line, n: usize, layout: &'static str) -> Located {
+fn layout_error(
+    e: Located,
+    line: &Line,
+    n: usize,
+    field: &'static str,
+    layout: &'static str,
+) -> Located {
     if line.text.split_whitespace().count() == n {
         return e;
     }
     Located::new(
         line.number,
         Problem::Invalid {
-            field: "node line",
+            field,
             value: format!("{:?}", line.text.trim_end()),
             allowed: layout,
         },
@@ -136,6 +142,7 @@ pub(crate) fn parse_15(ds: &RawDataset) -> Result<Nodes, Located> {
                     e,
                     line,
                     7,
+                    "node (record 1)",
                     "it must hold label, 2 coordinate systems, color, X, Y, Z (4I10,3E13.5)",
                 )
             })?;
@@ -164,13 +171,21 @@ pub(crate) fn parse_2411(ds: &RawDataset) -> Result<Nodes, Located> {
                 e,
                 line,
                 4,
+                "node (record 1)",
                 "it must hold label, 2 coordinate systems, color (4I10)",
             )
         })?;
         let coords = cursor.next("the coordinates of the node (record 2)")?;
         let c = split_fields(&coords.text, 3, &[25, 25, 25]);
-        let coordinates = coordinates(coords, &c)
-            .map_err(|e| layout_error(e, coords, 3, "it must hold X, Y, Z (3D25.16)"))?;
+        let coordinates = coordinates(coords, &c).map_err(|e| {
+            layout_error(
+                e,
+                coords,
+                3,
+                "node coordinates (record 2)",
+                "it must hold X, Y, Z (3D25.16)",
+            )
+        })?;
         nodes.push(Node {
             label,
             definition_cs,

@@ -303,7 +303,7 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
     )?;
     let analysis = analysis(analysis_code, ints, reals, r7_line)?;
 
-    let per_node = ndv * (1 + usize::from(complex));
+    let per_node = ndv.saturating_mul(1 + usize::from(complex));
     let mut nodes = Vec::new();
     let mut flat = Vec::new();
     while let Some(line) = cursor.next_non_blank() {
