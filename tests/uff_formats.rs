@@ -330,3 +330,37 @@ fn mode_shape_with_run_together_values_and_an_ideas_id_line() {
     assert_eq!(m.value(0, 2), Some(c64::new(7.111111E-03, 4.111111E-03)));
     assert_eq!(m.value(0, 3), None);
 }
+
+#[test]
+fn even_abscissa_is_recognised_within_the_written_digits() {
+    let text = file_with_58(
+        "         4         2         1  0.00000e+00  5.00000e-01  0.00000e+00\n",
+        "1 2\n",
+    );
+    let Some(Record::Function(mut f)) = read(text.as_bytes(), Path::new("f.uff")).unwrap().pop()
+    else {
+        panic!("function expected")
+    };
+    assert_eq!(f.even_abscissa(0.0), Some((0.0, 0.5)));
+    // 1/3 Hz steps stored to 6 digits: even within 5e-6, not within 1e-7.
+    let x: Vec<f64> = (0..100)
+        .map(|i| {
+            format!("{:.5e}", -5.0 + f64::from(i) / 3.0)
+                .parse()
+                .unwrap()
+        })
+        .collect();
+    f.ordinate = Values::Real(vec![0.0; 100]);
+    f.abscissa = Abscissa::Uneven(x.clone());
+    let (start, step) = f.even_abscissa(5e-6).unwrap();
+    assert_eq!(start, -5.0);
+    assert!((step - 1.0 / 3.0).abs() < 1e-6);
+    assert_eq!(f.even_abscissa(1e-7), None);
+    // A real gap is not even.
+    let mut gap = x;
+    gap[50] += 0.01;
+    f.abscissa = Abscissa::Uneven(gap);
+    assert_eq!(f.even_abscissa(5e-6), None);
+    f.abscissa = Abscissa::Uneven(vec![1.0]);
+    assert_eq!(f.even_abscissa(5e-6), None);
+}

@@ -107,6 +107,12 @@ fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
                 assert!((xi - exact).abs() <= 5e-6 * exact, "x[{i}] = {xi}");
             }
             assert_eq!(x[8192], 512.0);
+            assert_eq!(f.even_abscissa(5e-6), Some((0.0, 0.0625)));
+            assert_eq!(
+                f.even_abscissa(1e-7),
+                None,
+                "the 6-digit rounding is visible"
+            );
             // Values against the text: FRF lines hold x, Re, Im; coherence lines two (x, y) pairs.
             let last = if frf { 8192 } else { 4096 };
             for offset in [0, 1, 2047, last] {

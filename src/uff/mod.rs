@@ -82,6 +82,8 @@ impl Values {
 }
 
 /// One dataset of a universal file.
+// A file holds tens of records: boxing the large variant would only burden matching.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Record {
     /// Dataset 58 or 58b.

@@ -193,6 +193,28 @@ impl Function {
             Abscissa::Uneven(x) => x.clone(),
         }
     }
+
+    /// Start and step of the abscissa when its points are evenly spaced: an even abscissa as
+    /// stored; an uneven one when every x_i is within `rel_tol` max(|x_i|, step) of
+    /// x_0 + i step, with step = (x_last - x_0) / (n - 1). Exported FRFs often store an even
+    /// frequency axis as uneven values of 6 significant digits (`E13.5`): `rel_tol = 5e-6`
+    /// accepts them. `None` for fewer than two points or an uneven spacing.
+    pub fn even_abscissa(&self, rel_tol: f64) -> Option<(f64, f64)> {
+        let x = match &self.abscissa {
+            Abscissa::Even { start, step } => return Some((*start, *step)),
+            Abscissa::Uneven(x) => x,
+        };
+        let (&first, &last) = (x.first()?, x.last()?);
+        if x.len() < 2 {
+            return None;
+        }
+        let step = (last - first) / (x.len() - 1) as f64;
+        let even = step != 0.0
+            && x.iter().enumerate().all(|(i, &xi)| {
+                (xi - (first + i as f64 * step)).abs() <= rel_tol * xi.abs().max(step.abs())
+            });
+        even.then_some((first, step))
+    }
 }
 
 /// Reads a dataset 58 or 58b.
