@@ -3,22 +3,24 @@
 //! 58b), node coordinates as dataset 15 or 2411, and expect mode shapes back as dataset 55.
 //!
 //! A universal file is a sequence of datasets, each opened and closed by a `-1` line, the first
-//! line inside naming the dataset number ([`split`]). Each dataset is a sequence of Fortran
+//! line inside naming the dataset number (`split.rs`). Each dataset is a sequence of Fortran
 //! fixed-format records; the readers take numbers by blanks first and by columns when that
-//! fails ([`fields`]), since real files do both. Read here:
+//! fails (`fields.rs`), since real files do both. Read here:
 //! - [`function`]: 58/58b, functions at nodal DOF (time responses, FRFs, coherences, ...);
 //! - [`shape`]: 55, data at nodes (mode shapes);
 //! - [`nodes`]: 15 and 2411, node coordinates;
 //! - [`units`]: 164 (units) and 151 (header);
 //!
-//! any other dataset is kept as [`Record::Other`]. [`write`] writes 58 (ASCII), 55, 15, 2411
-//! and 164.
+//! any other dataset is kept as [`Record::Other`]. [`mod@write`] writes 58 (ASCII), 55, 15, 2411,
+//! 164 and 151, in the fixed formats (its docs state the digits of each field).
 //!
+//! Entry points: [`read`] (bytes) and [`read_path`] give the [`Record`]s of a file in order;
+//! [`write_record`] and the `write_*` functions write one dataset into any `io::Write`.
 //! Reading returns data, never prints; it never panics whatever the bytes: a malformed file
 //! gives a [`UffError`] naming the file, the record and the line.
 //!
 //! The layouts follow the I-DEAS dataset descriptions as published by the Structural Dynamics
-//! Research Lab of the University of Cincinnati (UC-SDRL, "Universal File Datasets Summary"),
+//! Research Lab of the University of Cincinnati (UC-SDRL universal file format pages),
 //! which pyuff (ladisk/pyuff, `pyuff/datasets/dataset_*.py`) reproduces; pyuff's readers and its
 //! issue tracker taught which liberties real files take (blank-separated fields, values run
 //! together, zero padding of the last line, a line terminator before the closing `-1` of a

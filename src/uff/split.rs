@@ -73,7 +73,8 @@ fn is_delimiter(bytes: &[u8]) -> bool {
 impl<'a> Splitter<'a> {
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Splitter {
-            bytes,
+            // A UTF-8 byte-order mark, as some Windows programs write, is no content.
+            bytes: bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes),
             pos: 0,
             line: 1,
             index: 0,
@@ -336,6 +337,8 @@ mod tests {
         assert_eq!(kinds(lf), [(164, 2, 2, 5), (2412, 7, 1, 9)]);
         let crlf = String::from_utf8_lossy(lf).replace('\n', "\r\n");
         assert_eq!(kinds(crlf.as_bytes()), [(164, 2, 2, 5), (2412, 7, 1, 9)]);
+        let bom = [&b"\xEF\xBB\xBF"[..], lf].concat();
+        assert_eq!(kinds(&bom), [(164, 2, 2, 5), (2412, 7, 1, 9)]);
         // no final terminator, blank lines between datasets
         assert_eq!(
             kinds(b"\n  -1\n 15\n  -1\n\n  -1\n 18\n  -1"),

@@ -19,6 +19,8 @@
 //! ordinate's precision; both layouts are tried for an uneven abscissa, and the one after which
 //! the closing `-1` stands is read.
 //!
+//! Records 6-11 are read in `records.rs`, the 58b payload in `binary.rs`, record 12 here.
+//!
 //! Layout after the I-DEAS / UC-SDRL "Universal Dataset Number 58" description (as reproduced
 //! in pyuff's `dataset_58.py`).
 

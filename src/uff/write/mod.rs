@@ -8,9 +8,9 @@
 //! - 58: record 7 abscissa minimum, increment and z value `E13.5` (6 significant digits, so
 //!   an even step is exact only when it has at most 6: 0.0625, 0.25, 1.0); values of a double
 //!   precision function `E20.12` (13 significant digits), an uneven abscissa `E13.5`; a single
-//!   precision function `6E13.5`. Always ASCII, whatever [`Function::encoding`] says;
+//!   precision function `6E13.5`. Always ASCII, whatever [`Function::encoding`](crate::uff::Function::encoding) says;
 //! - 55: record 8 and the nodal values `E13.5` (6 significant digits), data type 2 (real) or
-//!   5 (complex) whatever [`ModeShape::precision`] says;
+//!   5 (complex) whatever [`ModeShape::precision`](crate::uff::ModeShape::precision) says;
 //! - 15: coordinates `E13.5` (6 significant digits); 2411: `E25.16` (17 significant digits,
 //!   exact for `f64`); 164: factors `E25.17`.
 //!
