@@ -44,7 +44,9 @@ pub use function::{Abscissa, Axis, Dof, Encoding, Function, FunctionType, Precis
 pub use nodes::{Node, NodeFormat, Nodes};
 pub use shape::{Analysis, DataCharacteristic, ModeShape};
 pub use units::{Header, UnitSystem, Units};
-pub use write::{write_function, write_mode_shape, write_nodes, write_record, write_units};
+pub use write::{
+    write_function, write_header, write_mode_shape, write_nodes, write_record, write_units,
+};
 
 /// Real or complex values (ordinates of a function, values of a mode shape).
 #[derive(Debug, Clone, PartialEq)]
