@@ -5,6 +5,7 @@ mod check;
 mod diagnose;
 mod identify;
 mod report;
+mod resources;
 mod run_study;
 mod simulate;
 mod study;

@@ -14,6 +14,8 @@ use jointid::output::{check_outputs, stage};
 use jointid::study::check::selected_rows;
 
 use crate::commands::report::commit_all;
+use crate::commands::resources::check_memory;
+use jointid::study::resources::peak_bytes;
 use jointid::study::{CellResult, Study, StudyRun};
 
 /// A finished study.
@@ -93,6 +95,11 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun
     let mut outputs = vec![out];
     outputs.extend(args.trials_csv.as_deref());
     check_outputs(&outputs, &[&study.file, &study.model_file])?;
+    check_memory(
+        peak_bytes(&study),
+        &format!("{} (one cell of {} trials)", study.file.display(), study.trials),
+        "monte_carlo.trials, the number of grid modes, or the identified parameters (hold some with `fixed`)",
+    )?;
     Ok(StudyRun::new(study)?)
 }
 

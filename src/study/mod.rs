@@ -16,6 +16,7 @@ pub mod engine;
 pub mod noise;
 pub mod plan;
 pub mod predicted;
+pub mod resources;
 pub mod unidentified;
 
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
