@@ -97,7 +97,11 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun
     check_outputs(&outputs, &[&study.file, &study.model_file])?;
     check_memory(
         peak_bytes(&study),
-        &format!("{} (one cell of {} trials)", study.file.display(), study.trials),
+        &format!(
+            "{} (one cell of {} trials)",
+            study.file.display(),
+            study.trials
+        ),
         "monte_carlo.trials, the number of grid modes, or the identified parameters (hold some with `fixed`)",
     )?;
     Ok(StudyRun::new(study)?)
