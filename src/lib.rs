@@ -15,9 +15,12 @@
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
 //! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
-//! with effects and errors, for tests, studies and rehearsals of a test campaign).
+//! with effects and errors, for tests, studies and rehearsals of a test campaign), [`extract`]
+//! (modal parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real
+//! modes and their complexity).
 
 pub mod diagnose;
+pub mod extract;
 pub mod identify;
 pub mod input;
 pub mod measured;
