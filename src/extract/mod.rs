@@ -129,6 +129,8 @@ pub struct Extraction {
     pub band_hz: (f64, f64),
     /// The frequency lines of the band (Hz).
     pub frequencies_hz: Vec<f64>,
+    /// Their indices on the axis of the [`FrfSet`].
+    pub lines: Vec<usize>,
     /// The FRFs of the identified model on those lines, `[response][line]`.
     pub synthesized: Vec<Vec<c64>>,
     /// Relative fit error per response: ||H - H_model|| / ||H|| over the band.

@@ -242,6 +242,7 @@ pub fn extract(
         max_order,
         band_hz: (lo, hi),
         frequencies_hz,
+        lines: band.lines,
         synthesized,
         fit_error,
         lower_residual: fit.lower,
