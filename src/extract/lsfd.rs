@@ -9,39 +9,62 @@
 //! with the same receptance residue R_r whatever the quantity (the shapes, and even the
 //! residues, of the three quantities are then directly comparable).
 //!
-//! Residual terms, from the leading term of the out-of-band modes in receptance:
-//! - modes far below the band (|lambda| << w, rigid-body modes included) behave as masses:
-//!   R/(iw - lambda) + c.c. ~ (R + conj R)/(iw) + 2 Re(R lambda)/(iw)^2, and R + conj R = 0 for
-//!   real modes, so the lower residual is L (iw)^-2 (the familiar -L/w^2), L real;
-//! - modes far above (|lambda| >> w) behave as springs: a constant U, U real.
+//! Residual terms, from the expansion of the out-of-band modes in receptance (real modes,
+//! A = 2 i w_d R real, w_r the mode's natural frequency):
+//! - a mode far below the band (w_r << w, rigid-body modes included) behaves as a mass:
+//!   A / (w_r^2 - w^2) = -(A / w^2) (1 + w_r^2 / w^2 + ...), terms in (iw)^-2 and (iw)^-4;
+//! - a mode far above (w_r >> w) behaves as a spring:
+//!   A / (w_r^2 - w^2) = (A / w_r^2) (1 + w^2 / w_r^2 + ...), terms in (iw)^0 and (iw)^2.
 //!
-//! Multiplied by (iw)^p the two terms change form with the quantity:
+//! The first term of each is the classical pair (mass-like lower residual, stiffness-like upper
+//! residual); the second corrects for an out-of-band mode close to a band edge (a mode at half
+//! the lower edge leaves 25% of its first-order term at the edge). `terms` (0, 1 or 2) of each
+//! are fitted, with real coefficients L_1, L_2, U_1, U_2. Multiplied by (iw)^p they change form
+//! with the quantity:
 //!
-//! | quantity     | lower residual       | upper residual        |
-//! |--------------|----------------------|-----------------------|
-//! | displacement | L (iw)^-2 = -L / w^2 | U                     |
-//! | velocity     | L (iw)^-1 = -i L / w | U (iw) = i w U        |
-//! | acceleration | L (a constant mass line) | U (iw)^2 = -w^2 U |
+//! | quantity     | lower residual                      | upper residual                 |
+//! |--------------|-------------------------------------|--------------------------------|
+//! | displacement | L_1 (iw)^-2 + L_2 (iw)^-4 = -L_1/w^2 + L_2/w^4 | U_1 + U_2 (iw)^2 = U_1 - U_2 w^2 |
+//! | velocity     | L_1 (iw)^-1 + L_2 (iw)^-3 = -i L_1/w + i L_2/w^3 | i w U_1 - i w^3 U_2 |
+//! | acceleration | L_1 + L_2 (iw)^-2 = L_1 - L_2/w^2 (a constant mass line first) | -w^2 U_1 + w^4 U_2 |
 //!
 //! so for accelerance the lower residual is the constant 1/mass line and the upper residual
-//! grows as w^2. Unknowns per response: Re R_r, Im R_r for every pole, L and U, all real; the
-//! complex equations are stacked as real and imaginary rows, weighted by the line weight, and
-//! solved by QR ([`super::lstsq`]); the design matrix is common to every response.
+//! grows as w^2. (Damping adds odd powers, (iw)^-3 below and (iw)^1 above, of relative size
+//! zeta: neglected.) Unknowns per response: Re R_r, Im R_r for every pole and the residual
+//! coefficients, all real; the complex equations are stacked as real and imaginary rows,
+//! weighted by the line weight, and solved by QR ([`super::lstsq`]); the design matrix is
+//! common to every response.
 
 use faer::{Mat, c64};
 
 use super::lstsq;
+
+/// The form of the model: the quantity and the number of residual terms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Basis {
+    /// The power p of (iw) of the quantity (0, 1, 2).
+    pub power: i32,
+    /// Terms of each residual expansion, 0..=2.
+    pub terms: usize,
+}
+
+impl Basis {
+    /// Number of columns for `poles` poles.
+    pub fn width(&self, poles: usize) -> usize {
+        2 * poles + 2 * self.terms
+    }
+}
 
 /// The identified modal model of every response for given poles.
 #[derive(Debug, Clone)]
 pub struct Fit {
     /// Receptance residues, `residues[mode][response]`.
     pub residues: Vec<Vec<c64>>,
-    /// Lower residual L per response (see the module docs).
-    pub lower: Vec<f64>,
-    /// Upper residual U per response.
-    pub upper: Vec<f64>,
-    /// Numerical rank of the design matrix (2 K + 2 when the poles are distinct).
+    /// Lower residual coefficients [L_1, L_2] per response (those not fitted are 0).
+    pub lower: Vec<[f64; 2]>,
+    /// Upper residual coefficients [U_1, U_2] per response.
+    pub upper: Vec<[f64; 2]>,
+    /// Numerical rank of the design matrix (its width when the poles are distinct).
     pub rank: usize,
 }
 
@@ -56,11 +79,13 @@ fn iw_pow(w: f64, p: i32) -> c64 {
     }
 }
 
-/// The complex columns of one line: (u_r, v_r) per pole, then the lower and upper residual.
+/// The complex columns of one line: (u_r, v_r) per pole, then the lower residual terms
+/// (iw)^(p-2), (iw)^(p-4) and the upper (iw)^p, (iw)^(p+2), the first `terms` of each.
 /// u = g1 + g2, v = i (g1 - g2), g1 = (iw)^p / (iw - lambda), g2 = (iw)^p / (iw - conj lambda):
 /// R g1 + conj(R) g2 = Re R u + Im R v.
-pub fn columns(w: f64, poles: &[c64], p: i32, out: &mut Vec<c64>) {
+pub fn columns(w: f64, poles: &[c64], basis: Basis, out: &mut Vec<c64>) {
     out.clear();
+    let p = basis.power;
     let iw = c64::new(0.0, w);
     let q = iw_pow(w, p);
     for &lambda in poles {
@@ -69,8 +94,12 @@ pub fn columns(w: f64, poles: &[c64], p: i32, out: &mut Vec<c64>) {
         out.push(g1 + g2);
         out.push(c64::new(0.0, 1.0) * (g1 - g2));
     }
-    out.push(iw_pow(w, p - 2));
-    out.push(q);
+    for t in 0..basis.terms {
+        out.push(iw_pow(w, p - 2 - 2 * t as i32));
+    }
+    for t in 0..basis.terms {
+        out.push(iw_pow(w, p + 2 * t as i32));
+    }
 }
 
 /// The derivatives of (u_r, v_r) of one line with respect to (Re lambda_r, Im lambda_r):
@@ -91,13 +120,13 @@ pub fn column_derivatives(w: f64, poles: &[c64], p: i32, out: &mut Vec<[c64; 4]>
 }
 
 /// The weighted real-stacked design matrix (2 nf x (2K + 2)).
-pub fn design(omega: &[f64], weights: &[f64], poles: &[c64], p: i32) -> Mat<f64> {
+pub fn design(omega: &[f64], weights: &[f64], poles: &[c64], basis: Basis) -> Mat<f64> {
     let nf = omega.len();
-    let m = 2 * poles.len() + 2;
+    let m = basis.width(poles.len());
     let mut a = Mat::<f64>::zeros(2 * nf, m);
     let mut cols = Vec::with_capacity(m);
     for k in 0..nf {
-        columns(omega[k], poles, p, &mut cols);
+        columns(omega[k], poles, basis, &mut cols);
         for (j, c) in cols.iter().enumerate() {
             a[(k, j)] = weights[k] * c.re;
             a[(nf + k, j)] = weights[k] * c.im;
@@ -116,8 +145,8 @@ pub fn data(weights: &[f64], responses: &[Vec<c64>]) -> Mat<f64> {
     })
 }
 
-/// Unpacks the solution (2K + 2 rows, one column per response) into a [`Fit`].
-pub fn unpack(x: &Mat<f64>, modes: usize, rank: usize) -> Fit {
+/// Unpacks the solution (one column per response) into a [`Fit`].
+pub fn unpack(x: &Mat<f64>, modes: usize, basis: Basis, rank: usize) -> Fit {
     let responses = x.ncols();
     let residues = (0..modes)
         .map(|r| {
@@ -128,8 +157,24 @@ pub fn unpack(x: &Mat<f64>, modes: usize, rank: usize) -> Fit {
         .collect();
     Fit {
         residues,
-        lower: (0..responses).map(|o| x[(2 * modes, o)]).collect(),
-        upper: (0..responses).map(|o| x[(2 * modes + 1, o)]).collect(),
+        lower: (0..responses)
+            .map(|o| {
+                let mut l = [0.0; 2];
+                for (t, v) in l.iter_mut().take(basis.terms).enumerate() {
+                    *v = x[(2 * modes + t, o)];
+                }
+                l
+            })
+            .collect(),
+        upper: (0..responses)
+            .map(|o| {
+                let mut u = [0.0; 2];
+                for (t, v) in u.iter_mut().take(basis.terms).enumerate() {
+                    *v = x[(2 * modes + basis.terms + t, o)];
+                }
+                u
+            })
+            .collect(),
         rank,
     }
 }
@@ -140,24 +185,28 @@ pub fn fit(
     omega: &[f64],
     weights: &[f64],
     poles: &[c64],
-    p: i32,
+    basis: Basis,
     responses: &[Vec<c64>],
 ) -> Fit {
-    let a = design(omega, weights, poles, p);
+    let a = design(omega, weights, poles, basis);
     let b = data(weights, responses);
     let ls = lstsq::solve(a.as_ref(), b.as_ref());
-    unpack(&ls.x, poles.len(), ls.rank)
+    unpack(&ls.x, poles.len(), basis, ls.rank)
 }
 
 /// The FRFs of the model (poles, fit) on `omega`, `[response][line]`.
-pub fn synthesize(omega: &[f64], poles: &[c64], p: i32, fit: &Fit) -> Vec<Vec<c64>> {
+pub fn synthesize(omega: &[f64], poles: &[c64], basis: Basis, fit: &Fit) -> Vec<Vec<c64>> {
     let responses = fit.lower.len();
+    let k = poles.len();
     let mut out = vec![Vec::with_capacity(omega.len()); responses];
     let mut cols = Vec::new();
     for &w in omega {
-        columns(w, poles, p, &mut cols);
+        columns(w, poles, basis, &mut cols);
         for (o, series) in out.iter_mut().enumerate() {
-            let mut h = cols[2 * poles.len()] * fit.lower[o] + cols[2 * poles.len() + 1] * fit.upper[o];
+            let mut h = c64::new(0.0, 0.0);
+            for t in 0..basis.terms {
+                h += cols[2 * k + t] * fit.lower[o][t] + cols[2 * k + basis.terms + t] * fit.upper[o][t];
+            }
             for (r, res) in fit.residues.iter().enumerate() {
                 h += cols[2 * r] * res[o].re + cols[2 * r + 1] * res[o].im;
             }
@@ -189,8 +238,9 @@ mod tests {
                         plus[r] += dir * h;
                         minus[r] -= dir * h;
                         let (mut cp, mut cm) = (Vec::new(), Vec::new());
-                        columns(w, &plus, p, &mut cp);
-                        columns(w, &minus, p, &mut cm);
+                        let basis = Basis { power: p, terms: 2 };
+                        columns(w, &plus, basis, &mut cp);
+                        columns(w, &minus, basis, &mut cm);
                         for c in 0..2 {
                             let fd = (cp[2 * r + c] - cm[2 * r + c]) / (2.0 * h);
                             let an = d[r][2 * part + c];
@@ -208,13 +258,22 @@ mod tests {
     /// Residual terms of the table in the module docs.
     #[test]
     fn residual_columns_follow_the_quantity() {
-        let w = 7.0;
+        let w: f64 = 7.0;
+        let close = |a: c64, b: c64| (a - b).norm() <= 1e-15 * b.norm();
         let mut c = Vec::new();
-        columns(w, &[], 0, &mut c);
-        assert!((c[0] - c64::new(-1.0 / 49.0, 0.0)).norm() < 1e-15 && c[1] == c64::new(1.0, 0.0));
-        columns(w, &[], 1, &mut c);
-        assert!((c[0] - c64::new(0.0, -1.0 / 7.0)).norm() < 1e-15 && c[1] == c64::new(0.0, 7.0));
-        columns(w, &[], 2, &mut c);
-        assert!(c[0] == c64::new(1.0, 0.0) && c[1] == c64::new(-49.0, 0.0));
+        let cases = [
+            (0, [c64::new(-1.0 / 49.0, 0.0), c64::new(w.powi(-4), 0.0), c64::new(1.0, 0.0), c64::new(-49.0, 0.0)]),
+            (1, [c64::new(0.0, -1.0 / 7.0), c64::new(0.0, w.powi(-3)), c64::new(0.0, 7.0), c64::new(0.0, -343.0)]),
+            (2, [c64::new(1.0, 0.0), c64::new(-1.0 / 49.0, 0.0), c64::new(-49.0, 0.0), c64::new(2401.0, 0.0)]),
+        ];
+        for (p, expected) in cases {
+            columns(w, &[], Basis { power: p, terms: 2 }, &mut c);
+            // Order: L_1, L_2, U_1, U_2.
+            for (got, want) in c.iter().zip(expected) {
+                assert!(close(*got, want), "p {p}: {c:?}");
+            }
+            columns(w, &[], Basis { power: p, terms: 1 }, &mut c);
+            assert!(close(c[0], expected[0]) && close(c[1], expected[2]) && c.len() == 2);
+        }
     }
 }

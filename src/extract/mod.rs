@@ -68,6 +68,9 @@ pub struct Settings {
     pub max_damping: f64,
     /// Least mean coherence of the automatic band, in [0, 1]; default [`COHERENCE_MIN`].
     pub coherence_min: f64,
+    /// Terms of each residual expansion (see [`lsfd`]): 0 (every mode in the band), 1 (the
+    /// classical mass-like lower and stiffness-like upper residual) or 2; default 2.
+    pub residual_terms: usize,
     /// Refine the chosen poles by nonlinear least squares ([`refine`]); default true.
     pub refine: bool,
 }
@@ -84,6 +87,7 @@ impl Default for Settings {
             mac_min: MAC_MIN,
             max_damping: MAX_DAMPING,
             coherence_min: COHERENCE_MIN,
+            residual_terms: 2,
             refine: true,
         }
     }
@@ -135,10 +139,11 @@ pub struct Extraction {
     pub synthesized: Vec<Vec<c64>>,
     /// Relative fit error per response: ||H - H_model|| / ||H|| over the band.
     pub fit_error: Vec<f64>,
-    /// Lower residual per response (see [`lsfd`] for its form per quantity).
-    pub lower_residual: Vec<f64>,
-    /// Upper residual per response.
-    pub upper_residual: Vec<f64>,
+    /// Lower residual coefficients [L_1, L_2] per response (see [`lsfd`] for their form per
+    /// quantity; 0 when not fitted).
+    pub lower_residual: Vec<[f64; 2]>,
+    /// Upper residual coefficients [U_1, U_2] per response.
+    pub upper_residual: Vec<[f64; 2]>,
     /// Mean coherence per response over the band, when coherence was given.
     pub mean_coherence: Option<Vec<f64>>,
     /// Whether the poles were refined (false when off, or when the refinement left the band or

@@ -18,7 +18,7 @@
 
 use faer::{Mat, c64};
 
-use super::lsfd::{column_derivatives, data, design};
+use super::lsfd::{Basis, column_derivatives, data, design};
 use super::lstsq;
 
 /// Most Levenberg-Marquardt iterations.
@@ -52,12 +52,12 @@ pub(crate) fn linearise(
     omega: &[f64],
     weights: &[f64],
     poles: &[c64],
-    p: i32,
+    basis: Basis,
     responses: &[Vec<c64>],
 ) -> Linearised {
     let nf = omega.len();
     let n = 2 * poles.len();
-    let a = design(omega, weights, poles, p);
+    let a = design(omega, weights, poles, basis);
     let m = a.ncols();
     let b = data(weights, responses);
     let ls = lstsq::solve(a.as_ref(), b.as_ref());
@@ -69,7 +69,7 @@ pub(crate) fn linearise(
         // [T_o | b_o], T_o column 2r + c = dA/dtheta_(2r+c) x_o (c = 0: Re lambda, 1: Im lambda).
         let mut tb = Mat::<f64>::zeros(2 * nf, n + 1);
         for k in 0..nf {
-            column_derivatives(omega[k], poles, p, &mut derivatives);
+            column_derivatives(omega[k], poles, basis.power, &mut derivatives);
             for (r, d) in derivatives.iter().enumerate() {
                 let (xa, xb) = (ls.x[(2 * r, o)], ls.x[(2 * r + 1, o)]);
                 for c in 0..2 {
@@ -137,11 +137,11 @@ pub fn refine(
     omega: &[f64],
     weights: &[f64],
     poles: &[c64],
-    p: i32,
+    basis: Basis,
     responses: &[Vec<c64>],
 ) -> Refined {
     let mut current = poles.to_vec();
-    let mut lin = linearise(omega, weights, &current, p, responses);
+    let mut lin = linearise(omega, weights, &current, basis, responses);
     let cost_start = lin.cost;
     let mut mu = 1e-3;
     let mut iterations = 0;
@@ -153,7 +153,7 @@ pub fn refine(
                 .enumerate()
                 .map(|(r, s)| s + c64::new(delta[2 * r], delta[2 * r + 1]))
                 .collect();
-            let next = linearise(omega, weights, &trial, p, responses);
+            let next = linearise(omega, weights, &trial, basis, responses);
             if next.cost.is_finite() && next.cost < lin.cost {
                 let gain = (lin.cost - next.cost) / lin.cost.max(f64::MIN_POSITIVE);
                 current = trial;
@@ -214,15 +214,16 @@ mod tests {
         ];
         let data = model(&omega, &truth, &residues, 1);
         let at = [c64::new(-9.0, 905.0), c64::new(-18.0, 1990.0)];
-        let lin = linearise(&omega, &weights, &at, 1, &data);
+        let basis = Basis { power: 1, terms: 2 };
+        let lin = linearise(&omega, &weights, &at, basis, &data);
         for j in 0..4 {
             let h = 1e-5 * at[j / 2].norm();
             let dir = if j % 2 == 0 { c64::new(h, 0.0) } else { c64::new(0.0, h) };
             let (mut plus, mut minus) = (at, at);
             plus[j / 2] += dir;
             minus[j / 2] -= dir;
-            let fp = linearise(&omega, &weights, &plus, 1, &data).cost;
-            let fm = linearise(&omega, &weights, &minus, 1, &data).cost;
+            let fp = linearise(&omega, &weights, &plus, basis, &data).cost;
+            let fm = linearise(&omega, &weights, &minus, basis, &data).cost;
             let fd = (fp - fm) / (2.0 * h);
             assert!(
                 (fd - lin.gradient[j]).abs() < 1e-5 * lin.gradient[j].abs(),
@@ -246,7 +247,7 @@ mod tests {
         for p in 0..3 {
             let data = model(&omega, &truth, &residues, p);
             let start = [c64::new(-6.6, 804.0), c64::new(-22.5, 2090.0)];
-            let refined = refine(&omega, &weights, &start, p, &data);
+            let refined = refine(&omega, &weights, &start, Basis { power: p, terms: 2 }, &data);
             for (r, t) in refined.poles.iter().zip(truth) {
                 assert!((r - t).norm() < 1e-9 * t.norm(), "p {p}: {r} vs {t}");
             }

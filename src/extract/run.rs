@@ -50,6 +50,9 @@ fn check(settings: &Settings) -> Result<(), ExtractError> {
     if !(settings.max_damping > 0.0 && settings.max_damping <= 1.0) {
         return Err(invalid("max_damping", settings.max_damping, "in (0, 1]"));
     }
+    if settings.residual_terms > 2 {
+        return Err(invalid("residual_terms", settings.residual_terms, "0, 1 or 2"));
+    }
     if !(0.0..=1.0).contains(&settings.coherence_min) {
         return Err(invalid("coherence_min", settings.coherence_min, "in [0, 1]"));
     }
@@ -117,7 +120,10 @@ pub fn extract(
         }
         scaled.push(h.iter().map(|v| v / rms).collect::<Vec<c64>>());
     }
-    let p = frf.quantity.power();
+    let basis = lsfd::Basis {
+        power: frf.quantity.power(),
+        terms: settings.residual_terms,
+    };
     let total = responses.len() + max_order + 1;
     let mut done = 0;
     let lscf = Lscf::new(&omega, &band.weights, &scaled, hi, max_order, &mut || {
@@ -140,7 +146,7 @@ pub fn extract(
         let residues = if poles.is_empty() {
             Vec::new()
         } else {
-            lsfd::fit(&omega, &band.weights, &poles, p, &responses).residues
+            lsfd::fit(&omega, &band.weights, &poles, basis, &responses).residues
         };
         orders.push(OrderPoles {
             order,
@@ -188,7 +194,7 @@ pub fn extract(
 
     let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
     let (poles, refined) = if settings.refine {
-        let r = refine::refine(&omega, &band.weights, &start, p, &responses);
+        let r = refine::refine(&omega, &band.weights, &start, basis, &responses);
         if acceptable(&r.poles, &start, (lo, hi), &criteria) {
             (r.poles, true)
         } else {
@@ -197,8 +203,8 @@ pub fn extract(
     } else {
         (start, false)
     };
-    let fit = lsfd::fit(&omega, &band.weights, &poles, p, &responses);
-    let synthesized = lsfd::synthesize(&omega, &poles, p, &fit);
+    let fit = lsfd::fit(&omega, &band.weights, &poles, basis, &responses);
+    let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
     let fit_error = responses
         .iter()
         .zip(&synthesized)
