@@ -24,7 +24,6 @@
 //! same in the common denominator.
 
 use faer::{Mat, c64};
-use rayon::prelude::*;
 
 use super::lstsq;
 
@@ -39,84 +38,62 @@ pub struct Lscf {
     d: Mat<f64>,
 }
 
-/// The powers z_k^j, `[j][k]`, j = 0..=max_order, by repeated multiplication (a relative
-/// error of j eps at most, far below the data's).
-fn powers(omega: &[f64], dt: f64, max_order: usize) -> Vec<Vec<c64>> {
-    let z: Vec<c64> = omega.iter().map(|w| c64::from_polar(1.0, w * dt)).collect();
-    let mut out = vec![vec![c64::new(1.0, 0.0); omega.len()]];
-    for j in 1..=max_order {
-        let next = out[j - 1].iter().zip(&z).map(|(a, b)| a * b).collect();
-        out.push(next);
-    }
-    out
-}
-
-/// C_o and the triangle D_o of one response (see the module docs).
-fn reduce_one(
-    qr: &faer::linalg::solvers::Qr<f64>,
-    zj: &[Vec<c64>],
-    weights: &[f64],
-    h: &[c64],
-) -> (Mat<f64>, Mat<f64>) {
-    let nf = weights.len();
-    let p = zj.len();
-    // Y_o: the complex column j is -w_k H_o(k) z_k^j, real parts on top.
-    let mut y = Mat::<f64>::zeros(2 * nf, p);
-    for (j, z) in zj.iter().enumerate() {
-        for k in 0..nf {
-            let v = -(h[k] * z[k]) * weights[k];
-            y[(k, j)] = v.re;
-            y[(nf + k, j)] = v.im;
+/// The real-stacked basis X (2 nf x (N+1)): rows 0..nf the real parts, nf..2nf the imaginary.
+fn basis(omega: &[f64], weights: &[f64], dt: f64, max_order: usize) -> Mat<f64> {
+    let nf = omega.len();
+    Mat::from_fn(2 * nf, max_order + 1, |row, j| {
+        let k = row % nf;
+        let angle = omega[k] * dt * j as f64;
+        if row < nf {
+            weights[k] * angle.cos()
+        } else {
+            weights[k] * angle.sin()
         }
-    }
-    lstsq::apply_qt(qr, y.as_mut());
-    let c = y.as_ref().subrows(0, p).to_owned();
-    let d = lstsq::triangle(y.as_ref().subrows(p, 2 * nf - p));
-    (c, d)
+    })
 }
 
 impl Lscf {
     /// Reduces the problem. `responses[o][k]` is response o on band line k (angular frequency
-    /// `omega[k]`, weight `weights[k]`), already scaled; `f_hi` the upper band edge (Hz). The
-    /// responses are reduced in parallel (rayon's pool), each independently: the result does
-    /// not depend on the number of threads.
+    /// `omega[k]`, weight `weights[k]`), already scaled; `f_hi` the upper band edge (Hz).
+    /// `step` is called after each response.
     pub fn new(
         omega: &[f64],
         weights: &[f64],
         responses: &[Vec<c64>],
         f_hi: f64,
         max_order: usize,
+        step: &mut dyn FnMut(),
     ) -> Lscf {
         let nf = omega.len();
         let p = max_order + 1;
         let dt = 1.0 / (2.0 * f_hi);
-        let zj = powers(omega, dt, max_order);
-        // X: the complex column j is w_k z_k^j.
-        let mut x = Mat::<f64>::zeros(2 * nf, p);
-        for (j, z) in zj.iter().enumerate() {
-            for k in 0..nf {
-                x[(k, j)] = weights[k] * z[k].re;
-                x[(nf + k, j)] = weights[k] * z[k].im;
-            }
-        }
+        let x = basis(omega, weights, dt, max_order);
         let qr = x.qr();
-        let reduced: Vec<(Mat<f64>, Mat<f64>)> = responses
-            .par_iter()
-            .map(|h| reduce_one(&qr, &zj, weights, h))
-            .collect();
+        let mut c = Vec::with_capacity(responses.len());
         let mut d_stack = Mat::<f64>::zeros(responses.len() * p, p);
-        for (o, (_, d)) in reduced.iter().enumerate() {
+        for (o, h) in responses.iter().enumerate() {
+            // Y_o: the complex column j is -w_k H_o(k) z_k^j.
+            let mut y = Mat::from_fn(2 * nf, p, |row, j| {
+                let k = row % nf;
+                let z = c64::from_polar(1.0, omega[k] * dt * j as f64);
+                let v = -(h[k] * z) * weights[k];
+                if row < nf { v.re } else { v.im }
+            });
+            lstsq::apply_qt(&qr, y.as_mut());
+            c.push(y.as_ref().subrows(0, p).to_owned());
+            let d = lstsq::triangle(y.as_ref().subrows(p, 2 * nf - p));
             for i in 0..d.nrows() {
                 for j in 0..p {
                     d_stack[(o * p + i, j)] = d[(i, j)];
                 }
             }
+            step();
         }
         let d = lstsq::triangle(d_stack.as_ref());
         Lscf {
             max_order,
             dt,
-            c: reduced.into_iter().map(|(c, _)| c).collect(),
+            c,
             d,
         }
     }
@@ -236,7 +213,7 @@ mod tests {
             })
             .collect();
         let weights = vec![1.0; omega.len()];
-        let lscf = Lscf::new(&omega, &weights, &responses, f_hi, 6);
+        let lscf = Lscf::new(&omega, &weights, &responses, f_hi, 6, &mut || {});
         let alpha = lscf.denominator(2);
         for (a, t) in alpha.iter().zip(alpha_true) {
             assert!((a - t).abs() < 1e-10, "{alpha:?} vs {alpha_true:?}");

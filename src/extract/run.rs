@@ -3,7 +3,6 @@
 use std::f64::consts::PI;
 
 use faer::c64;
-use rayon::prelude::*;
 
 use super::lscf::{self, Lscf};
 use super::stabilization::{self, Criteria, OrderPoles};
@@ -86,9 +85,7 @@ fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Crite
 }
 
 /// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
-/// called after the reduction of the LSCF problem, after each block of model orders and at the
-/// end (done = total). The work runs on rayon's current pool; the result does not depend on
-/// its number of threads.
+/// called after each response of the reduction, each model order and at the end.
 pub fn extract(
     frf: &FrfSet,
     settings: &Settings,
@@ -127,15 +124,16 @@ pub fn extract(
         power: frf.quantity.power(),
         terms: settings.residual_terms,
     };
-    // Progress: the reduction, each order, the end.
-    let total = max_order + 2;
-    let lscf = Lscf::new(&omega, &band.weights, &scaled, hi, max_order);
+    let total = responses.len() + max_order + 1;
+    let mut done = 0;
+    let lscf = Lscf::new(&omega, &band.weights, &scaled, hi, max_order, &mut || {
+        done += 1;
+        progress(done, total);
+    });
     drop(scaled);
-    progress(1, total);
 
-    // The orders are independent: in parallel, in blocks so that progress is reported from
-    // this thread.
-    let one_order = |order: usize| {
+    let mut orders = Vec::with_capacity(max_order);
+    for order in 1..=max_order {
         let alpha = lscf.denominator(order);
         let mut poles: Vec<c64> = lscf::poles(&alpha, lscf.dt)
             .into_iter()
@@ -150,24 +148,13 @@ pub fn extract(
         } else {
             lsfd::fit(&omega, &band.weights, &poles, basis, &responses).residues
         };
-        OrderPoles {
+        orders.push(OrderPoles {
             order,
             poles,
             residues,
-        }
-    };
-    let block = 4 * rayon::current_num_threads();
-    let mut orders: Vec<OrderPoles> = Vec::with_capacity(max_order);
-    while orders.len() < max_order {
-        let first = orders.len() + 1;
-        let last = (first + block - 1).min(max_order);
-        orders.extend(
-            (first..=last)
-                .into_par_iter()
-                .map(one_order)
-                .collect::<Vec<_>>(),
-        );
-        progress(1 + orders.len(), total);
+        });
+        done += 1;
+        progress(done, total);
     }
 
     let criteria = Criteria {
