@@ -15,9 +15,10 @@
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
 //! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
-//! with effects and errors, for tests, studies and rehearsals of a test campaign), [`extract`]
-//! (modal parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real
-//! modes and their complexity).
+//! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
+//! (universal files: measured FRFs and geometry in, mode shapes out), [`extract`] (modal
+//! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
+//! their complexity).
 
 pub mod diagnose;
 pub mod extract;
@@ -30,4 +31,6 @@ pub mod output;
 pub mod report;
 pub mod simulate;
 pub mod stats;
+pub mod structure;
 pub mod study;
+pub mod uff;
