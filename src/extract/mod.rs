@@ -18,10 +18,14 @@
 //! 6. [`shapes`]: real normal modes, MPC and MPD from the complex residue vectors; the FRFs of
 //!    the model and a relative fit error per response.
 //!
+//! Around them: [`universal`] gathers the FRFs of universal files and the positions of their
+//! nodes, [`csv`] writes the modes as a measured-modes CSV (both for `jointid extract`).
+//!
 //! Contract of [`Mode`]: frequency_hz is the undamped natural frequency |lambda| / 2 pi, the
 //! damping ratio -Re(lambda) / |lambda|; the residues are receptance residues (displacement per
 //! unit reference, times rad/s) whatever the quantity of the FRFs; modes ascend in frequency.
 
+pub mod csv;
 pub mod frf;
 pub mod lscf;
 pub mod lsfd;
@@ -29,6 +33,7 @@ pub mod lstsq;
 pub mod refine;
 pub mod shapes;
 pub mod stabilization;
+pub mod universal;
 
 mod run;
 
