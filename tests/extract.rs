@@ -63,3 +63,63 @@ fn five_modes_with_modes_outside_the_band_noisy_velocity() {
     let ex = extract(&set, &settings, &|_, _| {}).unwrap();
     assert_modes(&ex, &sys, &[1, 2, 3, 4, 5], &responses, 1e-3, 0.1, 0.999);
 }
+
+#[test]
+fn three_modes_noise_free_displacement() {
+    // Light to heavy damping (0.2% to 3%) and nothing outside the band: noise-free FRFs are
+    // recovered to the rounding of the data.
+    let f = [50.0, 140.0, 300.0];
+    let z = [0.002, 0.01, 0.03];
+    let sys = prescribed(&f, &z, 3);
+    let freqs = lines(0.5, 400.0);
+    let responses: Vec<usize> = (0..3).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let set = frf_set(&h, &freqs, &responses, Quantity::Displacement);
+    let settings = Settings {
+        max_order: 24,
+        ..Settings::default()
+    };
+    let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    assert_modes(&ex, &sys, &[0, 1, 2], &responses, 1e-11, 1e-11, 1.0 - 1e-12);
+}
+
+#[test]
+fn eight_modes_noisy_acceleration() {
+    // Eight modes in the band, 0.2% to 3% damping, 1% noise on accelerances.
+    let f = [55.0, 110.0, 180.0, 250.0, 330.0, 420.0, 510.0, 600.0];
+    let z = [0.002, 0.005, 0.01, 0.03, 0.008, 0.02, 0.004, 0.015];
+    let sys = prescribed(&f, &z, 8);
+    let freqs = lines(0.5, 700.0);
+    let responses: Vec<usize> = (0..8).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Acceleration);
+    add_noise(&mut set, 0.01, 1e-4, 8);
+    let settings = Settings {
+        band_hz: Some((30.0, 650.0)),
+        max_order: 40,
+        ..Settings::default()
+    };
+    let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    assert_modes(&ex, &sys, &[0, 1, 2, 3, 4, 5, 6, 7], &responses, 1e-3, 0.1, 0.999);
+}
+
+#[test]
+fn close_modes_noisy_receptance() {
+    // Modes at 200 and 203 Hz with 0.5% damping (half-power bandwidths 2 Hz: the peaks merge)
+    // beside 120 and 310 Hz; 1% noise.
+    let f = [120.0, 200.0, 203.0, 310.0];
+    let z = [0.01, 0.005, 0.005, 0.02];
+    let sys = prescribed(&f, &z, 4);
+    let freqs = lines(0.25, 400.0);
+    let responses: Vec<usize> = (0..4).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Displacement);
+    add_noise(&mut set, 0.01, 1e-4, 4);
+    let settings = Settings {
+        band_hz: Some((80.0, 380.0)),
+        max_order: 30,
+        ..Settings::default()
+    };
+    let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    assert_modes(&ex, &sys, &[0, 1, 2, 3], &responses, 1e-3, 0.1, 0.999);
+}
