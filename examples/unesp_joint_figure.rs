@@ -4,20 +4,24 @@
 //! ```text
 //! cargo run --release --example unesp_joint_figure -- DIR
 //! ```
-//! reads `DIR/corrections_<level>V.csv` (the identify CSVs, levels 0p05 .. 0p30) and writes
-//! `DIR/k2_vs_level.svg` and `DIR/k2_vs_mode.svg`.
+//! reads `DIR/corrections_<level>V.csv` (the identify CSVs, levels 0p05 .. 0p30) and
+//! `DIR/diagnose_<level>V.json` (the joint calibrated on both modes, `after`), writes
+//! `DIR/k2_vs_level.svg`, `DIR/k2_vs_mode.svg` and `DIR/calibrated.csv` (level, k1, k2 and their
+//! standard errors).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use jointid::output::plot::{LineAxes, Series, lines, svg};
 
+const LEVELS: [&str; 6] = ["0p05", "0p10", "0p15", "0p20", "0p25", "0p30"];
+
 /// (level in V, mode, corrected k2) of every identify CSV in `dir`.
 fn read(dir: &Path) -> Result<Vec<(f64, usize, f64)>, String> {
     let mut rows = Vec::new();
-    for level in ["0p05", "0p10", "0p15", "0p20", "0p25", "0p30"] {
+    for level in LEVELS {
         let path = dir.join(format!("corrections_{level}V.csv"));
-        let volts: f64 = level.replace('p', ".").parse().map_err(|e| format!("{e}"))?;
+        let volts = volts(level)?;
         let mut r = csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let head = r.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
         let col = |name: &str| {
@@ -39,10 +43,46 @@ fn read(dir: &Path) -> Result<Vec<(f64, usize, f64)>, String> {
     Ok(rows)
 }
 
+/// (level in V, [k1, se, k2, se]) of the calibrated joint of every diagnose JSON in `dir`.
+fn calibrated(dir: &Path) -> Result<Vec<(f64, [f64; 4])>, String> {
+    let mut out = Vec::new();
+    for level in LEVELS {
+        let path = dir.join(format!("diagnose_{level}V.json"));
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let json: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let params = json["after"]["parameters"]
+            .as_array()
+            .ok_or(format!("{}: no after.parameters", path.display()))?;
+        let get = |name: &str, field: &str| {
+            params
+                .iter()
+                .find(|p| p["name"] == name)
+                .and_then(|p| p[field].as_f64())
+                .ok_or(format!("{}: no {name}.{field}", path.display()))
+        };
+        out.push((
+            volts(level)?,
+            [get("k1", "value")?, get("k1", "se")?, get("k2", "value")?, get("k2", "se")?],
+        ));
+    }
+    Ok(out)
+}
+
+fn volts(level: &str) -> Result<f64, String> {
+    level.replace('p', ".").parse().map_err(|e| format!("{level}: {e}"))
+}
+
 fn main() -> Result<(), String> {
     let dir = std::env::args().nth(1).ok_or("usage: unesp_joint_figure DIR")?;
     let dir = Path::new(&dir);
     let rows = read(dir)?;
+    let joint = calibrated(dir)?;
+    let mut table = String::from("level_V,k1,k1_se,k2,k2_se\n");
+    for (v, [k1, s1, k2, s2]) in &joint {
+        table.push_str(&format!("{v:.2},{k1},{s1},{k2},{s2}\n"));
+    }
+    std::fs::write(dir.join("calibrated.csv"), table).map_err(|e| format!("calibrated.csv: {e}"))?;
     let mut by_mode: BTreeMap<usize, Vec<(f64, f64)>> = BTreeMap::new();
     let mut by_level: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
     for &(v, m, k) in &rows {
@@ -70,12 +110,18 @@ fn main() -> Result<(), String> {
             })
             .collect()
     };
-    let level_series = series(
+    let mut level_series = series(
         by_mode
             .into_iter()
-            .map(|(m, p)| (format!("mode {m}"), p))
+            .map(|(m, p)| (format!("mode {m} (identify, k2 only)"), p))
             .collect(),
     );
+    level_series.push(Series {
+        name: "both modes (diagnose, k1 and k2)".to_string(),
+        points: joint.iter().map(|(v, k)| (*v, k[2])).collect(),
+        errors: Some(joint.iter().map(|(_, k)| k[3]).collect()),
+        line: true,
+    });
     let mode_series = series(by_level);
     let a = svg((900, 500), |area| {
         lines(

@@ -9,8 +9,10 @@
 # identify` with models/unesp-bert.toml, k2 only (four sensors: with k1 too, the per-mode
 # system is ill-conditioned and k1 runs to -7e8 N/m on mode 1), n = 4 (the four sensors),
 # m = 2 -> corrections_<level>V.csv; `jointid diagnose` -> diagnose_<level>V.txt/.json (the
-# model as given, the joint calibrated, after). Then the figures k2_vs_level.svg and
-# k2_vs_mode.svg (examples/unesp_joint_figure.rs) and summary.csv.
+# model as given, the joint calibrated, after). Then summary.csv (per level and mode: frequency,
+# damping, MPC, k2 identified on that mode), calibrated.csv (per level: k1, k2 calibrated on
+# both modes, with standard errors) and the figures k2_vs_level.svg and k2_vs_mode.svg
+# (examples/unesp_joint_figure.rs).
 #
 # usage: bash scripts/unesp-bert.sh
 set -euo pipefail
@@ -47,3 +49,4 @@ done
 mv "$OUT/summary.tmp" "$OUT/summary.csv"
 "$ROOT/target/release/examples/unesp_joint_figure" "$OUT"
 column -s, -t "$OUT/summary.csv"
+column -s, -t "$OUT/calibrated.csv"
