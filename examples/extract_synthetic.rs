@@ -77,7 +77,9 @@ fn parse(text: &str) -> Result<FrfSet, String> {
 
 fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let path = args.first().ok_or("usage: extract_synthetic FRFS.txt [options]")?;
+    let path = args
+        .first()
+        .ok_or("usage: extract_synthetic FRFS.txt [options]")?;
     let mut settings = Settings::default();
     let mut svg_path = None;
     let mut i = 1;
@@ -93,11 +95,14 @@ fn main() -> Result<(), String> {
                 i += 3;
             }
             "--max-order" => {
-                settings.max_order = value(i + 1)?.parse().map_err(|e| format!("--max-order: {e}"))?;
+                settings.max_order = value(i + 1)?
+                    .parse()
+                    .map_err(|e| format!("--max-order: {e}"))?;
                 i += 2;
             }
             "--modes" => {
-                settings.n_modes = Some(value(i + 1)?.parse().map_err(|e| format!("--modes: {e}"))?);
+                settings.n_modes =
+                    Some(value(i + 1)?.parse().map_err(|e| format!("--modes: {e}"))?);
                 i += 2;
             }
             "--no-refine" => {

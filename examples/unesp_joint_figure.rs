@@ -22,8 +22,12 @@ fn read(dir: &Path) -> Result<Vec<(f64, usize, f64)>, String> {
     for level in LEVELS {
         let path = dir.join(format!("corrections_{level}V.csv"));
         let volts = volts(level)?;
-        let mut r = csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let head = r.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
+        let mut r =
+            csv::Reader::from_path(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let head = r
+            .headers()
+            .map_err(|e| format!("{}: {e}", path.display()))?
+            .clone();
         let col = |name: &str| {
             head.iter()
                 .position(|h| h == name)
@@ -35,8 +39,12 @@ fn read(dir: &Path) -> Result<Vec<(f64, usize, f64)>, String> {
             if &rec[param] != "k2" {
                 continue;
             }
-            let m: usize = rec[mode].parse().map_err(|e| format!("{}: {e}", path.display()))?;
-            let k: f64 = rec[corrected].parse().map_err(|e| format!("{}: {e}", path.display()))?;
+            let m: usize = rec[mode]
+                .parse()
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            let k: f64 = rec[corrected]
+                .parse()
+                .map_err(|e| format!("{}: {e}", path.display()))?;
             rows.push((volts, m, k));
         }
     }
@@ -48,7 +56,8 @@ fn calibrated(dir: &Path) -> Result<Vec<(f64, [f64; 4])>, String> {
     let mut out = Vec::new();
     for level in LEVELS {
         let path = dir.join(format!("diagnose_{level}V.json"));
-        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let json: serde_json::Value =
             serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         let params = json["after"]["parameters"]
@@ -63,18 +72,28 @@ fn calibrated(dir: &Path) -> Result<Vec<(f64, [f64; 4])>, String> {
         };
         out.push((
             volts(level)?,
-            [get("k1", "value")?, get("k1", "se")?, get("k2", "value")?, get("k2", "se")?],
+            [
+                get("k1", "value")?,
+                get("k1", "se")?,
+                get("k2", "value")?,
+                get("k2", "se")?,
+            ],
         ));
     }
     Ok(out)
 }
 
 fn volts(level: &str) -> Result<f64, String> {
-    level.replace('p', ".").parse().map_err(|e| format!("{level}: {e}"))
+    level
+        .replace('p', ".")
+        .parse()
+        .map_err(|e| format!("{level}: {e}"))
 }
 
 fn main() -> Result<(), String> {
-    let dir = std::env::args().nth(1).ok_or("usage: unesp_joint_figure DIR")?;
+    let dir = std::env::args()
+        .nth(1)
+        .ok_or("usage: unesp_joint_figure DIR")?;
     let dir = Path::new(&dir);
     let rows = read(dir)?;
     let joint = calibrated(dir)?;
@@ -82,7 +101,8 @@ fn main() -> Result<(), String> {
     for (v, [k1, s1, k2, s2]) in &joint {
         table.push_str(&format!("{v:.2},{k1},{s1},{k2},{s2}\n"));
     }
-    std::fs::write(dir.join("calibrated.csv"), table).map_err(|e| format!("calibrated.csv: {e}"))?;
+    std::fs::write(dir.join("calibrated.csv"), table)
+        .map_err(|e| format!("calibrated.csv: {e}"))?;
     let mut by_mode: BTreeMap<usize, Vec<(f64, f64)>> = BTreeMap::new();
     let mut by_level: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
     for &(v, m, k) in &rows {

@@ -23,7 +23,8 @@ struct Scratch(PathBuf);
 
 impl Scratch {
     fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("jointid-extract-{name}-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("jointid-extract-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         Scratch(dir)
@@ -168,7 +169,12 @@ fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
     let (files, geometry) = write_case(&dir, false, &[1, 2, 3, 100]);
     let out = dir.path("modes.csv");
     let chart = dir.path("chart.svg");
-    let output = run(&files, &geometry, &out, &["--chart", chart.to_str().unwrap()]);
+    let output = run(
+        &files,
+        &geometry,
+        &out,
+        &["--chart", chart.to_str().unwrap()],
+    );
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");
     assert!(stderr.contains("3 modes"), "{stderr}");
@@ -189,7 +195,11 @@ fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
         .iter()
         .zip(TRUE_HZ.iter().zip([0.01, 0.005, 0.02]))
     {
-        assert!((m.frequency_hz - f).abs() < 1e-3 * f, "{} vs {f}", m.frequency_hz);
+        assert!(
+            (m.frequency_hz - f).abs() < 1e-3 * f,
+            "{} vs {f}",
+            m.frequency_hz
+        );
         let zeta = m.damping_ratio.unwrap();
         assert!((zeta - z).abs() < 0.1 * z, "{zeta} vs {z}");
         assert!(m.mpc.unwrap() > 0.999);
@@ -241,5 +251,9 @@ fn mixed_units_are_refused() {
     assert_eq!(files.len(), 3);
     let out = dir.path("modes.csv");
     let output = run(&files, &geometry, &out, &[]);
-    assert_refused(&output, &out, &["frf3.uff", "record 1", "g/N", "m/s^2/N", "mixed units"]);
+    assert_refused(
+        &output,
+        &out,
+        &["frf3.uff", "record 1", "g/N", "m/s^2/N", "mixed units"],
+    );
 }

@@ -26,7 +26,12 @@ fn assert_modes(
     let table: Vec<String> = ex
         .modes
         .iter()
-        .map(|m| format!("{:.4} Hz {:.5} mpc {:.4}", m.frequency_hz, m.damping_ratio, m.mpc))
+        .map(|m| {
+            format!(
+                "{:.4} Hz {:.5} mpc {:.4}",
+                m.frequency_hz, m.damping_ratio, m.mpc
+            )
+        })
         .collect();
     assert_eq!(ex.modes.len(), modes.len(), "found {table:#?}");
     for (m, &r) in ex.modes.iter().zip(modes) {
@@ -39,8 +44,16 @@ fn assert_modes(
             "mode {r}: f {:.5} ({ef:+.2e})  zeta {:.5} ({ez:+.2e})  MAC {mac:.6}  stable {:?}",
             m.frequency_hz, m.damping_ratio, m.stable_orders
         );
-        assert!(ef.abs() < f_tol, "mode {r}: frequency {} vs {f}", m.frequency_hz);
-        assert!(ez.abs() < z_tol, "mode {r}: damping {} vs {z}", m.damping_ratio);
+        assert!(
+            ef.abs() < f_tol,
+            "mode {r}: frequency {} vs {f}",
+            m.frequency_hz
+        );
+        assert!(
+            ez.abs() < z_tol,
+            "mode {r}: damping {} vs {z}",
+            m.damping_ratio
+        );
         assert!(mac >= mac_min, "mode {r}: MAC {mac}");
     }
 }
@@ -100,7 +113,15 @@ fn eight_modes_noisy_acceleration() {
         ..Settings::default()
     };
     let ex = extract(&set, &settings, &|_, _| {}).unwrap();
-    assert_modes(&ex, &sys, &[0, 1, 2, 3, 4, 5, 6, 7], &responses, 1e-3, 0.1, 0.999);
+    assert_modes(
+        &ex,
+        &sys,
+        &[0, 1, 2, 3, 4, 5, 6, 7],
+        &responses,
+        1e-3,
+        0.1,
+        0.999,
+    );
 }
 
 #[test]

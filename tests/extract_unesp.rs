@@ -86,7 +86,11 @@ fn unesp_bert_frequencies_shapes_and_softening() {
     for (level, (ex, _)) in LEVELS.iter().zip(&all).skip(1) {
         for (r, (a, b)) in all[0].0.modes.iter().zip(&ex.modes).enumerate() {
             let mac = mac_real(&a.real_shape, &b.real_shape);
-            assert!(mac >= 0.98, "mode {}: MAC {mac} between 0.05 V and {level} V", r + 1);
+            assert!(
+                mac >= 0.98,
+                "mode {}: MAC {mac} between 0.05 V and {level} V",
+                r + 1
+            );
         }
     }
     // The first frequency falls with level: each level no higher than the one before by more

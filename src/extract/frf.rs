@@ -102,7 +102,10 @@ impl FrfSet {
                     expected: n,
                 });
             }
-            if let Some(index) = h.iter().position(|v| !v.re.is_finite() || !v.im.is_finite()) {
+            if let Some(index) = h
+                .iter()
+                .position(|v| !v.re.is_finite() || !v.im.is_finite())
+            {
                 return Err(ExtractError::NonFinite {
                     response,
                     index,

@@ -205,7 +205,8 @@ pub fn synthesize(omega: &[f64], poles: &[c64], basis: Basis, fit: &Fit) -> Vec<
         for (o, series) in out.iter_mut().enumerate() {
             let mut h = c64::new(0.0, 0.0);
             for t in 0..basis.terms {
-                h += cols[2 * k + t] * fit.lower[o][t] + cols[2 * k + basis.terms + t] * fit.upper[o][t];
+                h += cols[2 * k + t] * fit.lower[o][t]
+                    + cols[2 * k + basis.terms + t] * fit.upper[o][t];
             }
             for (r, res) in fit.residues.iter().enumerate() {
                 h += cols[2 * r] * res[o].re + cols[2 * r + 1] * res[o].im;
@@ -262,9 +263,33 @@ mod tests {
         let close = |a: c64, b: c64| (a - b).norm() <= 1e-15 * b.norm();
         let mut c = Vec::new();
         let cases = [
-            (0, [c64::new(-1.0 / 49.0, 0.0), c64::new(w.powi(-4), 0.0), c64::new(1.0, 0.0), c64::new(-49.0, 0.0)]),
-            (1, [c64::new(0.0, -1.0 / 7.0), c64::new(0.0, w.powi(-3)), c64::new(0.0, 7.0), c64::new(0.0, -343.0)]),
-            (2, [c64::new(1.0, 0.0), c64::new(-1.0 / 49.0, 0.0), c64::new(-49.0, 0.0), c64::new(2401.0, 0.0)]),
+            (
+                0,
+                [
+                    c64::new(-1.0 / 49.0, 0.0),
+                    c64::new(w.powi(-4), 0.0),
+                    c64::new(1.0, 0.0),
+                    c64::new(-49.0, 0.0),
+                ],
+            ),
+            (
+                1,
+                [
+                    c64::new(0.0, -1.0 / 7.0),
+                    c64::new(0.0, w.powi(-3)),
+                    c64::new(0.0, 7.0),
+                    c64::new(0.0, -343.0),
+                ],
+            ),
+            (
+                2,
+                [
+                    c64::new(1.0, 0.0),
+                    c64::new(-1.0 / 49.0, 0.0),
+                    c64::new(-49.0, 0.0),
+                    c64::new(2401.0, 0.0),
+                ],
+            ),
         ];
         for (p, expected) in cases {
             columns(w, &[], Basis { power: p, terms: 2 }, &mut c);

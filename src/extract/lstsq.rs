@@ -16,11 +16,12 @@ pub const RCOND: f64 = 1e-12;
 pub fn apply_qt(qr: &Qr<f64>, b: MatMut<'_, f64>) {
     let rows = b.nrows();
     let cols = b.ncols();
-    let mut buffer = MemBuffer::new(
-        householder::apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<
-            f64,
-        >(rows, qr.Q_coeff().nrows(), cols),
-    );
+    let mut buffer =
+        MemBuffer::new(
+            householder::apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<
+                f64,
+            >(rows, qr.Q_coeff().nrows(), cols),
+        );
     householder::apply_block_householder_sequence_transpose_on_the_left_in_place_with_conj(
         qr.Q_basis(),
         qr.Q_coeff(),
@@ -56,7 +57,11 @@ pub fn apply_q(qr: &Qr<f64>, b: MatMut<'_, f64>) {
 pub fn triangle(a: MatRef<'_, f64>) -> Mat<f64> {
     let qr = a.qr();
     let r = qr.thin_R();
-    Mat::from_fn(r.nrows(), r.ncols(), |i, j| if i <= j { r[(i, j)] } else { 0.0 })
+    Mat::from_fn(
+        r.nrows(),
+        r.ncols(),
+        |i, j| if i <= j { r[(i, j)] } else { 0.0 },
+    )
 }
 
 /// Solves the square upper-triangular system R x = b (several right-hand sides) in the sense of
@@ -144,15 +149,21 @@ mod tests {
     fn recovers_an_exact_solution_whatever_the_column_units() {
         // Well-conditioned columns of very different units: the column scaling keeps every
         // component of x accurate.
-        let a = Mat::from_fn(6, 3, |i, j| ((i + 1) as f64 * (j + 1) as f64).sin() * 1e3_f64.powi(j as i32));
+        let a = Mat::from_fn(6, 3, |i, j| {
+            ((i + 1) as f64 * (j + 1) as f64).sin() * 1e3_f64.powi(j as i32)
+        });
         let x_true = [0.5, -2e-3, 3e-6]; // every column contributes alike to b
         let b = Mat::from_fn(6, 1, |i, _| {
             (0..3).map(|j| a[(i, j)] * x_true[j]).sum::<f64>()
         });
         let ls = solve(a.as_ref(), b.as_ref());
         assert_eq!(ls.rank, 3);
-        for j in 0..3 {
-            assert!((ls.x[(j, 0)] - x_true[j]).abs() < 1e-13 * x_true[j].abs(), "{j}: {}", ls.x[(j, 0)]);
+        for (j, t) in x_true.iter().enumerate() {
+            assert!(
+                (ls.x[(j, 0)] - t).abs() < 1e-13 * t.abs(),
+                "{j}: {}",
+                ls.x[(j, 0)]
+            );
         }
     }
 

@@ -185,14 +185,18 @@ pub enum ExtractError {
         tolerance: f64,
     },
     /// A response has another length than the frequency axis.
-    #[error("response {response} has {len} values for {expected} frequency lines; one per line is needed")]
+    #[error(
+        "response {response} has {len} values for {expected} frequency lines; one per line is needed"
+    )]
     LengthMismatch {
         response: usize,
         len: usize,
         expected: usize,
     },
     /// A value is NaN or infinite.
-    #[error("response {response} at line {index} ({frequency_hz} Hz) is {re} + {im}i; FRF values must be finite")]
+    #[error(
+        "response {response} at line {index} ({frequency_hz} Hz) is {re} + {im}i; FRF values must be finite"
+    )]
     NonFinite {
         response: usize,
         index: usize,
@@ -214,7 +218,9 @@ pub enum ExtractError {
         expected: usize,
     },
     /// A coherence value outside [0, 1].
-    #[error("coherence of response {response} at line {index} ({frequency_hz} Hz) is {value}; it must be in [0, 1]")]
+    #[error(
+        "coherence of response {response} at line {index} ({frequency_hz} Hz) is {value}; it must be in [0, 1]"
+    )]
     CoherenceRange {
         response: usize,
         index: usize,
@@ -228,7 +234,9 @@ pub enum ExtractError {
     )]
     NoCoherentBand { threshold: f64, best: f64 },
     /// The band asked for is empty or outside the data.
-    #[error("band {lo}..{hi} Hz is invalid: it needs {data_lo} <= lo < hi <= {data_hi} Hz (the FRF's lines)")]
+    #[error(
+        "band {lo}..{hi} Hz is invalid: it needs {data_lo} <= lo < hi <= {data_hi} Hz (the FRF's lines)"
+    )]
     BadBand {
         lo: f64,
         hi: f64,
@@ -236,7 +244,9 @@ pub enum ExtractError {
         data_hi: f64,
     },
     /// Too few lines for the model order.
-    #[error("the band holds {lines} frequency lines above 0 Hz; model order {max_order} needs at least {needed}")]
+    #[error(
+        "the band holds {lines} frequency lines above 0 Hz; model order {max_order} needs at least {needed}"
+    )]
     TooFewLines {
         lines: usize,
         needed: usize,

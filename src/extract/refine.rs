@@ -125,7 +125,10 @@ fn step(triangle: &Mat<f64>, mu: f64) -> Vec<f64> {
         g[(i, 0)] = triangle[(i, n)];
     }
     for j in 0..n {
-        let norm = (0..rows).map(|i| triangle[(i, j)].powi(2)).sum::<f64>().sqrt();
+        let norm = (0..rows)
+            .map(|i| triangle[(i, j)].powi(2))
+            .sum::<f64>()
+            .sqrt();
         a[(rows + j, j)] = mu.sqrt() * norm;
     }
     let ls = lstsq::solve(a.as_ref(), g.as_ref());
@@ -218,7 +221,11 @@ mod tests {
         let lin = linearise(&omega, &weights, &at, basis, &data);
         for j in 0..4 {
             let h = 1e-5 * at[j / 2].norm();
-            let dir = if j % 2 == 0 { c64::new(h, 0.0) } else { c64::new(0.0, h) };
+            let dir = if j % 2 == 0 {
+                c64::new(h, 0.0)
+            } else {
+                c64::new(0.0, h)
+            };
             let (mut plus, mut minus) = (at, at);
             plus[j / 2] += dir;
             minus[j / 2] -= dir;
@@ -247,7 +254,13 @@ mod tests {
         for p in 0..3 {
             let data = model(&omega, &truth, &residues, p);
             let start = [c64::new(-6.6, 804.0), c64::new(-22.5, 2090.0)];
-            let refined = refine(&omega, &weights, &start, Basis { power: p, terms: 2 }, &data);
+            let refined = refine(
+                &omega,
+                &weights,
+                &start,
+                Basis { power: p, terms: 2 },
+                &data,
+            );
             for (r, t) in refined.poles.iter().zip(truth) {
                 assert!((r - t).norm() < 1e-9 * t.norm(), "p {p}: {r} vs {t}");
             }

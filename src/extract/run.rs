@@ -51,10 +51,18 @@ fn check(settings: &Settings) -> Result<(), ExtractError> {
         return Err(invalid("max_damping", settings.max_damping, "in (0, 1]"));
     }
     if settings.residual_terms > 2 {
-        return Err(invalid("residual_terms", settings.residual_terms, "0, 1 or 2"));
+        return Err(invalid(
+            "residual_terms",
+            settings.residual_terms,
+            "0, 1 or 2",
+        ));
     }
     if !(0.0..=1.0).contains(&settings.coherence_min) {
-        return Err(invalid("coherence_min", settings.coherence_min, "in [0, 1]"));
+        return Err(invalid(
+            "coherence_min",
+            settings.coherence_min,
+            "in [0, 1]",
+        ));
     }
     Ok(())
 }

@@ -73,10 +73,10 @@ pub fn unit_peak(v: &mut [f64]) {
 
 /// The complex shape scaled so that its component of largest magnitude is 1 + 0i.
 pub fn complex_unit_peak(v: &[c64]) -> Vec<c64> {
-    let peak = v
-        .iter()
-        .copied()
-        .fold(c64::new(0.0, 0.0), |a, x| if x.norm() > a.norm() { x } else { a });
+    let peak = v.iter().copied().fold(
+        c64::new(0.0, 0.0),
+        |a, x| if x.norm() > a.norm() { x } else { a },
+    );
     if peak.norm() > 0.0 {
         v.iter().map(|x| x / peak).collect()
     } else {
@@ -164,7 +164,11 @@ mod tests {
         let v = [c64::new(1.0, 0.0), c64::from_polar(1.0, phi)];
         let m = real_mode(&v);
         assert!((m.mpc - phi.cos().powi(2)).abs() < 1e-14, "{}", m.mpc);
-        assert!((m.mpd_deg - (phi / 2.0).to_degrees()).abs() < 1e-12, "{}", m.mpd_deg);
+        assert!(
+            (m.mpd_deg - (phi / 2.0).to_degrees()).abs() < 1e-12,
+            "{}",
+            m.mpd_deg
+        );
         assert!((m.angle - phi / 2.0).abs() < 1e-14);
     }
 

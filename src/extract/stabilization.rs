@@ -269,7 +269,11 @@ pub fn choose(
         kept.truncate(n);
     }
     let mut chosen: Vec<Chosen> = kept.into_iter().map(|(c, _)| c).collect();
-    chosen.sort_by(|a, b| chart[a.pole].frequency_hz.total_cmp(&chart[b.pole].frequency_hz));
+    chosen.sort_by(|a, b| {
+        chart[a.pole]
+            .frequency_hz
+            .total_cmp(&chart[b.pole].frequency_hz)
+    });
     for c in &chosen {
         chart[c.pole].selected = true;
     }

@@ -160,7 +160,8 @@ pub enum UffInputError {
 }
 
 fn axis_of(f: &Function) -> Option<(f64, f64, usize)> {
-    f.even_abscissa(AXIS_TOLERANCE).map(|(a, b)| (a, b, f.len()))
+    f.even_abscissa(AXIS_TOLERANCE)
+        .map(|(a, b)| (a, b, f.len()))
 }
 
 fn same_axis(a: (f64, f64, usize), b: (f64, f64, usize)) -> bool {

@@ -82,7 +82,8 @@ pub fn draw(
         .chain(&model)
         .copied()
         .filter(|v| *v > 0.0 && v.is_finite());
-    let (mut lo, mut hi) = positive.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+    let (mut lo, mut hi) =
+        positive.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
     if !lo.is_finite() || hi <= 0.0 {
         (lo, hi) = (1e-12, 1.0);
     }
@@ -109,7 +110,10 @@ pub fn draw(
         .map_err(err)?;
     chart
         .configure_secondary_axes()
-        .y_desc(format!("sum over responses of |H| ({})", unit(frf.quantity)))
+        .y_desc(format!(
+            "sum over responses of |H| ({})",
+            unit(frf.quantity)
+        ))
         .y_label_formatter(&|v| tick(*v))
         .axis_desc_style((FONT, 14))
         .draw()
@@ -123,7 +127,10 @@ pub fn draw(
             .collect()
     };
     chart
-        .draw_secondary_series(LineSeries::new(points(&measured), BLACK.mix(0.55).stroke_width(1)))
+        .draw_secondary_series(LineSeries::new(
+            points(&measured),
+            BLACK.mix(0.55).stroke_width(1),
+        ))
         .map_err(err)?;
     chart
         .draw_secondary_series(DashedLineSeries::new(
@@ -164,12 +171,13 @@ pub fn draw(
         .map_err(err)?;
     }
     chart
-        .draw_series(
-            ex.chart
-                .iter()
-                .filter(|p| p.selected)
-                .map(|p| Circle::new((p.frequency_hz, p.order as f64), 7, PALETTE[1].stroke_width(2))),
-        )
+        .draw_series(ex.chart.iter().filter(|p| p.selected).map(|p| {
+            Circle::new(
+                (p.frequency_hz, p.order as f64),
+                7,
+                PALETTE[1].stroke_width(2),
+            )
+        }))
         .map_err(err)?;
     legend(&legend_area, frf, ex)
 }
@@ -202,21 +210,33 @@ fn legend(
     area.draw(&text(format!("chosen pole ({} modes)", ex.modes.len()), y))
         .map_err(err)?;
     y += 20;
-    area.draw(&PathElement::new(vec![(6, y), (26, y)], BLACK.mix(0.55).stroke_width(1)))
-        .map_err(err)?;
+    area.draw(&PathElement::new(
+        vec![(6, y), (26, y)],
+        BLACK.mix(0.55).stroke_width(1),
+    ))
+    .map_err(err)?;
     area.draw(&text("measured, sum of |H| (right axis)".into(), y))
         .map_err(err)?;
     y += 20;
-    area.draw(&PathElement::new(vec![(6, y), (26, y)], PALETTE[1].stroke_width(1)))
-        .map_err(err)?;
+    area.draw(&PathElement::new(
+        vec![(6, y), (26, y)],
+        PALETTE[1].stroke_width(1),
+    ))
+    .map_err(err)?;
     area.draw(&text("identified model, sum of |H|".into(), y))
         .map_err(err)?;
     y += 30;
     let c = &ex.criteria;
     for line in [
         format!("{} responses, {}", frf.responses.len(), frf.quantity.name()),
-        format!("stable: df/f < {}, dzeta/zeta < {},", c.frequency_tolerance, c.damping_tolerance),
-        format!("MAC > {}; chosen: >= {} stable orders", c.mac_min, c.min_stable),
+        format!(
+            "stable: df/f < {}, dzeta/zeta < {},",
+            c.frequency_tolerance, c.damping_tolerance
+        ),
+        format!(
+            "MAC > {}; chosen: >= {} stable orders",
+            c.mac_min, c.min_stable
+        ),
     ] {
         area.draw(&Text::new(line, (6, y), (FONT, 12).into_font()))
             .map_err(err)?;

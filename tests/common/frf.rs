@@ -142,7 +142,9 @@ pub fn state_space_modes(sys: &System) -> (Vec<c64>, Vec<Vec<c64>>) {
 pub fn receptance(sys: &System, reference: usize, frequencies_hz: &[f64]) -> Vec<Vec<c64>> {
     let n = sys.k.nrows();
     let mut out = vec![Vec::with_capacity(frequencies_hz.len()); n];
-    let rhs = Mat::from_fn(n, 1, |i, _| c64::new(f64::from(u8::from(i == reference)), 0.0));
+    let rhs = Mat::from_fn(n, 1, |i, _| {
+        c64::new(f64::from(u8::from(i == reference)), 0.0)
+    });
     for &f in frequencies_hz {
         let w = 2.0 * PI * f;
         let z = Mat::from_fn(n, n, |i, j| {
