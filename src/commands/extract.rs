@@ -12,6 +12,9 @@ use jointid::output::stabilization::stabilization_svg;
 use jointid::output::write_atomically;
 use jointid::uff::{Record, read_path};
 
+/// Below this MPC a mode is named on stderr as complex.
+const MPC_WARN: f64 = 0.9;
+
 pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     let say = |text: String| {
         if !args.quiet {
@@ -97,6 +100,16 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             m.stable_orders.0,
             m.stable_orders.1
         ));
+    }
+    for (r, m) in ex.modes.iter().enumerate() {
+        if m.mpc < MPC_WARN {
+            say(format!(
+                "  note: mode {} has MPC {:.2} < {MPC_WARN}: a complex mode (noise, a mode out of \
+                 the bending plane or a spurious pole); --band or --modes can leave it out",
+                r + 1,
+                m.mpc
+            ));
+        }
     }
     let chart = match &args.chart {
         Some(_) => {

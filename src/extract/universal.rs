@@ -164,9 +164,10 @@ fn axis_of(f: &Function) -> Option<(f64, f64, usize)> {
         .map(|(a, b)| (a, b, f.len()))
 }
 
+/// Same number of points, start within 1e-6 of a step, step within 1e-6 relative.
 fn same_axis(a: (f64, f64, usize), b: (f64, f64, usize)) -> bool {
-    let tol = 1e-9 * a.1.abs().max(1e-300);
-    a.2 == b.2 && (a.0 - b.0).abs() <= tol.max(1e-6 * a.1) && (a.1 - b.1).abs() <= 1e-6 * a.1
+    let step = a.1.abs();
+    a.2 == b.2 && (a.0 - b.0).abs() <= 1e-6 * step && (a.1 - b.1).abs() <= 1e-6 * step
 }
 
 /// The quantity of an FRF's ordinate (see the module docs).
@@ -395,4 +396,203 @@ pub fn positions(
                 })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use faer::c64;
+
+    use super::*;
+    use crate::uff::{Abscissa, Axis, Dof, Encoding, Precision, Values};
+
+    fn axis(data_type: i32, units: &str) -> Axis {
+        Axis {
+            data_type,
+            length_exponent: 0,
+            force_exponent: 0,
+            temperature_exponent: 0,
+            label: "NONE".into(),
+            units: units.into(),
+        }
+    }
+
+    /// A 4-point function of `kind` at response (node, direction) to node 100 direction 2.
+    fn function(
+        kind: FunctionType,
+        node: u64,
+        direction: i32,
+        data_type: i32,
+        units: &str,
+    ) -> Record {
+        Record::Function(Function {
+            id_lines: Default::default(),
+            function_type: kind,
+            function_id: 1,
+            version: 1,
+            load_case: 0,
+            response: Dof {
+                entity: "NONE".into(),
+                node,
+                direction,
+            },
+            reference: Dof {
+                entity: "NONE".into(),
+                node: 100,
+                direction: 2,
+            },
+            precision: Precision::Double,
+            abscissa: Abscissa::Even {
+                start: 0.0,
+                step: 0.5,
+            },
+            z_value: 0.0,
+            abscissa_axis: axis(18, "Hz"),
+            ordinate_axis: axis(data_type, units),
+            denominator_axis: axis(13, "N"),
+            z_axis: axis(0, "NONE"),
+            ordinate: if kind == FunctionType::Coherence {
+                Values::Real(vec![0.9; 4])
+            } else {
+                Values::Complex((0..4).map(|k| c64::new(k as f64, 1.0)).collect())
+            },
+            encoding: Encoding::Ascii,
+        })
+    }
+
+    fn file(records: Vec<Record>) -> Vec<(PathBuf, Vec<Record>)> {
+        vec![(PathBuf::from("f.uff"), records)]
+    }
+
+    #[test]
+    fn frfs_signs_quantity_and_coherence() {
+        let records = vec![
+            function(FunctionType::Frf, 1, 2, 0, "m/s^2/N"),
+            function(FunctionType::Frf, 2, -2, 0, "m/s^2/N"),
+            function(FunctionType::Coherence, 1, 2, 0, "NONE"),
+            function(FunctionType::Coherence, 2, -2, 0, "NONE"),
+        ];
+        let u = frfs(&file(records), None).unwrap();
+        assert_eq!(u.set.quantity, Quantity::Acceleration);
+        assert_eq!(u.set.frequencies_hz, vec![0.0, 0.5, 1.0, 1.5]);
+        assert_eq!(u.set.responses[0][3], c64::new(3.0, 1.0));
+        assert_eq!(u.set.responses[1][3], c64::new(-3.0, -1.0));
+        assert_eq!(u.set.coherence, Some(vec![vec![0.9; 4]; 2]));
+        assert_eq!(u.reference, (100, 2));
+        // Data type 11 wins over the units label; a given quantity over both.
+        let v = frfs(
+            &file(vec![function(FunctionType::Frf, 1, 3, 11, "x")]),
+            None,
+        )
+        .unwrap();
+        assert_eq!(v.set.quantity, Quantity::Velocity);
+        assert_eq!(v.set.coherence, None);
+        let d = frfs(
+            &file(vec![function(FunctionType::Frf, 1, 3, 11, "x")]),
+            Some(Quantity::Displacement),
+        )
+        .unwrap();
+        assert_eq!(d.set.quantity, Quantity::Displacement);
+    }
+
+    #[test]
+    fn refusals_name_the_record() {
+        let err = |records| frfs(&file(records), None).unwrap_err();
+        assert!(matches!(
+            err(vec![function(FunctionType::Coherence, 1, 2, 0, "NONE")]),
+            UffInputError::NoFrf { .. }
+        ));
+        assert!(matches!(
+            err(vec![function(FunctionType::Frf, 1, 2, 0, "V/N")]),
+            UffInputError::UnknownQuantity { record: 1, .. }
+        ));
+        assert!(matches!(
+            err(vec![
+                function(FunctionType::Frf, 1, 2, 12, "m/s^2/N"),
+                function(FunctionType::Frf, 2, 2, 12, "g/N"),
+            ]),
+            UffInputError::MixedUnits { record: 2, .. }
+        ));
+        assert!(matches!(
+            err(vec![
+                function(FunctionType::Frf, 1, 2, 12, "m/s^2/N"),
+                function(FunctionType::Frf, 1, -2, 12, "m/s^2/N"),
+            ]),
+            UffInputError::DuplicateResponse {
+                record: 2,
+                first_record: 1,
+                ..
+            }
+        ));
+        assert!(matches!(
+            err(vec![function(FunctionType::Frf, 1, 1, 12, "m/s^2/N")]),
+            UffInputError::NotBending { direction: 1, .. }
+        ));
+        let mut other = function(FunctionType::Frf, 2, 2, 12, "m/s^2/N");
+        if let Record::Function(f) = &mut other {
+            f.reference.node = 7;
+        }
+        assert!(matches!(
+            err(vec![
+                function(FunctionType::Frf, 1, 2, 12, "m/s^2/N"),
+                other
+            ]),
+            UffInputError::MixedReference {
+                record: 2,
+                node: 7,
+                ..
+            }
+        ));
+        let mut other = function(FunctionType::Frf, 2, 2, 12, "m/s^2/N");
+        if let Record::Function(f) = &mut other {
+            f.abscissa = Abscissa::Even {
+                start: 0.0,
+                step: 0.25,
+            };
+        }
+        assert!(matches!(
+            err(vec![
+                function(FunctionType::Frf, 1, 2, 12, "m/s^2/N"),
+                other
+            ]),
+            UffInputError::MixedAxis { record: 2, .. }
+        ));
+    }
+
+    #[test]
+    fn positions_from_the_geometry() {
+        let u = frfs(
+            &file(vec![
+                function(FunctionType::Frf, 4, 2, 12, "m/s^2/N"),
+                function(FunctionType::Frf, 1, 2, 12, "m/s^2/N"),
+            ]),
+            None,
+        )
+        .unwrap();
+        let node = |label, x| crate::uff::Node {
+            label,
+            definition_cs: 0,
+            displacement_cs: 0,
+            color: 0,
+            coordinates: [x, 0.0, 0.0],
+        };
+        let nodes = vec![Nodes {
+            format: crate::uff::NodeFormat::Single15,
+            nodes: vec![node(1, 0.5), node(4, 0.028)],
+        }];
+        let g = Path::new("g.uff");
+        assert_eq!(positions(&u.channels, &nodes, g).unwrap(), vec![0.028, 0.5]);
+        let missing = vec![Nodes {
+            format: crate::uff::NodeFormat::Single15,
+            nodes: vec![node(1, 0.5)],
+        }];
+        let e = positions(&u.channels, &missing, g).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "g.uff: response node 4 (record 1 of f.uff) is not in the geometry; its nodes: 1"
+        );
+        assert!(matches!(
+            positions(&u.channels, &[], g),
+            Err(UffInputError::NoGeometry { .. })
+        ));
+    }
 }
