@@ -105,7 +105,8 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         if m.mpc < MPC_WARN {
             say(format!(
                 "  note: mode {} has MPC {:.2} < {MPC_WARN}: a complex mode (noise, a mode out of \
-                 the bending plane or a spurious pole); --band or --modes can leave it out",
+                 the bending plane, a spurious pole, or a band wider than the well-excited \
+                 one); see the chart, narrow --band or fix --modes",
                 r + 1,
                 m.mpc
             ));
