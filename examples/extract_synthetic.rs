@@ -1,5 +1,6 @@
 //! Runs `jointid::extract` on FRFs in a plain text file and prints the modes as JSON (the Rust
-//! side of `bench/extract_vs_sdypy.py`, until `jointid extract` reads UFF).
+//! side of `bench/extract_vs_sdypy.py`; `jointid extract` is the same extraction on universal
+//! files).
 //!
 //! ```text
 //! cargo run --release --example extract_synthetic -- FRFS.txt [--band LO HI] [--max-order N]
