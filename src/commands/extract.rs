@@ -114,7 +114,15 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     }
     let chart = match &args.chart {
         Some(_) => {
-            let title = format!("Stabilisation chart: {inputs}");
+            let names: Vec<String> = args
+                .frf
+                .iter()
+                .map(|p| {
+                    p.file_name()
+                        .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
+                })
+                .collect();
+            let title = format!("Stabilisation chart: {}", names.join(", "));
             Some(stabilization_svg(&input.set, &ex, &title).context("cannot draw the chart")?)
         }
         None => None,
