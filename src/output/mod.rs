@@ -7,6 +7,7 @@ pub mod diagnose_plots;
 pub mod guard;
 pub mod identify;
 pub mod plot;
+pub mod stabilization;
 pub mod study;
 pub mod study_report;
 pub mod table;
