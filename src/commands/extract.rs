@@ -9,7 +9,9 @@ use anyhow::{Context, bail};
 use crate::cli::{ExtractArgs, FrfQuantity};
 use jointid::extract::{Quantity, Settings, csv, extract, universal};
 use jointid::output::stabilization::stabilization_svg;
-use jointid::output::write_atomically;
+use jointid::output::{check_outputs, stage};
+
+use crate::commands::report::commit_all;
 use jointid::uff::{Record, read_path};
 
 /// Below this MPC a mode is named on stderr as complex.
@@ -21,6 +23,11 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             eprintln!("{text}");
         }
     };
+    let mut inputs: Vec<&std::path::Path> = args.frf.iter().map(|p| p.as_path()).collect();
+    inputs.push(&args.geometry);
+    let mut outputs = vec![args.out.as_path()];
+    outputs.extend(args.chart.as_deref());
+    check_outputs(&outputs, &inputs)?;
     let mut files: Vec<(PathBuf, Vec<Record>)> = Vec::new();
     for path in &args.frf {
         say(format!("reading {}", path.display()));
@@ -127,14 +134,21 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         }
         None => None,
     };
-    write_atomically(&args.out, |w| {
-        csv::write_modes(w, &ex.modes, &input.channels, &x).map_err(std::io::Error::other)
-    })
-    .with_context(|| format!("{}: cannot write", args.out.display()))?;
-    say(format!("wrote {}", args.out.display()));
+    let mut staged = vec![
+        stage(&args.out, |w| {
+            csv::write_modes(w, &ex.modes, &input.channels, &x).map_err(std::io::Error::other)
+        })
+        .with_context(|| format!("{}: cannot write", args.out.display()))?,
+    ];
     if let (Some(path), Some(svg)) = (&args.chart, chart) {
-        write_atomically(path, |w| w.write_all(svg.as_bytes()))
-            .with_context(|| format!("{}: cannot write", path.display()))?;
+        staged.push(
+            stage(path, |w| w.write_all(svg.as_bytes()))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    commit_all(staged)?;
+    say(format!("wrote {}", args.out.display()));
+    if let Some(path) = &args.chart {
         say(format!("wrote {}", path.display()));
     }
     Ok(())
