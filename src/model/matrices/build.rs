@@ -180,7 +180,10 @@ fn check_mass(mats: &Matrices, dofs: &DofMap) -> Result<(), MatricesError> {
         .sp_cholesky(Side::Lower)
         .map(|_| ())
         .map_err(|e| MatricesError::MassNotPositiveDefinite {
-            cause: format!("{e:?}"),
+            cause: match e {
+                faer::sparse::linalg::LltError::Numeric(_) => "a pivot is not positive".into(),
+                other => format!("{other:?}"),
+            },
         })
 }
 
