@@ -94,14 +94,15 @@ pub struct LowerEntries {
 }
 
 impl LowerEntries {
-    /// Both triangles: every entry, then its mirror for an off-diagonal one.
+    /// Both triangles, in file order: a diagonal entry once, an off-diagonal entry (i, j) as
+    /// its mirror (j, i) above the diagonal, then itself.
     pub fn both_triangles(&self) -> Vec<(usize, usize, f64)> {
         let mut out = Vec::with_capacity(2 * self.entries.len());
         for &(i, j, v) in &self.entries {
-            out.push((i, j, v));
             if i != j {
                 out.push((j, i, v));
             }
+            out.push((i, j, v));
         }
         out
     }
@@ -336,7 +337,7 @@ mod tests {
         );
         assert_eq!(
             m.both_triangles()[..3],
-            [(0, 0, 1e4), (1, 0, -1e4), (0, 1, -1e4)]
+            [(0, 0, 1e4), (0, 1, -1e4), (1, 0, -1e4)]
         );
     }
 

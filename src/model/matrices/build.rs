@@ -109,8 +109,8 @@ impl MatricesFile {
         }
         let sparse = |m: &LowerEntries| {
             let mut s = SparseSym::zero();
-            for &(r, c, v) in &m.entries {
-                s.add(r, c, v);
+            for (r, c, v) in m.both_triangles() {
+                s.push(r, c, v);
             }
             s
         };

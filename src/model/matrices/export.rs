@@ -6,8 +6,13 @@
 //! Exact round trip: values are written in shortest round-trip form and every matrix keeps
 //! the entries of each position in their order, so the matrices read back are bitwise those
 //! of the structure, and so are K(p) and M(p) assembled from them (the same sums in the same
-//! order, see [`crate::structure::SymMatrix::from_entries`]). What an external model cannot
-//! hold is listed in [`Export::notes`]: declared sensors between nodes, the beam elements along
+//! order, see [`crate::structure::SymMatrix::from_entries`]). A derivative is read back as the
+//! list of its entries in file order, an off-diagonal one as (j, i) then (i, j)
+//! ([`crate::model::matrix_market::LowerEntries::both_triangles`]): the order the chain
+//! builder lists a spring in, so sums over the entries (the sensitivities y_s^T dK/dp y) are
+//! the same bits too. A derivative listed in another order reads back as the same matrix, and
+//! a note says that such sums may then differ in the last bit. What an external model cannot
+//! hold is listed in [`Export::notes`] as well: declared sensors, the beam elements along
 //! which positions are read, the sites of the effects.
 
 use crate::model::matrix_market;
@@ -79,6 +84,7 @@ pub fn export(structure: &Structure, source: &str) -> Result<Export, ExportError
          rigid_body_modes = {}\n",
         structure.rigid
     );
+    let mut reordered = false;
     for p in &structure.parameters {
         if !UNITS.contains(&p.unit) {
             return Err(ExportError::Unit {
@@ -96,6 +102,7 @@ pub fn export(structure: &Structure, source: &str) -> Result<Export, ExportError
         ));
         let dk = format!("dK_{stem}.mtx");
         let lower = derivative_lower(&p.stiffness, &format!("dK/d{}", p.name))?;
+        reordered |= !same_order(&p.stiffness, &lower, n);
         files.push((
             dk.clone(),
             mtx(&lower, comment(&format!("dK/d{} ({})", p.name, p.unit))),
@@ -104,6 +111,7 @@ pub fn export(structure: &Structure, source: &str) -> Result<Export, ExportError
         if !p.mass.is_zero() {
             let dm = format!("dM_{stem}.mtx");
             let lower = derivative_lower(&p.mass, &format!("dM/d{}", p.name))?;
+            reordered |= !same_order(&p.mass, &lower, n);
             files.push((
                 dm.clone(),
                 mtx(&lower, comment(&format!("dM/d{} ({})", p.name, p.unit))),
@@ -120,10 +128,11 @@ pub fn export(structure: &Structure, source: &str) -> Result<Export, ExportError
     dof_table::write(&mut dofs, structure.dofs.dofs()).expect("writing to memory");
     files.push(("dofs.csv".into(), dofs));
     files.insert(0, ("model.toml".into(), toml.into_bytes()));
-    Ok(Export {
-        files,
-        notes: notes(structure),
-    })
+    let mut notes = notes(structure);
+    if reordered {
+        notes.push("a derivative lists its entries in another order than the file keeps: the exported model has the same matrices, but sums over their entries may differ in the last bit".to_string());
+    }
+    Ok(Export { files, notes })
 }
 
 /// The lower triangle of a base matrix, column by column, after the symmetry check.
@@ -157,6 +166,20 @@ fn derivative_lower(s: &SparseSym, name: &str) -> Result<Vec<(usize, usize, f64)
         });
     }
     Ok(s.entries().iter().copied().filter(|e| e.0 >= e.1).collect())
+}
+
+/// Whether reading `lower` back gives the entries of `s` in their order.
+fn same_order(s: &SparseSym, lower: &[(usize, usize, f64)], n: usize) -> bool {
+    let back = matrix_market::LowerEntries {
+        size: n,
+        entries: lower.to_vec(),
+    }
+    .both_triangles();
+    back.len() == s.entries().len()
+        && back
+            .iter()
+            .zip(s.entries())
+            .all(|(a, b)| a.0 == b.0 && a.1 == b.1 && a.2.to_bits() == b.2.to_bits())
 }
 
 /// `name` with every character outside [A-Za-z0-9._-] replaced by `_`, made unique among the
