@@ -16,7 +16,10 @@ use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;
 
 const PAPER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/paper-case-1.toml");
-const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/matrices/two-dof");
+const FIXTURES: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/matrices/two-dof"
+);
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -45,7 +48,10 @@ fn measured_by_label(dir: &Path) -> PathBuf {
     let mut bytes = Vec::new();
     modes.write_csv(&mut bytes, &external).unwrap();
     let text = String::from_utf8(bytes).unwrap();
-    assert!(text.starts_with("mode,frequency_hz,label,value\n1,"), "{text}");
+    assert!(
+        text.starts_with("mode,frequency_hz,label,value\n1,"),
+        "{text}"
+    );
     let path = dir.join("measured.csv");
     std::fs::write(&path, text).unwrap();
     path
@@ -60,8 +66,19 @@ fn exported_paper_model_gives_the_same_identify_csv() {
     let measured = measured_by_label(&dir);
     let run = |model: &Path, csv: &Path| {
         let o = jointid(&[
-            "identify", "--model", s(model), "--measured", s(&measured), "--n", "19", "--m",
-            "5", "--weighting", "inverse", "--out", s(csv),
+            "identify",
+            "--model",
+            s(model),
+            "--measured",
+            s(&measured),
+            "--n",
+            "19",
+            "--m",
+            "5",
+            "--weighting",
+            "inverse",
+            "--out",
+            s(csv),
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
         std::fs::read(csv).unwrap()
@@ -74,13 +91,24 @@ fn exported_paper_model_gives_the_same_identify_csv() {
     let text = String::from_utf8(chain).unwrap();
     assert_eq!(text.lines().count(), 1 + 4 * 2);
     // And the shipped example is this export, file for file.
-    for name in ["model.toml", "K.mtx", "M.mtx", "dK_k1.mtx", "dK_k2.mtx", "dofs.csv"] {
+    for name in [
+        "model.toml",
+        "K.mtx",
+        "M.mtx",
+        "dK_k1.mtx",
+        "dK_k2.mtx",
+        "dofs.csv",
+    ] {
         let shipped = std::fs::read(
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("models/paper-matrices").join(name),
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("models/paper-matrices")
+                .join(name),
         )
         .unwrap();
         let fresh = std::fs::read(out.join(name)).unwrap();
-        let fresh = String::from_utf8(fresh).unwrap().replace(PAPER, "models/paper-case-1.toml");
+        let fresh = String::from_utf8(fresh)
+            .unwrap()
+            .replace(PAPER, "models/paper-case-1.toml");
         assert_eq!(String::from_utf8(shipped).unwrap(), fresh, "{name}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
@@ -89,15 +117,34 @@ fn exported_paper_model_gives_the_same_identify_csv() {
 #[test]
 fn simulate_and_diagnose_run_on_an_external_model() {
     let dir = scratch("cli-matrices", "simulate");
-    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/paper-matrices/model.toml");
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/models/paper-matrices/model.toml"
+    );
     let measured = dir.join("test.csv");
     let o = jointid(&[
-        "simulate", "--model", model, "--modes", "4", "--measure", "w", "--seed", "1",
-        "--shape-noise", "0", "--frequency-noise", "0", "--out", s(&measured),
+        "simulate",
+        "--model",
+        model,
+        "--modes",
+        "4",
+        "--measure",
+        "w",
+        "--seed",
+        "1",
+        "--shape-noise",
+        "0",
+        "--frequency-noise",
+        "0",
+        "--out",
+        s(&measured),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&measured).unwrap();
-    assert!(text.starts_with("mode,frequency_hz,label,value\n"), "{text}");
+    assert!(
+        text.starts_with("mode,frequency_hz,label,value\n"),
+        "{text}"
+    );
     let o = jointid(&["diagnose", "--model", model, "--measured", s(&measured)]);
     assert!(o.status.success(), "{}", stderr(&o));
     let report = String::from_utf8_lossy(&o.stdout);
@@ -114,7 +161,11 @@ fn export_never_overwrites_and_leaves_nothing_on_error() {
     std::fs::write(busy.join("K.mtx"), "mine").unwrap();
     let o = jointid(&["export", PAPER, "--out", s(&busy)]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("exists and is not an empty folder"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("exists and is not an empty folder"),
+        "{}",
+        stderr(&o)
+    );
     assert_eq!(std::fs::read_to_string(busy.join("K.mtx")).unwrap(), "mine");
     // Exporting a model into its own folder is the same case.
     let own = dir.join("own");
@@ -195,8 +246,18 @@ fn bad_external_inputs_exit_2_and_write_nothing() {
         std::fs::write(case.join("d.csv"), good_measured).unwrap();
         let out = case.join("out.csv");
         let o = jointid(&[
-            "identify", "--model", s(&case.join("model.toml")), "--measured",
-            s(&case.join("d.csv")), "--n", "2", "--m", "1", "--weighting", "equal", "--out",
+            "identify",
+            "--model",
+            s(&case.join("model.toml")),
+            "--measured",
+            s(&case.join("d.csv")),
+            "--n",
+            "2",
+            "--m",
+            "1",
+            "--weighting",
+            "equal",
+            "--out",
             s(&out),
         ]);
         assert_eq!(o.status.code(), Some(2), "{name}");
@@ -213,8 +274,19 @@ fn bad_external_inputs_exit_2_and_write_nothing() {
     .unwrap();
     let out = case.join("out.csv");
     let o = jointid(&[
-        "identify", "--model", s(&case.join("model.toml")), "--measured", s(&case.join("d.csv")),
-        "--n", "2", "--m", "1", "--weighting", "equal", "--out", s(&out),
+        "identify",
+        "--model",
+        s(&case.join("model.toml")),
+        "--measured",
+        s(&case.join("d.csv")),
+        "--n",
+        "2",
+        "--m",
+        "1",
+        "--weighting",
+        "equal",
+        "--out",
+        s(&out),
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(

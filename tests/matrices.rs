@@ -17,7 +17,10 @@ use jointid::modal::ModalSolution;
 use jointid::model::matrices::{export, export::identical};
 use jointid::structure::{Direction, Role};
 
-const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/matrices/two-dof");
+const FIXTURES: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/fixtures/matrices/two-dof"
+);
 
 fn fixture(name: &str) -> PathBuf {
     Path::new(FIXTURES).join(name)
@@ -61,10 +64,7 @@ fn grounded_two_dof_system_has_the_analytic_eigenvalues() {
         (3.0 + 5f64.sqrt()) / 2.0 * km,
     ];
     for (got, want) in eigenvalues(&model).iter().zip(expected) {
-        assert!(
-            ((got - want) / want).abs() < 1e-14,
-            "{got} against {want}"
-        );
+        assert!(((got - want) / want).abs() < 1e-14, "{got} against {want}");
     }
     // The mass scale of the effects: the rigid translation's mass, 4 kg.
     assert_eq!(model.sites.beam_mass, 4.0);
@@ -77,7 +77,11 @@ fn free_two_dof_system_has_one_rigid_body_mode() {
     let values = eigenvalues(&model);
     // lambda = 0 (to round-off of the elastic scale) and 2 k / m = 5000 rad^2/s^2.
     assert!(values[0].abs() < 1e-12 * 5000.0, "{}", values[0]);
-    assert!(((values[1] - 5000.0) / 5000.0).abs() < 1e-14, "{}", values[1]);
+    assert!(
+        ((values[1] - 5000.0) / 5000.0).abs() < 1e-14,
+        "{}",
+        values[1]
+    );
     // dK/dk is the spring pattern read from the lower triangle.
     let mut k = model.parameters[0].stiffness.entries().to_vec();
     k.sort_by_key(|e| (e.0, e.1));
@@ -119,7 +123,10 @@ fn paper_model_round_trips_bit_for_bit() {
     // about reordering.
     for (p, q) in chain.parameters.iter().zip(&back.parameters) {
         let list = |s: &jointid::structure::SparseSym| -> Vec<(usize, usize, u64)> {
-            s.entries().iter().map(|&(i, j, v)| (i, j, v.to_bits())).collect()
+            s.entries()
+                .iter()
+                .map(|&(i, j, v)| (i, j, v.to_bits()))
+                .collect()
         };
         assert_eq!(list(&p.stiffness), list(&q.stiffness), "{}", p.name);
         assert_eq!(list(&p.mass), list(&q.mass), "{}", p.name);
@@ -147,8 +154,14 @@ fn fixed_roles_and_mass_derivatives_are_read() {
                 "grounded.toml",
                 "kind = \"matrices\"\nstiffness = \"K.mtx\"\nmass = \"M.mtx\"\ndofs = \"dofs.csv\"\n[[parameter]]\nname = \"k\"\nvalue = 5000.0\ndk = \"dK.mtx\"\nrole = \"fixed\"\n[[parameter]]\nname = \"m\"\nunit = \"kg\"\nvalue = 1.0\ndk = \"Z.mtx\"\ndm = \"dM.mtx\"\n",
             ),
-            ("Z.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 0\n"),
-            ("dM.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n2 2 1\n"),
+            (
+                "Z.mtx",
+                "%%MatrixMarket matrix coordinate real symmetric\n2 2 0\n",
+            ),
+            (
+                "dM.mtx",
+                "%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n2 2 1\n",
+            ),
         ],
     );
     let model = jointid::model::from_path(&dir.join("grounded.toml")).unwrap();
@@ -163,9 +176,12 @@ fn fixed_roles_and_mass_derivatives_are_read() {
 #[test]
 fn bad_inputs_are_refused_with_file_line_and_field() {
     let toml = |extra: &str| {
-        format!("kind = \"matrices\"\nstiffness = \"K.mtx\"\nmass = \"M.mtx\"\ndofs = \"dofs.csv\"\n{extra}[[parameter]]\nname = \"k\"\nvalue = 5000.0\ndk = \"dK.mtx\"\n")
+        format!(
+            "kind = \"matrices\"\nstiffness = \"K.mtx\"\nmass = \"M.mtx\"\ndofs = \"dofs.csv\"\n{extra}[[parameter]]\nname = \"k\"\nvalue = 5000.0\ndk = \"dK.mtx\"\n"
+        )
     };
-    let cases: Vec<(&str, Vec<(&str, String)>, &str)> = vec![
+    type Case<'a> = (&'a str, Vec<(&'a str, String)>, &'a str);
+    let cases: Vec<Case> = vec![
         (
             "size",
             vec![("dK.mtx", "%%MatrixMarket matrix coordinate real symmetric\n3 3 1\n3 3 1\n".into())],

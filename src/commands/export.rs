@@ -48,7 +48,10 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
             anyhow::anyhow!("the exported model reads back different from the model: {why}")
         })?;
         std::fs::rename(&tmp, out).with_context(|| {
-            format!("{}: cannot move the exported folder into place", out.display())
+            format!(
+                "{}: cannot move the exported folder into place",
+                out.display()
+            )
         })?;
         Ok(())
     })();

@@ -144,8 +144,20 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
         .map(str::to_ascii_lowercase)
         .collect();
     let general = match words.iter().map(String::as_str).collect::<Vec<_>>()[..] {
-        ["%%matrixmarket", "matrix", "coordinate", "real" | "integer", "symmetric"] => false,
-        ["%%matrixmarket", "matrix", "coordinate", "real" | "integer", "general"] => true,
+        [
+            "%%matrixmarket",
+            "matrix",
+            "coordinate",
+            "real" | "integer",
+            "symmetric",
+        ] => false,
+        [
+            "%%matrixmarket",
+            "matrix",
+            "coordinate",
+            "real" | "integer",
+            "general",
+        ] => true,
         _ => {
             return Err(err(
                 1,
@@ -178,7 +190,9 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
             _ => {
                 return Err(err(
                     n,
-                    format!("size line `{t}` is invalid: it must be `rows columns entries`, three integers, rows = columns > 0"),
+                    format!(
+                        "size line `{t}` is invalid: it must be `rows columns entries`, three integers, rows = columns > 0"
+                    ),
                 ));
             }
         }
@@ -220,14 +234,18 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
             _ => {
                 return Err(err(
                     n,
-                    format!("value = `{vi}` at ({ri}, {ci}) is invalid: it must be a finite number"),
+                    format!(
+                        "value = `{vi}` at ({ri}, {ci}) is invalid: it must be a finite number"
+                    ),
                 ));
             }
         };
         if !general && i < j {
             return Err(err(
                 n,
-                format!("entry ({ri}, {ci}) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)"),
+                format!(
+                    "entry ({ri}, {ci}) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)"
+                ),
             ));
         }
         entries.push((i, j, value));

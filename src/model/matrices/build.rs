@@ -17,8 +17,8 @@ use faer::Side;
 use super::MatricesError;
 use super::config::{MatricesFile, ParameterFile};
 use super::dof_table;
-use crate::model::matrix_market::{self, LowerEntries};
 use crate::modal::{ModalSolution, lambda_to_hz};
+use crate::model::matrix_market::{self, LowerEntries};
 use crate::structure::{
     Direction, DofMap, Matrices, Parameter, Sites, SparseSym, Structure, SymMatrix,
 };
@@ -133,11 +133,7 @@ impl MatricesFile {
             }
         })?;
         let (kd, md) = (mats.k.diagonal(), mats.m.diagonal());
-        let scale = kd
-            .iter()
-            .zip(&md)
-            .map(|(k, m)| k / m)
-            .fold(0.0, f64::max);
+        let scale = kd.iter().zip(&md).map(|(k, m)| k / m).fold(0.0, f64::max);
         let tolerance = RIGID_TOLERANCE * scale;
         let values = modal.values();
         let lowest: Vec<f64> = values.iter().take(RIGID_SEARCH).copied().collect();

@@ -103,7 +103,11 @@ impl RawMatrices {
         let folder = file.parent().unwrap_or(Path::new(""));
         let resolve = |path: &str, field: String| {
             if path.trim().is_empty() {
-                Err(check.invalid(field, "\"\"", "it must name a file (relative to the model file)"))
+                Err(check.invalid(
+                    field,
+                    "\"\"",
+                    "it must name a file (relative to the model file)",
+                ))
             } else {
                 Ok(folder.join(path))
             }
@@ -199,7 +203,8 @@ mod tests {
             .map_err(|e| e.to_string())
     }
 
-    const HEAD: &str = "kind = \"matrices\"\nstiffness = \"K.mtx\"\nmass = \"M.mtx\"\ndofs = \"dofs.csv\"\n";
+    const HEAD: &str =
+        "kind = \"matrices\"\nstiffness = \"K.mtx\"\nmass = \"M.mtx\"\ndofs = \"dofs.csv\"\n";
 
     #[test]
     fn paths_are_relative_to_the_model_file() {
@@ -217,12 +222,36 @@ mod tests {
     #[test]
     fn bad_fields_are_named_with_the_value_and_what_is_allowed() {
         let cases = [
-            (format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\n"), "models/x/model.toml: parameter[0].dk = (missing) is invalid: every parameter needs dk, the Matrix Market file of dK/dp"),
-            (format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = -2.0\ndk = \"d\"\n"), "models/x/model.toml: parameter[0].value = -2 is invalid: it must be finite and > 0 ()"),
-            (format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\nrole = \"free\"\n"), "models/x/model.toml: parameter[0].role = \"free\" is invalid: it must be \"identified\" or \"fixed\""),
-            (format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\n[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\n"), "models/x/model.toml: parameter[1].name = \"k\" is invalid: names must be unique (parameter[0] has it)"),
-            (format!("{HEAD}[[parameter]]\nname = \"k\"\nunit = \"psi\"\nvalue = 2.0\ndk = \"d\"\n"), "models/x/model.toml: parameter[0].unit = \"psi\" is invalid: it must be one of \"N/m\", \"N m/rad\", \"N/rad\", \"kg\", \"kg m^2\", \"-\", \"\""),
-            (HEAD.to_string(), "models/x/model.toml: parameter = [] is invalid: a model needs at least one [[parameter]] with its dK/dp"),
+            (
+                format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\n"),
+                "models/x/model.toml: parameter[0].dk = (missing) is invalid: every parameter needs dk, the Matrix Market file of dK/dp",
+            ),
+            (
+                format!("{HEAD}[[parameter]]\nname = \"k\"\nvalue = -2.0\ndk = \"d\"\n"),
+                "models/x/model.toml: parameter[0].value = -2 is invalid: it must be finite and > 0 ()",
+            ),
+            (
+                format!(
+                    "{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\nrole = \"free\"\n"
+                ),
+                "models/x/model.toml: parameter[0].role = \"free\" is invalid: it must be \"identified\" or \"fixed\"",
+            ),
+            (
+                format!(
+                    "{HEAD}[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\n[[parameter]]\nname = \"k\"\nvalue = 2.0\ndk = \"d\"\n"
+                ),
+                "models/x/model.toml: parameter[1].name = \"k\" is invalid: names must be unique (parameter[0] has it)",
+            ),
+            (
+                format!(
+                    "{HEAD}[[parameter]]\nname = \"k\"\nunit = \"psi\"\nvalue = 2.0\ndk = \"d\"\n"
+                ),
+                "models/x/model.toml: parameter[0].unit = \"psi\" is invalid: it must be one of \"N/m\", \"N m/rad\", \"N/rad\", \"kg\", \"kg m^2\", \"-\", \"\"",
+            ),
+            (
+                HEAD.to_string(),
+                "models/x/model.toml: parameter = [] is invalid: a model needs at least one [[parameter]] with its dK/dp",
+            ),
         ];
         for (text, message) in cases {
             assert_eq!(validate(&text).unwrap_err(), message);

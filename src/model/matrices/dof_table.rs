@@ -42,7 +42,9 @@ pub enum DofTableError {
         message: String,
     },
     /// Not every index from 1 to N is given.
-    #[error("{file}: dof {missing} is missing: the table must list every dof from 1 to {size} once")]
+    #[error(
+        "{file}: dof {missing} is missing: the table must list every dof from 1 to {size} once"
+    )]
     Missing {
         /// The file.
         file: PathBuf,
@@ -106,11 +108,7 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
         let [dof, label, x, y, z, direction] = f[..] else {
             return Err(line_err(
                 line,
-                format!(
-                    "{} fields: a row has 6 ({})",
-                    f.len(),
-                    HEADER.join(",")
-                ),
+                format!("{} fields: a row has 6 ({})", f.len(), HEADER.join(",")),
             ));
         };
         let index = match dof.parse::<usize>() {
@@ -118,23 +116,33 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
             _ => {
                 return Err(line_err(
                     line,
-                    format!("dof = `{dof}` is invalid: it must be an integer from 1 to {size} (the size of the matrices)"),
+                    format!(
+                        "dof = `{dof}` is invalid: it must be an integer from 1 to {size} (the size of the matrices)"
+                    ),
                 ));
             }
         };
         if slots[index].is_some() {
             return Err(line_err(
                 line,
-                format!("dof = {dof} is given twice (first on line {})", first_line[index]),
+                format!(
+                    "dof = {dof} is given twice (first on line {})",
+                    first_line[index]
+                ),
             ));
         }
         if label.is_empty() {
-            return Err(line_err(line, "label is empty: every DOF needs a label".into()));
+            return Err(line_err(
+                line,
+                "label is empty: every DOF needs a label".into(),
+            ));
         }
         if let Some(first) = labels.insert(label.to_string(), line) {
             return Err(line_err(
                 line,
-                format!("label = `{label}` is given twice (first on line {first}): labels must be unique"),
+                format!(
+                    "label = `{label}` is given twice (first on line {first}): labels must be unique"
+                ),
             ));
         }
         let coordinate = |text: &str, name: &str| match text.parse::<f64>() {
@@ -144,12 +152,19 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
                 format!("{name} = `{text}` is invalid: it must be a finite number (m)"),
             )),
         };
-        let position = [coordinate(x, "x")?, coordinate(y, "y")?, coordinate(z, "z")?];
+        let position = [
+            coordinate(x, "x")?,
+            coordinate(y, "y")?,
+            coordinate(z, "z")?,
+        ];
         let Some(direction) = Direction::parse(direction) else {
             let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
             return Err(line_err(
                 line,
-                format!("direction = `{direction}` is invalid: it must be one of {}", names.join(", ")),
+                format!(
+                    "direction = `{direction}` is invalid: it must be one of {}",
+                    names.join(", ")
+                ),
             ));
         };
         slots[index] = Some(DofInfo {
@@ -163,7 +178,10 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
     if !header_seen {
         return Err(line_err(
             1,
-            format!("the file is empty: it must start with `{}`", HEADER.join(",")),
+            format!(
+                "the file is empty: it must start with `{}`",
+                HEADER.join(",")
+            ),
         ));
     }
     match slots.iter().position(Option::is_none) {
@@ -217,21 +235,48 @@ mod tests {
         assert_eq!(dofs[1].label, "tip");
         let mut bytes = Vec::new();
         write(&mut bytes, &dofs).unwrap();
-        assert_eq!(read_str(std::str::from_utf8(&bytes).unwrap(), 2).unwrap(), dofs);
+        assert_eq!(
+            read_str(std::str::from_utf8(&bytes).unwrap(), 2).unwrap(),
+            dofs
+        );
     }
 
     #[test]
     fn bad_tables_name_the_line_and_what_is_allowed() {
         let h = "dof,label,x,y,z,direction\n";
         let cases = [
-            ("dof,label,x,direction\n".to_string(), "dofs.csv:1: header `dof,label,x,direction` is invalid: it must be `dof,label,x,y,z,direction`"),
-            (format!("{h}3,a,0,0,0,w\n"), "dofs.csv:2: dof = `3` is invalid: it must be an integer from 1 to 2 (the size of the matrices)"),
-            (format!("{h}1,a,0,0,0,w\n1,b,0,0,0,w\n"), "dofs.csv:3: dof = 1 is given twice (first on line 2)"),
-            (format!("{h}1,a,0,0,0,w\n2,a,0,0,0,theta\n"), "dofs.csv:3: label = `a` is given twice (first on line 2): labels must be unique"),
-            (format!("{h}1,a,0,0,0,u\n"), "dofs.csv:2: direction = `u` is invalid: it must be one of w, theta, x, y, z, rx, ry, rz"),
-            (format!("{h}1,a,NaN,0,0,w\n"), "dofs.csv:2: x = `NaN` is invalid: it must be a finite number (m)"),
-            (format!("{h}1,a,0,0,0,w\n"), "dofs.csv: dof 2 is missing: the table must list every dof from 1 to 2 once"),
-            (format!("{h}1,,0,0,0,w\n"), "dofs.csv:2: label is empty: every DOF needs a label"),
+            (
+                "dof,label,x,direction\n".to_string(),
+                "dofs.csv:1: header `dof,label,x,direction` is invalid: it must be `dof,label,x,y,z,direction`",
+            ),
+            (
+                format!("{h}3,a,0,0,0,w\n"),
+                "dofs.csv:2: dof = `3` is invalid: it must be an integer from 1 to 2 (the size of the matrices)",
+            ),
+            (
+                format!("{h}1,a,0,0,0,w\n1,b,0,0,0,w\n"),
+                "dofs.csv:3: dof = 1 is given twice (first on line 2)",
+            ),
+            (
+                format!("{h}1,a,0,0,0,w\n2,a,0,0,0,theta\n"),
+                "dofs.csv:3: label = `a` is given twice (first on line 2): labels must be unique",
+            ),
+            (
+                format!("{h}1,a,0,0,0,u\n"),
+                "dofs.csv:2: direction = `u` is invalid: it must be one of w, theta, x, y, z, rx, ry, rz",
+            ),
+            (
+                format!("{h}1,a,NaN,0,0,w\n"),
+                "dofs.csv:2: x = `NaN` is invalid: it must be a finite number (m)",
+            ),
+            (
+                format!("{h}1,a,0,0,0,w\n"),
+                "dofs.csv: dof 2 is missing: the table must list every dof from 1 to 2 once",
+            ),
+            (
+                format!("{h}1,,0,0,0,w\n"),
+                "dofs.csv:2: label is empty: every DOF needs a label",
+            ),
         ];
         for (text, message) in cases {
             assert_eq!(read_str(&text, 2).unwrap_err().to_string(), message);

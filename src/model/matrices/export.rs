@@ -34,7 +34,9 @@ pub struct Export {
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// A matrix whose two triangles differ (a builder's bug, never a user's input).
-    #[error("{matrix} is not symmetric entry by entry: it cannot be written as a symmetric Matrix Market file")]
+    #[error(
+        "{matrix} is not symmetric entry by entry: it cannot be written as a symmetric Matrix Market file"
+    )]
     NotSymmetric {
         /// Which matrix.
         matrix: String,

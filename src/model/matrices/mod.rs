@@ -51,7 +51,9 @@ pub enum MatricesError {
         source: DofTableError,
     },
     /// A matrix of another size than K.
-    #[error("{field}: the matrix is {size} x {size}, but K (stiffness) is {stiffness} x {stiffness}: every matrix must have the size of K")]
+    #[error(
+        "{field}: the matrix is {size} x {size}, but K (stiffness) is {stiffness} x {stiffness}: every matrix must have the size of K"
+    )]
     Size {
         /// The TOML field that names the file.
         field: String,
@@ -61,7 +63,9 @@ pub enum MatricesError {
         stiffness: usize,
     },
     /// A parameter whose derivatives are zero.
-    #[error("parameter[{index}] ({name}): dK/dp (and dM/dp) has no nonzero entry: a parameter the matrices do not depend on cannot be identified")]
+    #[error(
+        "parameter[{index}] ({name}): dK/dp (and dM/dp) has no nonzero entry: a parameter the matrices do not depend on cannot be identified"
+    )]
     ZeroDerivative {
         /// The parameter.
         name: String,
@@ -69,7 +73,9 @@ pub enum MatricesError {
         index: usize,
     },
     /// A DOF without mass.
-    #[error("mass: M (with the parameters' p dM/dp) has M[{dof},{dof}] = {value:e} at dof {dof} (`{label}`): M must be positive definite, every DOF must carry mass")]
+    #[error(
+        "mass: M (with the parameters' p dM/dp) has M[{dof},{dof}] = {value:e} at dof {dof} (`{label}`): M must be positive definite, every DOF must carry mass"
+    )]
     MassDiagonal {
         /// 1-based DOF.
         dof: usize,
@@ -79,13 +85,17 @@ pub enum MatricesError {
         value: f64,
     },
     /// M is indefinite.
-    #[error("mass: M (with the parameters' p dM/dp) is not positive definite (its Cholesky factorisation fails: {cause}): M must be positive definite")]
+    #[error(
+        "mass: M (with the parameters' p dM/dp) is not positive definite (its Cholesky factorisation fails: {cause}): M must be positive definite"
+    )]
     MassNotPositiveDefinite {
         /// faer's report.
         cause: String,
     },
     /// K has a negative eigenvalue.
-    #[error("stiffness: K (with the parameters' p dK/dp) is not positive semidefinite: its lowest eigenvalue is {lambda:e} rad^2/s^2, below -{tolerance:e}")]
+    #[error(
+        "stiffness: K (with the parameters' p dK/dp) is not positive semidefinite: its lowest eigenvalue is {lambda:e} rad^2/s^2, below -{tolerance:e}"
+    )]
     StiffnessIndefinite {
         /// The lowest eigenvalue.
         lambda: f64,
