@@ -297,3 +297,34 @@ fn bad_external_inputs_exit_2_and_write_nothing() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The CI study (NF 0 and 5 by the count rule, two weightings) on the chain and on its export:
+/// the same result CSV, byte for byte.
+#[test]
+fn study_of_the_exported_model_gives_the_same_csv() {
+    let dir = scratch("cli-matrices", "study");
+    let study =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/studies/ci-bias.toml"))
+            .unwrap()
+            .replace("trials = 50000", "trials = 300");
+    let run = |model: &str, name: &str| {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &file,
+            study.replace(
+                "model = \"../models/paper-case-1.toml\"",
+                &format!("model = \"{}/models/{model}\"", env!("CARGO_MANIFEST_DIR")),
+            ),
+        )
+        .unwrap();
+        let csv = dir.join(format!("{name}.csv"));
+        let o = jointid(&["study", s(&file), "--quiet", "--out", s(&csv)]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(csv).unwrap()
+    };
+    let chain = run("paper-case-1.toml", "chain");
+    let external = run("paper-matrices/model.toml", "external");
+    assert!(chain.len() > 1000);
+    assert!(chain == external, "the two study CSVs differ");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
