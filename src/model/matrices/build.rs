@@ -26,6 +26,9 @@ use crate::structure::{
 /// Relative size of a rigid-body eigenvalue: see the module docs.
 pub const RIGID_TOLERANCE: f64 = 1e-10;
 
+/// Largest number of DOFs of an external model (the large models have 1e4 to 1e5).
+pub const MAX_DOFS: usize = 1_000_000;
+
 /// How many of the lowest eigenvalues are looked at for rigid-body modes (a free body in
 /// space has six).
 const RIGID_SEARCH: usize = 12;
@@ -41,6 +44,9 @@ impl MatricesFile {
         };
         let k = read("stiffness", &self.stiffness)?;
         let n = k.size;
+        if n > MAX_DOFS {
+            return Err(MatricesError::TooLarge { size: n });
+        }
         let m = read("mass", &self.mass)?;
         self.same_size("mass", &m, n)?;
         let infos =

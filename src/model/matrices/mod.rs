@@ -62,6 +62,15 @@ pub enum MatricesError {
         /// The size of K.
         stiffness: usize,
     },
+    /// K larger than the reader takes.
+    #[error(
+        "stiffness: the matrix is {size} x {size}: an external model may have at most {} DOFs",
+        build::MAX_DOFS
+    )]
+    TooLarge {
+        /// Its size.
+        size: usize,
+    },
     /// A parameter whose derivatives are zero.
     #[error(
         "parameter[{index}] ({name}): dK/dp (and dM/dp) has no nonzero entry: a parameter the matrices do not depend on cannot be identified"
