@@ -347,3 +347,25 @@ spring = 5.0e4
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A nearly free system: a grounded spring k0 = 1e-9 N/m puts lambda_0 = k0 / (m1 + m2) =
+/// 2.5e-10 rad^2/s^2 (to first order in k0 / k, 1e-13) above the rigid-body tolerance
+/// 1e-14 * 2500 = 2.5e-11: counted, it is elastic; declared as rigid, the gap to
+/// lambda_1 = 5000 makes the declaration acceptable.
+#[test]
+fn a_declared_rigid_count_is_accepted_across_a_clear_gap() {
+    let soft = "%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n1 1 1e-9\n";
+    let dir = edited("gap", &[("K0.mtx", soft)]);
+    let declared = jointid::model::from_path(&dir.join("free.toml")).unwrap();
+    assert_eq!(declared.rigid, 1);
+    let text = std::fs::read_to_string(dir.join("free.toml"))
+        .unwrap()
+        .replace("rigid_body_modes = 1\n", "");
+    std::fs::write(dir.join("counted.toml"), text).unwrap();
+    let counted = jointid::model::from_path(&dir.join("counted.toml")).unwrap();
+    assert_eq!(counted.rigid, 0);
+    let lambda = eigenvalues(&counted);
+    // The dense solution resolves lambda_0 to its absolute round-off, eps * lambda_max ~ 1e-12.
+    assert!((lambda[0] - 2.5e-10).abs() < 1e-12, "{}", lambda[0]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,5 +1,5 @@
 //! Any structure written as an external model: K.mtx and M.mtx (the base matrices, without the
-//! parameters' terms), dK_<name>.mtx (and dM_<name>.mtx where the mass depends on it) per
+//! parameters' terms), `dK_<name>.mtx` (and `dM_<name>.mtx` where the mass depends on it) per
 //! parameter, dofs.csv and a model.toml of kind "matrices" that reads back into the same
 //! structure.
 //!

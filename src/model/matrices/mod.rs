@@ -7,7 +7,7 @@
 //! - [`config`]: the model TOML (`kind = "matrices"`), paths relative to it;
 //! - [`dof_table`]: the DOF table CSV `dof,label,x,y,z,direction`;
 //! - [`build`]: the files read, checked and assembled into a [`Structure`];
-//! - [`export`]: any structure written as such a model (`jointid export`).
+//! - [`mod@export`]: any structure written as such a model (`jointid export`).
 //!
 //! The structure is the one every command takes: identify, simulate, study and diagnose do
 //! not know where it came from. An external model has no beam elements: measured files name
@@ -112,7 +112,7 @@ pub enum MatricesError {
         tolerance: f64,
     },
     /// The declared rigid-body count is not the model's.
-    #[error("rigid_body_modes = {declared} is invalid: the model has {counted} (eigenvalues below the rigid-body tolerance, {tolerance_hz:.3e} Hz); its lowest frequencies are {} Hz", fmt_list(.lowest_hz))]
+    #[error("rigid_body_modes = {declared} is invalid: the model has {counted} (eigenvalues below the rigid-body tolerance, {tolerance_hz:.3e} Hz), and its {declared} lowest eigenvalues are not all below 1e-2 times the next; its lowest frequencies are {} Hz", fmt_list(.lowest_hz))]
     Rigid {
         /// Declared.
         declared: usize,
