@@ -369,3 +369,23 @@ fn a_declared_rigid_count_is_accepted_across_a_clear_gap() {
     assert!((lambda[0] - 2.5e-10).abs() < 1e-12, "{}", lambda[0]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A finer chain (2 x 125 elements, N = 504): the counted rigid-body modes are the chain's two,
+/// whose own count is analytic (`rigid_body_modes` of the supports), not from eigenvalues.
+#[test]
+fn rigid_body_modes_of_a_finer_chain_are_counted() {
+    let chain = jointid::model::chain::Chain::free(
+        vec![common::steel_bar(0.2, 100), common::steel_bar(0.3, 150)],
+        vec![jointid::model::Joint::identified(1e7, 1e4)],
+    )
+    .build();
+    assert_eq!(chain.rigid, 2);
+    let dir = scratch("matrices", "fine");
+    for (name, bytes) in export(&chain, "fine.toml").unwrap().files {
+        let text = String::from_utf8(bytes).unwrap();
+        std::fs::write(dir.join(name), text.replace("rigid_body_modes = 2\n", "")).unwrap();
+    }
+    let back = jointid::model::from_path(&dir.join("model.toml")).unwrap();
+    assert_eq!(back.rigid, 2);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
