@@ -4,6 +4,7 @@
 //! The target must not exist or be empty, so no file (the model's inputs among them) is ever
 //! overwritten.
 
+use jointid::output::atomic::{track, untrack};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -31,6 +32,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let exported = export(&model, &args.model.display().to_string())
         .with_context(|| format!("{}: cannot export", args.model.display()))?;
     let tmp = temporary_beside(out)?;
+    track(&tmp);
     let result = (|| -> anyhow::Result<()> {
         std::fs::create_dir(&tmp)
             .with_context(|| format!("{}: cannot create the folder", tmp.display()))?;
@@ -58,6 +60,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     if result.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
+    untrack(&tmp);
     result?;
     let mut err = std::io::stderr().lock();
     for note in &exported.notes {

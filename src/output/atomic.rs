@@ -18,11 +18,26 @@ fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
     LIVE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Deletes every temporary still live (for a signal handler: the process is about to end).
+/// Deletes every temporary still live, files and folders (for a signal handler: the process
+/// is about to end).
 pub fn remove_temporaries() {
     for tmp in live().drain(..) {
-        let _ = std::fs::remove_file(tmp);
+        if tmp.is_dir() {
+            let _ = std::fs::remove_dir_all(tmp);
+        } else {
+            let _ = std::fs::remove_file(tmp);
+        }
     }
+}
+
+/// Registers a temporary of the run's own (a folder being filled) for [`remove_temporaries`].
+pub fn track(path: &Path) {
+    live().push(path.to_path_buf());
+}
+
+/// Withdraws a temporary registered by [`track`] (renamed into place or removed).
+pub fn untrack(path: &Path) {
+    live().retain(|t| t != path);
 }
 
 /// A complete temporary file waiting to replace its target.
