@@ -18,6 +18,7 @@
 //! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
 //! (universal files: measured FRFs and geometry in, mode shapes out).
 
+pub mod cluster;
 pub mod diagnose;
 pub mod identify;
 pub mod input;

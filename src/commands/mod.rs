@@ -2,8 +2,10 @@
 
 mod bench;
 mod check;
+mod cluster;
 mod diagnose;
 mod identify;
+mod merge;
 mod report;
 mod run_study;
 mod simulate;
@@ -19,6 +21,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Identify(args) => identify::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Study(args) => study::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Check(args) => check::run(&args),
+        Command::Merge(args) => merge::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Cluster(command) => cluster::run(&command).map(|()| ExitCode::SUCCESS),
         Command::Simulate(args) => simulate::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Diagnose(args) => diagnose::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Report(args) => report::run(&args).map(|()| ExitCode::SUCCESS),
