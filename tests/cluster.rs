@@ -41,7 +41,10 @@ fn every_cell_of_the_shipped_studies_is_in_exactly_one_shard_for_n_1_to_17() {
             let a = study_assignment(&study, &cells, n);
             assert_eq!(a.len(), cells.len(), "{path}, N = {n}");
             for (c, &k) in a.iter().enumerate() {
-                assert!((1..=n).contains(&k), "{path}, N = {n}: cell {c} in shard {k}");
+                assert!(
+                    (1..=n).contains(&k),
+                    "{path}, N = {n}: cell {c} in shard {k}"
+                );
             }
             // Every shard gets a cell while there are as many cells as shards.
             if n <= cells.len() {
@@ -163,9 +166,18 @@ fn shards_run_by_separate_processes_merge_and_check_like_the_single_run() {
         "--out",
         s(&merged),
     ]);
-    assert!(std::fs::read(&merged).unwrap() == single, "merged CSV differs");
+    assert!(
+        std::fs::read(&merged).unwrap() == single,
+        "merged CSV differs"
+    );
     // check on the merged result says exactly what check on a run says, with the same code.
-    let ran = jointid(&["check", s(&study), "--quiet", "--out", s(&dir.join("again.csv"))]);
+    let ran = jointid(&[
+        "check",
+        s(&study),
+        "--quiet",
+        "--out",
+        s(&dir.join("again.csv")),
+    ]);
     let read = jointid(&["check", s(&study), "--results", s(&merged)]);
     assert_eq!(read.status.code(), ran.status.code());
     assert_eq!(
@@ -185,15 +197,38 @@ fn broken_shard_sets_exit_2_naming_the_problem_and_write_nothing() {
     for k in 1..=3 {
         let spec = format!("{k}/3");
         let out = shard("s", k);
-        run_ok(&["study", s(&study), "--shard", &spec, "--quiet", "--out", s(&out)]);
+        run_ok(&[
+            "study",
+            s(&study),
+            "--shard",
+            &spec,
+            "--quiet",
+            "--out",
+            s(&out),
+        ]);
     }
     let out2 = shard("t", 2);
-    run_ok(&["study", s(&other), "--shard", "2/3", "--quiet", "--out", s(&out2)]);
+    run_ok(&[
+        "study",
+        s(&other),
+        "--shard",
+        "2/3",
+        "--quiet",
+        "--out",
+        s(&out2),
+    ]);
     let merged = dir.join("merged.csv");
     let m = s(&merged);
     // Fingerprint of another study file.
     run_err(
-        &["merge", s(&shard("s", 1)), s(&shard("t", 2)), s(&shard("s", 3)), "--out", m],
+        &[
+            "merge",
+            s(&shard("s", 1)),
+            s(&shard("t", 2)),
+            s(&shard("s", 3)),
+            "--out",
+            m,
+        ],
         &merged,
         &["fingerprint", "t.2.csv", "s.1.csv", "different study files"],
     );
@@ -215,13 +250,29 @@ fn broken_shard_sets_exit_2_naming_the_problem_and_write_nothing() {
     );
     // A duplicated shard.
     run_err(
-        &["merge", s(&shard("s", 1)), s(&shard("s", 2)), s(&shard("s", 2)), s(&shard("s", 3)), "--out", m],
+        &[
+            "merge",
+            s(&shard("s", 1)),
+            s(&shard("s", 2)),
+            s(&shard("s", 2)),
+            s(&shard("s", 3)),
+            "--out",
+            m,
+        ],
         &merged,
         &["is in both", "s.2.csv", "shard 2/3 given twice"],
     );
     // Shards of another split.
     let four = dir.join("four.csv");
-    run_ok(&["study", s(&study), "--shard", "1/4", "--quiet", "--out", s(&four)]);
+    run_ok(&[
+        "study",
+        s(&study),
+        "--shard",
+        "1/4",
+        "--quiet",
+        "--out",
+        s(&four),
+    ]);
     run_err(
         &["merge", s(&shard("s", 1)), s(&four), "--out", m],
         &merged,

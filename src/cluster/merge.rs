@@ -21,28 +21,22 @@ pub enum MergeError {
     Empty,
     /// Different fingerprints.
     #[error(
-        "{file}: fingerprint {found} (study {found_study}, {found_tool}) differs from {first_file}'s {expected} (study {expected_study}, {expected_tool}): the shards come from different study files, models or jointid versions; rerun the odd ones"
+        "{file}: fingerprint {found} differs from {first_file}'s {expected}: the shards come from different study files, models or jointid versions; rerun the odd ones"
     )]
     Fingerprint {
         /// The odd file.
         file: PathBuf,
-        /// Its fingerprint.
+        /// Its fingerprint, study name and tool.
         found: String,
-        /// Its study name.
-        found_study: String,
-        /// Its tool.
-        found_tool: String,
         /// The first file.
         first_file: PathBuf,
-        /// The first file's fingerprint.
+        /// The first file's fingerprint, study name and tool.
         expected: String,
-        /// The first file's study name.
-        expected_study: String,
-        /// The first file's tool.
-        expected_tool: String,
     },
     /// Different N, cells or rows per cell.
-    #[error("{file}: shard {found} of {cells} cell(s) does not match {first_file} (shard {expected}): every shard must come from the same `--shard K/N` split")]
+    #[error(
+        "{file}: shard {found} of {cells} cell(s) does not match {first_file} (shard {expected}): every shard must come from the same `--shard K/N` split"
+    )]
     Split {
         /// The odd file.
         file: PathBuf,
@@ -56,7 +50,9 @@ pub enum MergeError {
         expected: String,
     },
     /// A row in a shard that does not own its cell.
-    #[error("{file}:{line}: cell {cell} belongs to shard {owner}/{count}, not to this file's shard {shard}/{count}")]
+    #[error(
+        "{file}:{line}: cell {cell} belongs to shard {owner}/{count}, not to this file's shard {shard}/{count}"
+    )]
     Foreign {
         /// The file.
         file: PathBuf,
@@ -86,7 +82,9 @@ pub enum MergeError {
         count: usize,
     },
     /// A cell with the wrong number of rows.
-    #[error("{file}: cell {cell} has {found} row(s), every cell has {expected}: the file is damaged; rerun its shard")]
+    #[error(
+        "{file}: cell {cell} has {found} row(s), every cell has {expected}: the file is damaged; rerun its shard"
+    )]
     Rows {
         /// The file.
         file: PathBuf,
@@ -132,15 +130,14 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
     for s in &shards[1..] {
         let h = &s.header;
         if h.fingerprint != h0.fingerprint {
+            let describe = |h: &super::ShardHeader| {
+                format!("{} (study {}, {})", h.fingerprint, h.study, h.tool)
+            };
             return Err(MergeError::Fingerprint {
                 file: s.file.clone(),
-                found: h.fingerprint.clone(),
-                found_study: h.study.clone(),
-                found_tool: h.tool.clone(),
+                found: describe(h),
                 first_file: first.file.clone(),
-                expected: h0.fingerprint.clone(),
-                expected_study: h0.study.clone(),
-                expected_tool: h0.tool.clone(),
+                expected: describe(h0),
             });
         }
         if h.spec.count != h0.spec.count
@@ -195,7 +192,8 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
     let mut out = Vec::new();
     {
         let mut w = csv::Writer::from_writer(&mut out);
-        w.write_record(RESULT_HEADER).map_err(std::io::Error::from)?;
+        w.write_record(RESULT_HEADER)
+            .map_err(std::io::Error::from)?;
         for (&cell, (f, rows)) in &cells {
             if rows.len() != h0.rows_per_cell {
                 return Err(MergeError::Rows {

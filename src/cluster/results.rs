@@ -36,7 +36,9 @@ pub enum ResultsError {
         message: String,
     },
     /// Rows missing.
-    #[error("{file}: cell {cell} ({describe}) has {found} of its {expected} rows: the file is not a complete result of {study}")]
+    #[error(
+        "{file}: cell {cell} ({describe}) has {found} of its {expected} rows: the file is not a complete result of {study}"
+    )]
     Incomplete {
         /// The file.
         file: PathBuf,
@@ -84,42 +86,79 @@ pub fn read_results<R: Read>(
             ),
         ));
     }
-    let names: Vec<String> = study.model.identified().into_iter().map(|p| p.name).collect();
+    let names: Vec<String> = study
+        .model
+        .identified()
+        .into_iter()
+        .map(|p| p.name)
+        .collect();
     let mut results: Vec<CellResult> = study
         .cells()
         .into_iter()
-        .map(|cell| CellResult { cell, rows: Vec::new() })
+        .map(|cell| CellResult {
+            cell,
+            rows: Vec::new(),
+        })
         .collect();
     for record in csv.records() {
-        let record = record.map_err(|e| bad(e.position().map_or(0, |p| p.line()), e.to_string()))?;
+        let record =
+            record.map_err(|e| bad(e.position().map_or(0, |p| p.line()), e.to_string()))?;
         let line = record.position().map_or(0, |p| p.line());
-        let field = |column: &str| record.get(RESULT_HEADER.iter().position(|c| *c == column).unwrap_or(0)).unwrap_or("");
+        let field = |column: &str| {
+            record
+                .get(RESULT_HEADER.iter().position(|c| *c == column).unwrap_or(0))
+                .unwrap_or("")
+        };
         let parse = |column: &str| -> Result<f64, ResultsError> {
-            field(column)
-                .parse::<f64>()
-                .map_err(|_| bad(line, format!("{column} = `{}` is not a number", field(column))))
+            field(column).parse::<f64>().map_err(|_| {
+                bad(
+                    line,
+                    format!("{column} = `{}` is not a number", field(column)),
+                )
+            })
         };
         let optional = |column: &str| -> Result<Option<f64>, ResultsError> {
-            if field(column).is_empty() { Ok(None) } else { parse(column).map(Some) }
+            if field(column).is_empty() {
+                Ok(None)
+            } else {
+                parse(column).map(Some)
+            }
         };
         let whole = |column: &str| -> Result<usize, ResultsError> {
-            field(column)
-                .parse::<usize>()
-                .map_err(|_| bad(line, format!("{column} = `{}` is not a whole number", field(column))))
+            field(column).parse::<usize>().map_err(|_| {
+                bad(
+                    line,
+                    format!("{column} = `{}` is not a whole number", field(column)),
+                )
+            })
         };
         let index = whole("cell")?;
         let Some(result) = results.get_mut(index) else {
             return Err(bad(
                 line,
-                format!("cell = {index}: {} has {} cells", study.file.display(), study.cells().len()),
+                format!(
+                    "cell = {index}: {} has {} cells",
+                    study.file.display(),
+                    study.cells().len()
+                ),
             ));
         };
         let c = &result.cell;
         let introduced = |i: usize| study.delta[i].to_string();
         let mode = whole("mode")?;
-        let param = names.iter().position(|n| n == field("param")).ok_or_else(|| {
-            bad(line, format!("param = `{}`: the study identifies {}", field("param"), names.join(", ")))
-        })?;
+        let param = names
+            .iter()
+            .position(|n| n == field("param"))
+            .ok_or_else(|| {
+                bad(
+                    line,
+                    format!(
+                        "param = `{}`: the study identifies {}",
+                        field("param"),
+                        names.join(", ")
+                    ),
+                )
+            })?;
         let expected = [
             ("n", c.n.0.to_string()),
             ("m", c.m.0.to_string()),
@@ -145,7 +184,10 @@ pub fn read_results<R: Read>(
             }
         }
         if !study.modes.contains(&mode) {
-            return Err(bad(line, format!("mode = {mode} is not a mode of {}", study.file.display())));
+            return Err(bad(
+                line,
+                format!("mode = {mode} is not a mode of {}", study.file.display()),
+            ));
         }
         let trials = whole("trials")?;
         let failures = whole("failures")?;
@@ -177,8 +219,15 @@ pub fn read_results<R: Read>(
             summary,
             predicted_std: optional("predicted_std")?,
         };
-        if result.rows.iter().any(|r| r.mode == mode && r.param == param) {
-            return Err(bad(line, format!("cell {index}, mode {mode}, {} appears twice", names[param])));
+        if result
+            .rows
+            .iter()
+            .any(|r| r.mode == mode && r.param == param)
+        {
+            return Err(bad(
+                line,
+                format!("cell {index}, mode {mode}, {} appears twice", names[param]),
+            ));
         }
         result.rows.push(row);
     }

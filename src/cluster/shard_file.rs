@@ -187,7 +187,12 @@ impl ShardFile {
             let (key, value) = line
                 .trim_start_matches('#')
                 .split_once(':')
-                .ok_or_else(|| bad(fields.len() as u64 + 1, format!("`{line}` is not `# key: value`")))?;
+                .ok_or_else(|| {
+                    bad(
+                        fields.len() as u64 + 1,
+                        format!("`{line}` is not `# key: value`"),
+                    )
+                })?;
             fields.push((key.trim().into(), value.trim().into()));
         }
         if first {
@@ -196,7 +201,9 @@ impl ShardFile {
         let header = parse_header(&fields, &bad)?;
         let header_lines = fields.len() as u64;
         let mut csv = csv::ReaderBuilder::new().from_reader(reader);
-        let columns = csv.headers().map_err(|e| bad(header_lines + 1, e.to_string()))?;
+        let columns = csv
+            .headers()
+            .map_err(|e| bad(header_lines + 1, e.to_string()))?;
         if columns.iter().ne(RESULT_HEADER) {
             return Err(bad(
                 header_lines + 1,
@@ -246,7 +253,12 @@ fn parse_header(
             .iter()
             .position(|(k, _)| k == key)
             .map(|i| (i as u64 + 1, fields[i].1.as_str()))
-            .ok_or_else(|| bad(fields.len() as u64, format!("the header has no `# {key}:` line")))
+            .ok_or_else(|| {
+                bad(
+                    fields.len() as u64,
+                    format!("the header has no `# {key}:` line"),
+                )
+            })
     };
     let number = |key: &str| -> Result<usize, ShardFileError> {
         let (line, v) = get(key)?;

@@ -207,10 +207,16 @@ mod tests {
             "OUT='/scratch/run/case.shard-'\"$K\"'-of-3.csv'\nexec '/opt/jointid' study '/home/u/s it.toml' --shard \"$K/3\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" --quiet --out \"$OUT\""
         ));
         for k in 1..=3 {
-            assert!(s.merge.contains(&format!("'/scratch/run/case.shard-{k}-of-3.csv'")));
+            assert!(
+                s.merge
+                    .contains(&format!("'/scratch/run/case.shard-{k}-of-3.csv'"))
+            );
         }
         assert!(s.merge.contains("--out '/scratch/case.csv'"));
-        assert!(s.submit.contains("--dependency=afterok:\"$array\" '/scratch/run/case.merge.sbatch'"));
+        assert!(
+            s.submit
+                .contains("--dependency=afterok:\"$array\" '/scratch/run/case.merge.sbatch'")
+        );
     }
 
     #[test]

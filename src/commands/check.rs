@@ -32,7 +32,12 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
             }
             let study = Study::from_path(file)?;
             let results = read_results_path(path, &study)?;
-            let names: Vec<String> = study.model.identified().into_iter().map(|p| p.name).collect();
+            let names: Vec<String> = study
+                .model
+                .identified()
+                .into_iter()
+                .map(|p| p.name)
+                .collect();
             !check_one(&study, &results, &names)?
         }
         None => {

@@ -71,7 +71,11 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
         .shard
         .map(|spec| study_assignment(&run.study, &run.cells, spec.count));
     let cells: Vec<&jointid::study::Cell> = match (&assignment, args.shard) {
-        (Some(a), Some(spec)) => run.cells.iter().filter(|c| a[c.index] == spec.index).collect(),
+        (Some(a), Some(spec)) => run
+            .cells
+            .iter()
+            .filter(|c| a[c.index] == spec.index)
+            .collect(),
         _ => run.cells.iter().collect(),
     };
     let bar = progress_bar((cells.len() * run.study.trials) as u64, args.quiet);
