@@ -81,7 +81,7 @@ pub fn write_shard(
         out,
         "{MAGIC}{}\n# study: {}\n# fingerprint: {}\n# tool: {}\n# cells: {}\n# rows per cell: {}\n# assignment: {}\n",
         header.spec,
-        header.study,
+        header.study.replace(['\n', '\r'], " "),
         header.fingerprint,
         header.tool,
         header.assignment.len(),
@@ -315,6 +315,33 @@ mod tests {
         assert_ne!(base, fingerprint("jointid 0.1.0", b"study ", b"model"));
         assert_ne!(base, fingerprint("jointid 0.1.0", b"study", b"model2"));
         assert_ne!(base, fingerprint("jointid 0.1.0", b"studym", b"odel"));
+    }
+
+    #[test]
+    fn the_header_reads_back_and_a_bad_one_names_its_line() {
+        let header = ShardHeader {
+            spec: ShardSpec { index: 2, count: 3 },
+            study: "s".into(),
+            fingerprint: "00ff".into(),
+            tool: "jointid 9".into(),
+            rows_per_cell: 8,
+            assignment: vec![1, 2, 3, 2],
+        };
+        let mut bytes = Vec::new();
+        write_shard(&mut bytes, &header, &[], &[], NoiseKind::Uniform).unwrap();
+        let back = ShardFile::from_reader(&bytes[..], Path::new("a.csv")).unwrap();
+        assert_eq!(back.header, header);
+        assert!(back.rows.is_empty());
+        let text = String::from_utf8(bytes).unwrap();
+        let bad = text.replace("# cells: 4", "# cells: 5");
+        let e = ShardFile::from_reader(bad.as_bytes(), Path::new("a.csv")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "a.csv:7: the assignment must list 5 shard numbers from 1 to 3"
+        );
+        let bad = text.replace("cell,mode", "cell,mood");
+        let e = ShardFile::from_reader(bad.as_bytes(), Path::new("a.csv")).unwrap_err();
+        assert!(e.to_string().starts_with("a.csv:8: the columns"), "{e}");
     }
 
     #[test]
