@@ -4,13 +4,18 @@
 //! Cost of a cell. Every trial of every mode draws the d identified shape errors, projects them
 //! on the basis (Y~^+ is n x d: n d products, eq. (15)), assembles the m x q system (its
 //! entries are sums over the n basis vectors: m q n products, eq. (10)-(12)) and solves it
-//! (m q^2, eq. (13)). The estimate, in multiply-adds, is
+//! (m q^2, eq. (13)); beside these, work that does not grow with n, m or d (the stream's
+//! set-up, bookkeeping, the sorts of the statistics) costs about as much again. The estimate,
+//! in multiply-adds, is
 //!
 //! ```text
-//!   cost(cell) = trials * modes * (d + n d + m q n + m q^2)
+//!   cost(cell) = trials * modes * (C + d + n d + m q n + m q^2),   C = 300
 //! ```
 //!
-//! with d = DOFs - NF. It only has to rank cells: the constant factors of the engine cancel.
+//! with d = DOFs - NF. C is a least-squares fit to single-thread times of the 27 cells of
+//! paper case I (300 000 trials each, release build, `jointid study --shard K/27`): the cells
+//! cost 840 to 2344 without it, and their times grow by only 2.3x, not 2.8x. It only has to
+//! rank and weigh cells: a common factor cancels.
 //!
 //! Assignment (longest processing time first): the cells sorted by decreasing cost, ties by
 //! ascending cell index, each given in turn to the shard with the least total cost so far,
@@ -75,8 +80,11 @@ pub fn cell_cost(study: &Study, cell: &Cell) -> f64 {
     let d = study.model.dof_count().saturating_sub(cell.nf()) as f64;
     let q = study.model.identified().len() as f64;
     let (n, m) = (cell.n.0 as f64, cell.m.0 as f64);
-    study.trials as f64 * study.modes.len() as f64 * (d + n * d + m * q * n + m * q * q)
+    study.trials as f64 * study.modes.len() as f64 * (FIXED + d + n * d + m * q * n + m * q * q)
 }
+
+/// C: the work of a trial-mode that does not grow with n, m or d, in multiply-adds.
+pub const FIXED: f64 = 300.0;
 
 /// The shard (1-based) of every cell, given the cells' costs in cell order, for `count`
 /// shards.
