@@ -16,10 +16,13 @@
 //!
 //! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
 //! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
-//! (universal files: measured FRFs and geometry in, mode shapes out).
+//! (universal files: measured FRFs and geometry in, mode shapes out), [`extract`] (modal
+//! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
+//! their complexity).
 
 pub mod cluster;
 pub mod diagnose;
+pub mod extract;
 pub mod identify;
 pub mod input;
 pub mod measured;

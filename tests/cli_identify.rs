@@ -94,7 +94,7 @@ fn identifies_noise_free_modes_into_a_csv() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
-        "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition"
+        "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition,resolution,identified"
     );
     assert_eq!(lines.len(), 5);
     for (line, (mode, param, delta)) in lines[1..].iter().zip([
@@ -110,6 +110,9 @@ fn identifies_noise_free_modes_into_a_csv() {
         assert!((correction - delta).abs() < 1e-8 * delta, "{line}");
         let relative: f64 = f[5].parse().unwrap();
         assert!((relative - 0.2).abs() < 1e-8, "{line}");
+        let resolution: f64 = f[9].parse().unwrap();
+        assert!(resolution > 0.5 && resolution <= 1.0, "{line}");
+        assert_eq!(f[10], "yes");
     }
     // Without --out: a readable table on stdout.
     let run = identify(

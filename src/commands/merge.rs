@@ -4,11 +4,13 @@ use anyhow::Context;
 
 use crate::cli::MergeArgs;
 use jointid::cluster::{ShardFile, merge};
-use jointid::output::write_atomically;
+use jointid::output::{check_outputs, write_atomically};
 
 /// Reads every shard, checks and merges them in memory, then writes the CSV whole: on any
 /// error nothing is written.
 pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
+    let inputs: Vec<&std::path::Path> = args.shards.iter().map(|p| p.as_path()).collect();
+    check_outputs(&[args.out.as_path()], &inputs)?;
     let shards = args
         .shards
         .iter()

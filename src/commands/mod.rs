@@ -4,9 +4,11 @@ mod bench;
 mod check;
 mod cluster;
 mod diagnose;
+mod extract;
 mod identify;
 mod merge;
 mod report;
+mod resources;
 mod run_study;
 mod simulate;
 mod study;
@@ -24,6 +26,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Merge(args) => merge::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Cluster(command) => cluster::run(&command).map(|()| ExitCode::SUCCESS),
         Command::Simulate(args) => simulate::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Extract(args) => extract::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Diagnose(args) => diagnose::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Report(args) => report::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),

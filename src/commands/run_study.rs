@@ -11,7 +11,12 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::cli::StudyArgs;
 use jointid::cluster::{ShardHeader, ShardSpec, fingerprint, study_assignment, write_shard};
 use jointid::output::study::{TrialsWriter, write_results};
-use jointid::output::write_atomically;
+use jointid::output::{check_outputs, stage};
+use jointid::study::check::selected_rows;
+
+use crate::commands::report::commit_all;
+use crate::commands::resources::check_memory;
+use jointid::study::resources::peak_bytes;
 use jointid::study::{CellResult, Study, StudyRun};
 
 /// A finished study (or shard of a study).
@@ -38,9 +43,33 @@ fn shard_path(output_csv: &Path, spec: ShardSpec) -> PathBuf {
     output_csv.with_file_name(format!("{stem}.shard-{}-of-{}.csv", spec.index, spec.count))
 }
 
-/// Reads, validates and runs every study of `args` in turn, handing each to `finished`.
+/// Where the results of `study` go: `--out`, else the shard file, else `[output].csv`.
+fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
+    match (&args.out, args.shard) {
+        (Some(out), _) => out.clone(),
+        (None, Some(spec)) => shard_path(&study.output_csv, spec),
+        (None, None) => study.output_csv.clone(),
+    }
+}
+
+/// The fingerprint of a study: this tool's version, the study file and its model file.
+pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
+    let read = |path: &Path| {
+        std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
+    };
+    Ok(fingerprint(
+        &tool_version(),
+        &read(&study.file)?,
+        &read(&study.model_file)?,
+    ))
+}
+
+/// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs
+/// them in turn, handing each to `finished`. Nothing is computed or written before every
+/// study and every output path has passed.
 pub fn run_studies(
     args: &StudyArgs,
+    gate: bool,
     mut finished: impl FnMut(&Finished) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     if args.studies.len() > 1
@@ -51,20 +80,76 @@ pub fn run_studies(
             args.studies.len()
         );
     }
-    for path in &args.studies {
-        finished(&run_study(path, args)?)?;
+    let pool = worker_pool(args.threads)?;
+    let runs = args
+        .studies
+        .iter()
+        .map(|path| prepare(path, args, gate))
+        .collect::<anyhow::Result<Vec<StudyRun>>>()?;
+    for run in runs {
+        finished(&execute(run, args, &pool)?)?;
     }
     Ok(())
 }
 
-/// Reads, validates and runs one study, writing its outputs.
-fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
-    let study = Study::from_path(path)?;
-    let run = StudyRun::new(study)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
+/// The most worker threads a run may ask for, per core.
+const THREADS_PER_CORE: usize = 8;
+
+fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let limit = THREADS_PER_CORE * cores;
+    if let Some(t) = threads.filter(|t| !(1..=limit).contains(t)) {
+        bail!(
+            "--threads {t} is invalid: it must be from 1 to {limit} ({THREADS_PER_CORE} per core, {cores} core(s) here)"
+        );
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
         .build()
-        .context("cannot start the worker threads")?;
+        .context("cannot start the worker threads")
+}
+
+/// Reads and validates one study: its cells, its gate when `gate`, its output paths.
+fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun> {
+    let study = Study::from_path(path)?;
+    if gate {
+        let Some(spec) = &study.check else {
+            bail!(
+                "{}: there is no [check] table: nothing to hold the study to",
+                study.file.display()
+            );
+        };
+        let names: Vec<String> = study
+            .model
+            .identified()
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
+            bail!(
+                "{}: [check].where selects no (cell, mode, parameter) of the grid",
+                study.file.display()
+            );
+        }
+    }
+    let out = output_path(&study, args);
+    let mut outputs = vec![out.as_path()];
+    outputs.extend(args.trials_csv.as_deref());
+    check_outputs(&outputs, &[&study.file, &study.model_file])?;
+    check_memory(
+        peak_bytes(&study),
+        &format!(
+            "{} (one cell of {} trials)",
+            study.file.display(),
+            study.trials
+        ),
+        "monte_carlo.trials, the number of grid modes, or the identified parameters (hold some with `fixed`)",
+    )?;
+    Ok(StudyRun::new(study)?)
+}
+
+/// Runs a validated study and writes its outputs together.
+fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow::Result<Finished> {
     let names: Vec<String> = run.context.params.iter().map(|p| p.name.clone()).collect();
     // The cells to run: all, or those the balanced assignment gives to the shard.
     let assignment = args
@@ -84,14 +169,17 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
         let total = done.fetch_add(count, Ordering::Relaxed) + count;
         bar.set_position(total);
     };
-    let results = match &args.trials_csv {
-        None => cells
-            .iter()
-            .map(|cell| pool.install(|| run.run_cell(cell, &progress)).0)
-            .collect(),
+    let (results, trials) = match &args.trials_csv {
+        None => (
+            cells
+                .iter()
+                .map(|cell| pool.install(|| run.run_cell(cell, &progress)).0)
+                .collect(),
+            None,
+        ),
         Some(path) => {
             let mut results = Vec::with_capacity(cells.len());
-            write_atomically(path, |w| {
+            let staged = stage(path, |w| {
                 let mut trials = TrialsWriter::new(w)?;
                 for cell in &cells {
                     let (result, samples) = pool.install(|| run.run_cell(cell, &progress));
@@ -101,33 +189,38 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
                 trials.finish()
             })
             .with_context(|| format!("{}: cannot write the trials", path.display()))?;
-            results
+            (results, Some(staged))
         }
     };
     bar.finish_and_clear();
-    let out = match (&args.out, args.shard) {
-        (Some(out), _) => out.clone(),
-        (None, Some(spec)) => shard_path(&run.study.output_csv, spec),
-        (None, None) => run.study.output_csv.clone(),
+    let out = output_path(&run.study, args);
+    let header = match (args.shard, assignment) {
+        (Some(spec), Some(assignment)) => Some(ShardHeader {
+            spec,
+            study: run.study.name.clone(),
+            fingerprint: study_fingerprint(&run.study)?,
+            tool: tool_version(),
+            rows_per_cell: run.study.modes.len() * names.len(),
+            assignment,
+        }),
+        _ => None,
     };
-    match (args.shard, assignment) {
-        (Some(spec), Some(assignment)) => {
-            let header = ShardHeader {
-                spec,
-                study: run.study.name.clone(),
-                fingerprint: study_fingerprint(&run.study)?,
-                tool: tool_version(),
-                rows_per_cell: run.study.modes.len() * names.len(),
-                assignment,
-            };
-            write_output(&out, |w| {
-                write_shard(w, &header, &results, &names, run.study.noise)
-            })?;
+    let created = create_parent(&out)?;
+    let staged = stage(&out, |w| match &header {
+        Some(header) => write_shard(w, header, &results, &names, run.study.noise),
+        None => write_results(w, &results, &names, run.study.noise),
+    })
+    .with_context(|| format!("{}: cannot write the results", out.display()));
+    let staged = match staged {
+        Ok(s) => s,
+        Err(e) => {
+            if let Some(dir) = created {
+                let _ = std::fs::remove_dir(dir);
+            }
+            return Err(e);
         }
-        _ => write_output(&out, |w| {
-            write_results(w, &results, &names, run.study.noise)
-        })?,
-    }
+    };
+    commit_all(trials.into_iter().chain(std::iter::once(staged)).collect())?;
     Ok(Finished {
         run,
         results,
@@ -137,28 +230,19 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
     })
 }
 
-/// The fingerprint of a study: this tool's version, the study file and its model file.
-pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
-    let read = |path: &Path| {
-        std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
-    };
-    Ok(fingerprint(
-        &tool_version(),
-        &read(&study.file)?,
-        &read(&study.model_file)?,
-    ))
-}
-
-fn write_output(
-    out: &Path,
-    fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
-) -> anyhow::Result<()> {
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+/// Creates the directory of `out` when missing; the directory created, if any.
+fn create_parent(out: &Path) -> anyhow::Result<Option<&Path>> {
+    match out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty() && !d.exists())
+    {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+            Ok(Some(dir))
+        }
+        None => Ok(None),
     }
-    write_atomically(out, fill)
-        .with_context(|| format!("{}: cannot write the results", out.display()))
 }
 
 fn progress_bar(total: u64, quiet: bool) -> ProgressBar {
