@@ -46,6 +46,19 @@ pub enum Command {
     Report(ReportArgs),
     /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
     Bench(BenchArgs),
+    /// Write a model as an external model (`kind = "matrices"`): Matrix Market K, M, dK/dp
+    /// (dM/dp) per parameter, the DOF table and a model.toml that reads back.
+    Export(ExportArgs),
+}
+
+/// `jointid export`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Model to export (any kind).
+    pub model: PathBuf,
+    /// A new folder for the files (it must not exist, or be empty).
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `jointid study` and `jointid check`.

@@ -4,7 +4,7 @@
 //!
 //! The data flow one way; open the modules in this order:
 //! 1. [`model`]: the model file, beam elements, the joint of eq. (17), assembly of K, M and
-//!    of the parameter derivatives dK/dp (eq. (8));
+//!    of the parameter derivatives dK/dp (eq. (8)); or external matrices (Matrix Market);
 //! 2. [`modal`]: the eigensolution of eq. (1)-(2);
 //! 3. [`measured`]: measured modes (eigenvalues and partial shapes);
 //! 4. [`identify`]: the per-mode method, eq. (5)-(16), and the first-order propagation of

@@ -5,7 +5,7 @@
 //! K and M are linear in the parameters: K(p) = K_base + sum_i p_i dK/dp_i, and the same for
 //! M, so the first-order expansion of eq. (8) is exact in them. Builders make a structure:
 //! the beam chain ([`crate::model::chain`]) and external matrices
-//! ([`crate::model::external`]); identify, study, simulate and diagnose never ask which.
+//! ([`crate::model::matrices`]); identify, study, simulate and diagnose never ask which.
 //!
 //! - [`sparse`]: derivative matrices, a list of entries;
 //! - [`matrix`]: K and M, compressed sparse columns;

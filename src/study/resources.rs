@@ -37,7 +37,7 @@ mod tests {
         let deltas: Vec<String> = structure
             .identified()
             .iter()
-            .map(|p| format!("{} = 1.0", p.name))
+            .map(|p| format!("\"{}\" = 1.0", p.name))
             .collect();
         let modes: Vec<String> = (1..=20).map(|m| m.to_string()).collect();
         let text = format!(
