@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 
 use common::{jointid, scratch};
 use jointid::cluster::{
-    MergeError, ShardFile, ShardHeader, ShardSpec, fingerprint, merge, read_results,
-    study_assignment, write_shard,
+    MergeError, ShardFile, ShardHeader, ShardSpec, fingerprint, merge, model_data_files,
+    read_results, study_assignment, write_shard,
 };
 use jointid::output::study::write_results;
 use jointid::study::{Study, StudyRun};
@@ -68,7 +68,7 @@ fn shard_files_of_the_shipped_studies_merge_into_the_single_run_byte_for_byte() 
             .collect();
         let mut single = Vec::new();
         write_results(&mut single, &results, &names, run.study.noise).unwrap();
-        let print = fingerprint("jointid test", b"study", b"model");
+        let print = fingerprint("jointid test", &[b"study", b"model"]);
         for n in [1, 2, 5, 17] {
             let assignment = study_assignment(&run.study, &run.cells, n);
             // Shards given in reverse order: the merge orders the cells.
@@ -100,6 +100,26 @@ fn shard_files_of_the_shipped_studies_merge_into_the_single_run_byte_for_byte() 
         let back = read_results(&single[..], Path::new("single.csv"), &run.study).unwrap();
         assert_eq!(back, results, "{path}");
     }
+}
+
+#[test]
+fn the_fingerprint_covers_an_external_model_s_matrices_and_a_chain_has_none() {
+    let chain = "models/paper-case-1.toml";
+    let text = std::fs::read_to_string(chain).unwrap();
+    assert!(model_data_files(&text, Path::new(chain)).is_empty());
+    let external = Path::new("tests/fixtures/matrices/two-dof/free.toml");
+    let text = std::fs::read_to_string(external).unwrap();
+    let files = model_data_files(&text, external);
+    assert!(files.len() >= 4, "{files:?}");
+    for f in &files {
+        assert!(f.is_file(), "{} is not a file", f.display());
+    }
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.contains(&"dofs.csv".to_string()), "{names:?}");
+    assert!(names.contains(&"dK.mtx".to_string()), "{names:?}");
 }
 
 #[test]

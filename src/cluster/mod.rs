@@ -21,5 +21,7 @@ pub mod slurm;
 pub use merge::{MergeError, merge};
 pub use results::{ResultsError, read_results, read_results_path};
 pub use shard::{ShardError, ShardSpec, assign, cell_cost, study_assignment};
-pub use shard_file::{ShardFile, ShardFileError, ShardHeader, fingerprint, write_shard};
+pub use shard_file::{
+    ShardFile, ShardFileError, ShardHeader, fingerprint, model_data_files, write_shard,
+};
 pub use slurm::{SlurmPlan, SlurmScripts};

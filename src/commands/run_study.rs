@@ -9,7 +9,9 @@ use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
-use jointid::cluster::{ShardHeader, ShardSpec, fingerprint, study_assignment, write_shard};
+use jointid::cluster::{
+    ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
+};
 use jointid::output::study::{TrialsWriter, write_results};
 use jointid::output::{check_outputs, stage};
 use jointid::study::check::selected_rows;
@@ -52,16 +54,20 @@ fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
     }
 }
 
-/// The fingerprint of a study: this tool's version, the study file and its model file.
+/// The fingerprint of a study: this tool's version, the study file, its model file and the
+/// files the model names.
 pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
     let read = |path: &Path| {
         std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
     };
-    Ok(fingerprint(
-        &tool_version(),
-        &read(&study.file)?,
-        &read(&study.model_file)?,
-    ))
+    let model = read(&study.model_file)?;
+    let mut files = vec![read(&study.file)?];
+    for path in model_data_files(&String::from_utf8_lossy(&model), &study.model_file) {
+        files.push(read(&path)?);
+    }
+    files.insert(1, model);
+    let parts: Vec<&[u8]> = files.iter().map(|f| f.as_slice()).collect();
+    Ok(fingerprint(&tool_version(), &parts))
 }
 
 /// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs
