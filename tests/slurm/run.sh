@@ -53,7 +53,9 @@ trap cleanup EXIT
 # 2. Munge (authentication of the daemons and clients), else auth/none.
 AUTH=auth/munge
 MUNGE_SOCKET=$WORK/munge/munge.socket.2
-mkdir -p "$WORK/munge" && chown munge:munge "$WORK/munge" 2>/dev/null && chmod 700 "$WORK/munge"
+# munged runs as user munge and wants its socket directory traversable by everyone.
+chmod 755 "$WORK"
+mkdir -p "$WORK/munge" && chown munge:munge "$WORK/munge" 2>/dev/null && chmod 755 "$WORK/munge"
 if [ -r /etc/munge/munge.key ] && id munge >/dev/null 2>&1 \
     && runuser -u munge -- munged --socket="$MUNGE_SOCKET" --pid-file="$WORK/munge/munged.pid" \
         --log-file="$WORK/munge/munged.log" --seed-file="$WORK/munge/munged.seed" 2>"$WORK/munged.err"; then
