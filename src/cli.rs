@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+use jointid::cluster::ShardSpec;
 use jointid::identify::Weighting;
 
 /// Identify joint stiffness from measured vibration modes, mode by mode.
@@ -23,9 +24,15 @@ pub enum Command {
     /// Monte-Carlo robustness study from a TOML file: bias and spread of every per-mode
     /// correction over the grid.
     Study(StudyArgs),
-    /// Run a study and exit 1 when the estimator bias in the cells of `[check]` exceeds
-    /// its threshold (a CI gate).
-    Check(StudyArgs),
+    /// Run a study (or read its result CSV with `--results`) and exit 1 when the estimator
+    /// bias in the cells of `[check]` exceeds its threshold (a CI gate).
+    Check(CheckArgs),
+    /// Merge the shard files of `study --shard K/N` into the study's result CSV, byte for
+    /// byte the single-machine one.
+    Merge(MergeArgs),
+    /// Scripts that run a study's shards on a cluster's batch scheduler.
+    #[command(subcommand)]
+    Cluster(ClusterCommand),
     /// Measured modes simulated from a model, with optional measurement errors, in the
     /// measured-modes CSV format.
     Simulate(SimulateArgs),
@@ -72,6 +79,79 @@ pub struct StudyArgs {
     /// No progress bar (it is hidden anyway when stderr is not a terminal).
     #[arg(long)]
     pub quiet: bool,
+    /// Run only the cells of shard K of N (one study only) and write a shard file (default
+    /// name: the study's CSV with `.shard-K-of-N.csv`); `jointid merge` joins the shards.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<ShardSpec>,
+}
+
+/// `jointid check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// The studies and how to run them.
+    #[command(flatten)]
+    pub study: StudyArgs,
+    /// Hold this result CSV of the study (e.g. a merged one) to its `[check]` instead of
+    /// running the study (one study only).
+    #[arg(long, value_name = "F.csv")]
+    pub results: Option<PathBuf>,
+}
+
+/// `jointid merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The shard files, in any order.
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
+    /// The merged result CSV.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `jointid cluster`.
+#[derive(Debug, Subcommand)]
+pub enum ClusterCommand {
+    /// Write a Slurm job array (one task per shard), the dependent merge job and a submit
+    /// script; run the submit script on the cluster's login node.
+    Slurm(SlurmArgs),
+}
+
+/// `jointid cluster slurm`.
+#[derive(Debug, Args)]
+pub struct SlurmArgs {
+    /// The study file (TOML).
+    pub study: PathBuf,
+    /// Number of shards N (array tasks).
+    #[arg(long)]
+    pub shards: usize,
+    /// Slurm partition.
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Time limit of every task and of the merge (Slurm syntax, e.g. 02:00:00).
+    #[arg(long)]
+    pub time: Option<String>,
+    /// Slurm account.
+    #[arg(long)]
+    pub account: Option<String>,
+    /// Memory of every shard task (Slurm syntax, e.g. 4G).
+    #[arg(long)]
+    pub mem: Option<String>,
+    /// Cores of every shard task (its worker threads).
+    #[arg(long, default_value_t = 1)]
+    pub cpus_per_task: usize,
+    /// A further `#SBATCH` option, verbatim (repeatable), e.g. --sbatch=--qos=short.
+    #[arg(long = "sbatch", value_name = "OPTION", allow_hyphen_values = true)]
+    pub extra: Vec<String>,
+    /// Directory of the scripts, shard files and logs (default: slurm/NAME), on a file
+    /// system the nodes share.
+    #[arg(long)]
+    pub dir: Option<PathBuf>,
+    /// The merged result CSV (default: the study's `[output].csv`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// The jointid binary the nodes run (default: this one).
+    #[arg(long)]
+    pub jointid: Option<PathBuf>,
 }
 
 /// `jointid extract`.

@@ -20,6 +20,7 @@
 //! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
 //! their complexity).
 
+pub mod cluster;
 pub mod diagnose;
 pub mod extract;
 pub mod identify;

@@ -1,21 +1,66 @@
-//! `jointid check`: run studies and hold each one's estimator bias to its `[check]`.
+//! `jointid check`: run studies (or read a study's result CSV) and hold each one's estimator
+//! bias to its `[check]`.
 
 use std::io::Write;
 use std::process::ExitCode;
 
 use anyhow::bail;
 
-use crate::cli::StudyArgs;
-use crate::commands::run_study::{Finished, run_studies};
-use jointid::study::check::evaluate;
+use crate::cli::CheckArgs;
+use crate::commands::run_study::run_studies;
+use jointid::cluster::read_results_path;
+use jointid::study::check::{evaluate, selected_rows};
+use jointid::study::{CellResult, Study};
 
 /// Exit 1 when any study fails its gate; every study is run and reported.
-pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
-    let mut failed = false;
-    run_studies(args, true, |finished| {
-        failed |= !check_one(finished)?;
-        Ok(())
-    })?;
+pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
+    if let Some(spec) = args.study.shard {
+        bail!(
+            "check holds whole studies: run `jointid study S.toml --shard {spec}` for each shard, `jointid merge` them, then `jointid check S.toml --results F.csv`"
+        );
+    }
+    let failed = match &args.results {
+        Some(path) => {
+            let [file] = args.study.studies.as_slice() else {
+                bail!(
+                    "--results takes one study file, not {}",
+                    args.study.studies.len()
+                );
+            };
+            if args.study.out.is_some() || args.study.trials_csv.is_some() {
+                bail!("--results reads a result: --out and --trials-csv have nothing to write");
+            }
+            let study = Study::from_path(file)?;
+            let names: Vec<String> = study
+                .model
+                .identified()
+                .into_iter()
+                .map(|p| p.name)
+                .collect();
+            let Some(spec) = &study.check else {
+                bail!(
+                    "{}: there is no [check] table: nothing to hold the study to",
+                    study.file.display()
+                );
+            };
+            if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
+                bail!(
+                    "{}: [check].where selects no (cell, mode, parameter) of the grid",
+                    study.file.display()
+                );
+            }
+            let results = read_results_path(path, &study)?;
+            !check_one(&study, &results, &names)?
+        }
+        None => {
+            let mut failed = false;
+            run_studies(&args.study, true, |finished| {
+                failed |= !check_one(&finished.run.study, &finished.results, &finished.names)?;
+                Ok(())
+            })?;
+            failed
+        }
+    };
     Ok(if failed {
         ExitCode::from(1)
     } else {
@@ -23,14 +68,13 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// Holds one finished study to its gate; `Ok(false)` when it fails.
-fn check_one(finished: &Finished) -> anyhow::Result<bool> {
-    let study = &finished.run.study;
-    // Both were validated before the study ran (run_studies with its gate).
+/// Holds one study's results to its gate; `Ok(false)` when it fails.
+fn check_one(study: &Study, results: &[CellResult], names: &[String]) -> anyhow::Result<bool> {
+    // Both were validated before the study ran or was read.
     let Some(spec) = &study.check else {
         bail!("{}: there is no [check] table", study.file.display());
     };
-    let report = evaluate(spec, &finished.results, &finished.names);
+    let report = evaluate(spec, results, names);
     let mut out = std::io::stdout().lock();
     if report.failures.is_empty() {
         writeln!(

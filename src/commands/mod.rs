@@ -2,10 +2,12 @@
 
 mod bench;
 mod check;
+mod cluster;
 mod diagnose;
 mod export;
 mod extract;
 mod identify;
+mod merge;
 mod report;
 mod resources;
 mod run_study;
@@ -22,6 +24,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Identify(args) => identify::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Study(args) => study::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Check(args) => check::run(&args),
+        Command::Merge(args) => merge::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Cluster(command) => cluster::run(&command).map(|()| ExitCode::SUCCESS),
         Command::Simulate(args) => simulate::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Extract(args) => extract::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Diagnose(args) => diagnose::run(&args).map(|()| ExitCode::SUCCESS),

@@ -2,13 +2,16 @@
 //! optional per-trial CSV, result CSV written whole or not at all.
 
 use std::io::IsTerminal;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
+use jointid::cluster::{
+    ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
+};
 use jointid::output::study::{TrialsWriter, write_results};
 use jointid::output::{check_outputs, stage};
 use jointid::study::check::selected_rows;
@@ -18,11 +21,53 @@ use crate::commands::resources::check_memory;
 use jointid::study::resources::peak_bytes;
 use jointid::study::{CellResult, Study, StudyRun};
 
-/// A finished study.
+/// A finished study (or shard of a study).
 pub struct Finished {
     pub run: StudyRun,
     pub results: Vec<CellResult>,
     pub names: Vec<String>,
+    /// The file written.
+    pub out: PathBuf,
+    /// The shard run, if any.
+    pub shard: Option<ShardSpec>,
+}
+
+/// The tool's version as the fingerprint records it.
+pub fn tool_version() -> String {
+    format!("jointid {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// The default shard file of `output_csv`: `NAME.shard-K-of-N.csv` beside it.
+fn shard_path(output_csv: &Path, spec: ShardSpec) -> PathBuf {
+    let stem = output_csv
+        .file_stem()
+        .map_or_else(|| "study".into(), |s| s.to_string_lossy().into_owned());
+    output_csv.with_file_name(format!("{stem}.shard-{}-of-{}.csv", spec.index, spec.count))
+}
+
+/// Where the results of `study` go: `--out`, else the shard file, else `[output].csv`.
+fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
+    match (&args.out, args.shard) {
+        (Some(out), _) => out.clone(),
+        (None, Some(spec)) => shard_path(&study.output_csv, spec),
+        (None, None) => study.output_csv.clone(),
+    }
+}
+
+/// The fingerprint of a study: this tool's version, the study file, its model file and the
+/// files the model names.
+pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
+    let read = |path: &Path| {
+        std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
+    };
+    let model = read(&study.model_file)?;
+    let mut files = vec![read(&study.file)?];
+    for path in model_data_files(&String::from_utf8_lossy(&model), &study.model_file) {
+        files.push(read(&path)?);
+    }
+    files.insert(1, model);
+    let parts: Vec<&[u8]> = files.iter().map(|f| f.as_slice()).collect();
+    Ok(fingerprint(&tool_version(), &parts))
 }
 
 /// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs
@@ -33,9 +78,11 @@ pub fn run_studies(
     gate: bool,
     mut finished: impl FnMut(&Finished) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    if args.studies.len() > 1 && (args.out.is_some() || args.trials_csv.is_some()) {
+    if args.studies.len() > 1
+        && (args.out.is_some() || args.trials_csv.is_some() || args.shard.is_some())
+    {
         bail!(
-            "--out and --trials-csv take one study file, not {}",
+            "--out, --trials-csv and --shard take one study file, not {}",
             args.studies.len()
         );
     }
@@ -91,8 +138,8 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun
             );
         }
     }
-    let out = args.out.as_deref().unwrap_or(&study.output_csv);
-    let mut outputs = vec![out];
+    let out = output_path(&study, args);
+    let mut outputs = vec![out.as_path()];
     outputs.extend(args.trials_csv.as_deref());
     check_outputs(&outputs, &[&study.file, &study.model_file])?;
     check_memory(
@@ -110,7 +157,19 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun
 /// Runs a validated study and writes its outputs together.
 fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow::Result<Finished> {
     let names: Vec<String> = run.context.params.iter().map(|p| p.name.clone()).collect();
-    let bar = progress_bar(run.trial_count(), args.quiet);
+    // The cells to run: all, or those the balanced assignment gives to the shard.
+    let assignment = args
+        .shard
+        .map(|spec| study_assignment(&run.study, &run.cells, spec.count));
+    let cells: Vec<&jointid::study::Cell> = match (&assignment, args.shard) {
+        (Some(a), Some(spec)) => run
+            .cells
+            .iter()
+            .filter(|c| a[c.index] == spec.index)
+            .collect(),
+        _ => run.cells.iter().collect(),
+    };
+    let bar = progress_bar((cells.len() * run.study.trials) as u64, args.quiet);
     let done = AtomicU64::new(0);
     let progress = |count: u64| {
         let total = done.fetch_add(count, Ordering::Relaxed) + count;
@@ -118,17 +177,17 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
     };
     let (results, trials) = match &args.trials_csv {
         None => (
-            run.cells
+            cells
                 .iter()
                 .map(|cell| pool.install(|| run.run_cell(cell, &progress)).0)
                 .collect(),
             None,
         ),
         Some(path) => {
-            let mut results = Vec::with_capacity(run.cells.len());
+            let mut results = Vec::with_capacity(cells.len());
             let staged = stage(path, |w| {
                 let mut trials = TrialsWriter::new(w)?;
-                for cell in &run.cells {
+                for cell in &cells {
                     let (result, samples) = pool.install(|| run.run_cell(cell, &progress));
                     trials.write_cell(cell.index, &run.study.modes, &names, &samples)?;
                     results.push(result);
@@ -140,10 +199,24 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
         }
     };
     bar.finish_and_clear();
-    let out = args.out.as_deref().unwrap_or(&run.study.output_csv);
-    let created = create_parent(out)?;
-    let staged = stage(out, |w| write_results(w, &results, &names, run.study.noise))
-        .with_context(|| format!("{}: cannot write the results", out.display()));
+    let out = output_path(&run.study, args);
+    let header = match (args.shard, assignment) {
+        (Some(spec), Some(assignment)) => Some(ShardHeader {
+            spec,
+            study: run.study.name.clone(),
+            fingerprint: study_fingerprint(&run.study)?,
+            tool: tool_version(),
+            rows_per_cell: run.study.modes.len() * names.len(),
+            assignment,
+        }),
+        _ => None,
+    };
+    let created = create_parent(&out)?;
+    let staged = stage(&out, |w| match &header {
+        Some(header) => write_shard(w, header, &results, &names, run.study.noise),
+        None => write_results(w, &results, &names, run.study.noise),
+    })
+    .with_context(|| format!("{}: cannot write the results", out.display()));
     let staged = match staged {
         Ok(s) => s,
         Err(e) => {
@@ -158,6 +231,8 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
         run,
         results,
         names,
+        out,
+        shard: args.shard,
     })
 }
 

@@ -10,20 +10,23 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     run_studies(args, false, |finished| {
         let study = &finished.run.study;
         let mut out = std::io::stdout().lock();
+        let part = finished.shard.map_or_else(String::new, |s| {
+            format!(
+                " (shard {s}: {} of the {} cells)",
+                finished.results.len(),
+                finished.run.cells.len()
+            )
+        });
         writeln!(
             out,
-            "{}: {} cell(s) x {} trial(s), {} noise; median [q05, q95] of each correction",
+            "{}{part}: {} cell(s) x {} trial(s), {} noise; median [q05, q95] of each correction",
             study.name,
             finished.results.len(),
             study.trials,
             study.noise
         )?;
         write_paper_table(&mut out, &finished.results, &finished.names, &study.modes)?;
-        writeln!(
-            out,
-            "results: {}\n",
-            args.out.as_deref().unwrap_or(&study.output_csv).display()
-        )?;
+        writeln!(out, "results: {}\n", finished.out.display())?;
         Ok(())
     })
 }

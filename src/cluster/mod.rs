@@ -1,0 +1,27 @@
+//! Studies on a cluster: a study split by cells into N shards that run anywhere, each a file
+//! that carries the study's fingerprint, merged back into exactly the bytes of the
+//! single-machine result; and the Slurm scripts that run the shards as a job array.
+//!
+//! A cell gives the same bits wherever it runs: every trial draws from its own stream seeded
+//! by (seed, cell, trial) ([`crate::study::noise`]), and a cell's statistics depend on its
+//! trials alone. So the split changes no number, only where it is computed.
+//!
+//! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;
+//! - [`shard_file`]: the fingerprint and the shard result file;
+//! - [`merge`]: the checks and the merged CSV;
+//! - [`results`]: a result CSV read back for `check --results`;
+//! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
+
+pub mod merge;
+pub mod results;
+pub mod shard;
+pub mod shard_file;
+pub mod slurm;
+
+pub use merge::{MergeError, merge};
+pub use results::{ResultsError, read_results, read_results_path};
+pub use shard::{ShardError, ShardSpec, assign, cell_cost, study_assignment};
+pub use shard_file::{
+    ShardFile, ShardFileError, ShardHeader, fingerprint, model_data_files, write_shard,
+};
+pub use slurm::{SlurmPlan, SlurmScripts};

@@ -1,0 +1,376 @@
+//! The result file of one shard: a few `#` lines that say what it is, then the result CSV of
+//! its cells exactly as the single-machine run writes them ([`crate::output::study`]).
+//!
+//! ```text
+//! # jointid shard 2/4
+//! # study: paper-case-1
+//! # fingerprint: 5f0c6a1d93e2b847
+//! # tool: jointid 0.1.0
+//! # cells: 36
+//! # rows per cell: 8
+//! # assignment: 1 2 3 4 4 3 ...
+//! cell,mode,param,n,...
+//! ```
+//!
+//! The fingerprint is the 64-bit FNV-1a hash (Fowler, Noll, Vo; the parameters of
+//! <http://www.isthe.com/chongo/tech/comp/fnv/>) of the tool version, the study file's bytes,
+//! the model file's bytes and those of the files an external model names (its matrices and
+//! DOF table, [`model_data_files`]), each prefixed by its length: shards of different study
+//! files, models or jointid versions never merge. It guards against mistakes, not against forgery.
+//! `assignment` is the shard (1-based) of every cell in cell order, so that a merge can name
+//! the shard a missing cell belongs to.
+
+use std::io::{self, BufRead, Read, Write};
+use std::path::{Path, PathBuf};
+
+use super::shard::ShardSpec;
+use crate::output::study::{RESULT_HEADER, write_results};
+use crate::study::{CellResult, NoiseKind};
+
+const MAGIC: &str = "# jointid shard ";
+
+/// The 64-bit FNV-1a hash of `bytes`, continuing from `hash` (start from [`FNV_OFFSET`]).
+pub fn fnv1a(mut hash: u64, bytes: &[u8]) -> u64 {
+    for &b in bytes {
+        hash ^= u64::from(b);
+        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    hash
+}
+
+/// The FNV-1a 64-bit offset basis.
+pub const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// The fingerprint of a study: the tool version and the bytes of its files (the study file,
+/// the model file, the model's data files; see the module docs), as 16 hexadecimal digits.
+pub fn fingerprint(tool: &str, files: &[&[u8]]) -> String {
+    let mut h = FNV_OFFSET;
+    for part in std::iter::once(tool.as_bytes()).chain(files.iter().copied()) {
+        h = fnv1a(h, &(part.len() as u64).to_le_bytes());
+        h = fnv1a(h, part);
+    }
+    format!("{h:016x}")
+}
+
+/// The files a model file names, whose bytes are part of the model: for an external model
+/// (`kind = "matrices"`) K, M, the DOF table and every dK/dp and dM/dp, in file order; none for
+/// a beam chain (everything is in the model file). `text` is the model file's content.
+pub fn model_data_files(text: &str, model_file: &Path) -> Vec<PathBuf> {
+    use crate::model::matrices::config::RawMatrices;
+    let Ok(raw) = crate::input::parse_toml::<RawMatrices>(text, model_file) else {
+        return Vec::new();
+    };
+    let Ok(m) = raw.validate(model_file) else {
+        return Vec::new();
+    };
+    let mut files = vec![m.stiffness, m.mass, m.dofs];
+    for p in m.parameters {
+        files.push(p.dk);
+        files.extend(p.dm);
+    }
+    files
+}
+
+/// What a shard file says about itself.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ShardHeader {
+    /// K/N.
+    pub spec: ShardSpec,
+    /// The study's name.
+    pub study: String,
+    /// The study's fingerprint.
+    pub fingerprint: String,
+    /// `jointid <version>` that wrote it.
+    pub tool: String,
+    /// Rows of every cell, modes times parameters.
+    pub rows_per_cell: usize,
+    /// The shard (1-based) of every cell of the study, in cell order.
+    pub assignment: Vec<usize>,
+}
+
+/// Writes a shard file: the header, then the result CSV of `results` (the shard's cells).
+pub fn write_shard(
+    out: &mut dyn Write,
+    header: &ShardHeader,
+    results: &[CellResult],
+    names: &[String],
+    noise: NoiseKind,
+) -> io::Result<()> {
+    let assignment: Vec<String> = header.assignment.iter().map(|s| s.to_string()).collect();
+    write!(
+        out,
+        "{MAGIC}{}\n# study: {}\n# fingerprint: {}\n# tool: {}\n# cells: {}\n# rows per cell: {}\n# assignment: {}\n",
+        header.spec,
+        header.study.replace(['\n', '\r'], " "),
+        header.fingerprint,
+        header.tool,
+        header.assignment.len(),
+        header.rows_per_cell,
+        assignment.join(" ")
+    )?;
+    write_results(out, results, names, noise)
+}
+
+/// A shard file that cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ShardFileError {
+    /// Cannot read.
+    #[error("{file}: cannot read: {cause}")]
+    Read {
+        /// The file.
+        file: PathBuf,
+        /// Why.
+        cause: io::Error,
+    },
+    /// No shard header.
+    #[error(
+        "{file} is not a jointid shard file: it must begin with `{}K/N` (write one with `jointid study S.toml --shard K/N`)",
+        MAGIC
+    )]
+    NotShard {
+        /// The file.
+        file: PathBuf,
+    },
+    /// A bad header line or field.
+    #[error("{file}:{line}: {message}")]
+    Line {
+        /// The file.
+        file: PathBuf,
+        /// Line, 1-based.
+        line: u64,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// One result row of a shard: its cell, the record as written, and its line.
+#[derive(Debug, Clone)]
+pub struct ShardRow {
+    /// Cell index.
+    pub cell: usize,
+    /// The fields.
+    pub record: csv::StringRecord,
+    /// Line in the shard file, 1-based.
+    pub line: u64,
+}
+
+/// A shard file, read.
+#[derive(Debug, Clone)]
+pub struct ShardFile {
+    /// The file, for messages.
+    pub file: PathBuf,
+    /// Its header.
+    pub header: ShardHeader,
+    /// Its result rows in file order.
+    pub rows: Vec<ShardRow>,
+}
+
+impl ShardFile {
+    /// Reads a shard file.
+    pub fn from_path(path: &Path) -> Result<Self, ShardFileError> {
+        let file = std::fs::File::open(path).map_err(|cause| ShardFileError::Read {
+            file: path.into(),
+            cause,
+        })?;
+        Self::from_reader(io::BufReader::new(file), path)
+    }
+
+    /// Reads a shard file from `reader`; `file` names it in errors.
+    pub fn from_reader<R: Read>(reader: R, file: &Path) -> Result<Self, ShardFileError> {
+        let mut reader = io::BufReader::new(reader);
+        let read_err = |cause| ShardFileError::Read {
+            file: file.into(),
+            cause,
+        };
+        let bad = |line: u64, message: String| ShardFileError::Line {
+            file: file.into(),
+            line,
+            message,
+        };
+        let mut fields: Vec<(String, String)> = Vec::new();
+        let mut first = true;
+        loop {
+            if !reader.fill_buf().map_err(read_err)?.starts_with(b"#") {
+                break;
+            }
+            let mut line = String::new();
+            reader.read_line(&mut line).map_err(read_err)?;
+            let line = line.trim_end();
+            if first {
+                let Some(spec) = line.strip_prefix(MAGIC) else {
+                    return Err(ShardFileError::NotShard { file: file.into() });
+                };
+                fields.push(("shard".into(), spec.into()));
+                first = false;
+                continue;
+            }
+            let (key, value) = line
+                .trim_start_matches('#')
+                .split_once(':')
+                .ok_or_else(|| {
+                    bad(
+                        fields.len() as u64 + 1,
+                        format!("`{line}` is not `# key: value`"),
+                    )
+                })?;
+            fields.push((key.trim().into(), value.trim().into()));
+        }
+        if first {
+            return Err(ShardFileError::NotShard { file: file.into() });
+        }
+        let header = parse_header(&fields, &bad)?;
+        let header_lines = fields.len() as u64;
+        let mut csv = csv::ReaderBuilder::new().from_reader(reader);
+        let columns = csv
+            .headers()
+            .map_err(|e| bad(header_lines + 1, e.to_string()))?;
+        if columns.iter().ne(RESULT_HEADER) {
+            return Err(bad(
+                header_lines + 1,
+                format!(
+                    "the columns are not those of a study result: expected {}",
+                    RESULT_HEADER.join(",")
+                ),
+            ));
+        }
+        let mut rows = Vec::new();
+        for record in csv.records() {
+            let record = record.map_err(|e| {
+                let line = e.position().map_or(0, |p| p.line()) + header_lines;
+                bad(line, e.to_string())
+            })?;
+            let line = record.position().map_or(0, |p| p.line()) + header_lines;
+            let cell = record
+                .get(0)
+                .and_then(|c| c.parse::<usize>().ok())
+                .filter(|&c| c < header.assignment.len())
+                .ok_or_else(|| {
+                    bad(
+                        line,
+                        format!(
+                            "cell = `{}` is invalid: it must be a cell index below {}",
+                            record.get(0).unwrap_or(""),
+                            header.assignment.len()
+                        ),
+                    )
+                })?;
+            rows.push(ShardRow { cell, record, line });
+        }
+        Ok(ShardFile {
+            file: file.into(),
+            header,
+            rows,
+        })
+    }
+}
+
+fn parse_header(
+    fields: &[(String, String)],
+    bad: &dyn Fn(u64, String) -> ShardFileError,
+) -> Result<ShardHeader, ShardFileError> {
+    let get = |key: &str| {
+        fields
+            .iter()
+            .position(|(k, _)| k == key)
+            .map(|i| (i as u64 + 1, fields[i].1.as_str()))
+            .ok_or_else(|| {
+                bad(
+                    fields.len() as u64,
+                    format!("the header has no `# {key}:` line"),
+                )
+            })
+    };
+    let number = |key: &str| -> Result<usize, ShardFileError> {
+        let (line, v) = get(key)?;
+        v.parse()
+            .map_err(|_| bad(line, format!("{key} = `{v}` is not a whole number")))
+    };
+    let (line, spec) = get("shard")?;
+    let spec: ShardSpec = spec
+        .parse()
+        .map_err(|e: super::shard::ShardError| bad(line, e.to_string()))?;
+    let cells = number("cells")?;
+    let (line, text) = get("assignment")?;
+    let assignment: Vec<usize> = text
+        .split_whitespace()
+        .map(|s| s.parse().ok().filter(|&k| (1..=spec.count).contains(&k)))
+        .collect::<Option<_>>()
+        .filter(|a: &Vec<usize>| a.len() == cells)
+        .ok_or_else(|| {
+            bad(
+                line,
+                format!(
+                    "the assignment must list {cells} shard numbers from 1 to {}",
+                    spec.count
+                ),
+            )
+        })?;
+    Ok(ShardHeader {
+        spec,
+        study: get("study")?.1.into(),
+        fingerprint: get("fingerprint")?.1.into(),
+        tool: get("tool")?.1.into(),
+        rows_per_cell: number("rows per cell")?,
+        assignment,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fnv1a_reference_vectors() {
+        // Published test vectors of FNV-1a 64 (isthe.com/chongo/src/fnv/test_fnv.c).
+        assert_eq!(fnv1a(FNV_OFFSET, b""), 0xcbf29ce484222325);
+        assert_eq!(fnv1a(FNV_OFFSET, b"a"), 0xaf63dc4c8601ec8c);
+        assert_eq!(fnv1a(FNV_OFFSET, b"foobar"), 0x85944171f73967e8);
+    }
+
+    #[test]
+    fn fingerprint_sees_every_part_and_their_boundaries() {
+        let base = fingerprint("jointid 0.1.0", &[b"study", b"model"]);
+        assert_eq!(base.len(), 16);
+        assert_ne!(base, fingerprint("jointid 0.1.1", &[b"study", b"model"]));
+        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"study ", b"model"]));
+        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"study", b"model2"]));
+        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"studym", b"odel"]));
+        assert_ne!(
+            base,
+            fingerprint("jointid 0.1.0", &[b"study", b"model", b"K"])
+        );
+    }
+
+    #[test]
+    fn the_header_reads_back_and_a_bad_one_names_its_line() {
+        let header = ShardHeader {
+            spec: ShardSpec { index: 2, count: 3 },
+            study: "s".into(),
+            fingerprint: "00ff".into(),
+            tool: "jointid 9".into(),
+            rows_per_cell: 8,
+            assignment: vec![1, 2, 3, 2],
+        };
+        let mut bytes = Vec::new();
+        write_shard(&mut bytes, &header, &[], &[], NoiseKind::Uniform).unwrap();
+        let back = ShardFile::from_reader(&bytes[..], Path::new("a.csv")).unwrap();
+        assert_eq!(back.header, header);
+        assert!(back.rows.is_empty());
+        let text = String::from_utf8(bytes).unwrap();
+        let bad = text.replace("# cells: 4", "# cells: 5");
+        let e = ShardFile::from_reader(bad.as_bytes(), Path::new("a.csv")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "a.csv:7: the assignment must list 5 shard numbers from 1 to 3"
+        );
+        let bad = text.replace("cell,mode", "cell,mood");
+        let e = ShardFile::from_reader(bad.as_bytes(), Path::new("a.csv")).unwrap_err();
+        assert!(e.to_string().starts_with("a.csv:8: the columns"), "{e}");
+    }
+
+    #[test]
+    fn not_a_shard_is_named() {
+        let e = ShardFile::from_reader(&b"cell,mode\n"[..], Path::new("x.csv")).unwrap_err();
+        assert!(matches!(e, ShardFileError::NotShard { .. }), "{e}");
+    }
+}

@@ -1,0 +1,226 @@
+//! Slurm batch scripts for a sharded study: a job array with one task per shard, a merge job
+//! that runs after every task has succeeded (`--dependency=afterok:<array>`), and a small
+//! submit script that chains them.
+//!
+//! Task K of the array runs `jointid study S.toml --shard K/N --out DIR/NAME.shard-K-of-N.csv`
+//! with `--threads $SLURM_CPUS_PER_TASK`; the merge job runs `jointid merge` over the N
+//! shard files and writes the study's CSV. Every path in the scripts is absolute: the nodes
+//! must see the binary, the study, its model and DIR under the same paths (a shared file
+//! system, as on every Slurm cluster).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// What the scripts run and where.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlurmPlan {
+    /// Study name (job names and file names).
+    pub name: String,
+    /// The jointid binary, absolute.
+    pub jointid: PathBuf,
+    /// The study file, absolute.
+    pub study: PathBuf,
+    /// Directory of the scripts, the shard files and the logs, absolute.
+    pub dir: PathBuf,
+    /// The merged result CSV, absolute.
+    pub out: PathBuf,
+    /// N.
+    pub shards: usize,
+    /// `--partition`.
+    pub partition: Option<String>,
+    /// `--time` of every task and of the merge.
+    pub time: Option<String>,
+    /// `--account`.
+    pub account: Option<String>,
+    /// `--mem` of every task.
+    pub mem: Option<String>,
+    /// `--cpus-per-task` of every shard task (the worker threads).
+    pub cpus_per_task: usize,
+    /// Further `#SBATCH` options, verbatim, e.g. `--qos=short`.
+    pub extra: Vec<String>,
+}
+
+/// The three scripts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlurmScripts {
+    /// The job array (`NAME.shards.sbatch`).
+    pub array: String,
+    /// The merge job (`NAME.merge.sbatch`).
+    pub merge: String,
+    /// `NAME.submit.sh`: submits the array, then the merge depending on it.
+    pub submit: String,
+}
+
+/// `'text'` for sh, with embedded quotes escaped.
+pub fn sh_quote(text: &str) -> String {
+    format!("'{}'", text.replace('\'', r"'\''"))
+}
+
+fn q(path: &Path) -> String {
+    sh_quote(&path.display().to_string())
+}
+
+impl SlurmPlan {
+    /// The shard file of shard K (1-based).
+    pub fn shard_file(&self, k: usize) -> PathBuf {
+        self.dir
+            .join(format!("{}.shard-{k}-of-{}.csv", self.name, self.shards))
+    }
+
+    /// The array script's path.
+    pub fn array_path(&self) -> PathBuf {
+        self.dir.join(format!("{}.shards.sbatch", self.name))
+    }
+
+    /// The merge script's path.
+    pub fn merge_path(&self) -> PathBuf {
+        self.dir.join(format!("{}.merge.sbatch", self.name))
+    }
+
+    /// The submit script's path.
+    pub fn submit_path(&self) -> PathBuf {
+        self.dir.join(format!("{}.submit.sh", self.name))
+    }
+
+    /// The directory of the logs.
+    pub fn log_dir(&self) -> PathBuf {
+        self.dir.join("logs")
+    }
+
+    fn common(&self, s: &mut String, job: &str, log: &str) {
+        let _ = writeln!(s, "#!/bin/bash");
+        let _ = writeln!(s, "#SBATCH --job-name={}-{job}", self.name);
+        let log = self.log_dir().join(log);
+        let _ = writeln!(s, "#SBATCH --output={}", log.display());
+        for (key, value) in [
+            ("partition", &self.partition),
+            ("time", &self.time),
+            ("account", &self.account),
+        ] {
+            if let Some(v) = value {
+                let _ = writeln!(s, "#SBATCH --{key}={v}");
+            }
+        }
+        for e in &self.extra {
+            let _ = writeln!(s, "#SBATCH {e}");
+        }
+    }
+
+    /// The scripts.
+    pub fn scripts(&self) -> SlurmScripts {
+        let n = self.shards;
+        let mut array = String::new();
+        self.common(&mut array, "shards", &format!("{}-shard-%a.out", self.name));
+        let _ = writeln!(array, "#SBATCH --array=1-{n}");
+        let _ = writeln!(array, "#SBATCH --ntasks=1");
+        let _ = writeln!(array, "#SBATCH --cpus-per-task={}", self.cpus_per_task);
+        if let Some(mem) = &self.mem {
+            let _ = writeln!(array, "#SBATCH --mem={mem}");
+        }
+        let _ = write!(
+            array,
+            "# Shard K of {n} of study {name}: its cells, chosen by `jointid study --shard`.\n\
+             set -euo pipefail\n\
+             K=\"$SLURM_ARRAY_TASK_ID\"\n\
+             OUT={head}\"$K\"{tail}\n\
+             exec {jointid} study {study} --shard \"$K/{n}\" --threads \"${{SLURM_CPUS_PER_TASK:-1}}\" --quiet --out \"$OUT\"\n",
+            name = self.name,
+            head = q(&self.dir.join(format!("{}.shard-", self.name))),
+            tail = sh_quote(&format!("-of-{n}.csv")),
+            jointid = q(&self.jointid),
+            study = q(&self.study),
+        );
+        let mut merge = String::new();
+        self.common(&mut merge, "merge", &format!("{}-merge.out", self.name));
+        let _ = writeln!(merge, "#SBATCH --ntasks=1");
+        let _ = writeln!(merge, "#SBATCH --cpus-per-task=1");
+        let _ = writeln!(
+            merge,
+            "# Merges the {n} shards of study {} into its result CSV (after the array has succeeded).",
+            self.name
+        );
+        let _ = writeln!(merge, "set -euo pipefail");
+        let _ = write!(merge, "exec {} merge", q(&self.jointid));
+        for k in 1..=n {
+            let _ = write!(merge, " \\\n  {}", q(&self.shard_file(k)));
+        }
+        let _ = writeln!(merge, " \\\n  --out {}", q(&self.out));
+        let submit = format!(
+            "#!/bin/sh\n\
+             # Submits the {n} shards of study {name}, then their merge once all have succeeded.\n\
+             set -eu\n\
+             array=$(sbatch --parsable {array_script})\n\
+             array=${{array%%;*}}\n\
+             merge=$(sbatch --parsable --dependency=afterok:\"$array\" {merge_script})\n\
+             merge=${{merge%%;*}}\n\
+             echo \"submitted: shards $array (array 1-{n}), merge $merge -> {out}\"\n",
+            name = self.name,
+            array_script = q(&self.array_path()),
+            merge_script = q(&self.merge_path()),
+            out = self.out.display(),
+        );
+        SlurmScripts {
+            array,
+            merge,
+            submit,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> SlurmPlan {
+        SlurmPlan {
+            name: "case".into(),
+            jointid: "/opt/jointid".into(),
+            study: "/home/u/s it.toml".into(),
+            dir: "/scratch/run".into(),
+            out: "/scratch/case.csv".into(),
+            shards: 3,
+            partition: Some("short".into()),
+            time: Some("01:00:00".into()),
+            account: None,
+            mem: Some("2G".into()),
+            cpus_per_task: 4,
+            extra: vec!["--qos=low".into()],
+        }
+    }
+
+    #[test]
+    fn the_array_runs_each_shard_and_the_merge_reads_every_shard_file() {
+        let s = plan().scripts();
+        for line in [
+            "#SBATCH --array=1-3",
+            "#SBATCH --partition=short",
+            "#SBATCH --time=01:00:00",
+            "#SBATCH --cpus-per-task=4",
+            "#SBATCH --mem=2G",
+            "#SBATCH --qos=low",
+            "#SBATCH --output=/scratch/run/logs/case-shard-%a.out",
+        ] {
+            assert!(s.array.lines().any(|l| l == line), "{line} in\n{}", s.array);
+        }
+        assert!(!s.array.contains("--account"));
+        assert!(s.array.contains(
+            "OUT='/scratch/run/case.shard-'\"$K\"'-of-3.csv'\nexec '/opt/jointid' study '/home/u/s it.toml' --shard \"$K/3\" --threads \"${SLURM_CPUS_PER_TASK:-1}\" --quiet --out \"$OUT\""
+        ));
+        for k in 1..=3 {
+            assert!(
+                s.merge
+                    .contains(&format!("'/scratch/run/case.shard-{k}-of-3.csv'"))
+            );
+        }
+        assert!(s.merge.contains("--out '/scratch/case.csv'"));
+        assert!(
+            s.submit
+                .contains("--dependency=afterok:\"$array\" '/scratch/run/case.merge.sbatch'")
+        );
+    }
+
+    #[test]
+    fn quotes_survive_the_shell() {
+        assert_eq!(sh_quote("a'b"), r"'a'\''b'");
+    }
+}

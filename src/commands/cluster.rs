@@ -1,0 +1,81 @@
+//! `jointid cluster slurm`: the batch scripts of a sharded study.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+
+use crate::cli::{ClusterCommand, SlurmArgs};
+use jointid::cluster::SlurmPlan;
+use jointid::output::write_atomically;
+use jointid::study::Study;
+
+pub fn run(command: &ClusterCommand) -> anyhow::Result<()> {
+    match command {
+        ClusterCommand::Slurm(args) => slurm(args),
+    }
+}
+
+fn absolute(path: &Path) -> anyhow::Result<PathBuf> {
+    std::path::absolute(path).with_context(|| format!("{}: cannot resolve", path.display()))
+}
+
+fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
+    let study = Study::from_path(&args.study)?;
+    let cells = study.cells().len();
+    if args.shards == 0 || args.shards > cells {
+        bail!(
+            "--shards {} is invalid: {} has {cells} cell(s), so N must be from 1 to {cells}",
+            args.shards,
+            args.study.display()
+        );
+    }
+    if args.cpus_per_task == 0 {
+        bail!("--cpus-per-task 0 is invalid: it must be at least 1");
+    }
+    let jointid = match &args.jointid {
+        Some(p) => absolute(p)?,
+        None => std::env::current_exe().context("cannot find this jointid binary")?,
+    };
+    let dir = absolute(
+        &args
+            .dir
+            .clone()
+            .unwrap_or_else(|| Path::new("slurm").join(&study.name)),
+    )?;
+    let plan = SlurmPlan {
+        name: study.name.clone(),
+        jointid,
+        study: absolute(&args.study)?,
+        out: absolute(args.out.as_deref().unwrap_or(&study.output_csv))?,
+        dir,
+        shards: args.shards,
+        partition: args.partition.clone(),
+        time: args.time.clone(),
+        account: args.account.clone(),
+        mem: args.mem.clone(),
+        cpus_per_task: args.cpus_per_task,
+        extra: args.extra.clone(),
+    };
+    let scripts = plan.scripts();
+    std::fs::create_dir_all(plan.log_dir())
+        .with_context(|| format!("{}: cannot create the directory", plan.log_dir().display()))?;
+    if let Some(parent) = plan.out.parent() {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("{}: cannot create the directory", parent.display()))?;
+    }
+    for (path, text) in [
+        (plan.array_path(), &scripts.array),
+        (plan.merge_path(), &scripts.merge),
+        (plan.submit_path(), &scripts.submit),
+    ] {
+        write_atomically(&path, |w| w.write_all(text.as_bytes()))
+            .with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    println!(
+        "{} shards of {} ({cells} cells): submit with\n  sh {}",
+        args.shards,
+        study.name,
+        plan.submit_path().display()
+    );
+    Ok(())
+}
