@@ -207,7 +207,9 @@ impl Block<'_> {
     }
 }
 
-/// The statistics of every (mode, parameter) of a cell, in (mode, parameter) order.
+/// The statistics of every (mode, parameter) of a cell, in (mode, parameter) order. The
+/// columns are gathered and summarised in parallel, one column per task; each column's
+/// result depends on its values alone, so the output does not depend on the thread count.
 pub fn summarize_cell(
     study: &Study,
     cell: &Cell,
@@ -216,27 +218,28 @@ pub fn summarize_cell(
 ) -> Vec<RowStats> {
     let (modes, q) = (samples.modes, samples.q);
     let trials = samples.trials();
-    let mut column = Vec::with_capacity(trials);
-    let mut rows = Vec::with_capacity(modes * q);
-    for (k, mode) in plan.modes.iter().enumerate() {
-        let predicted = predicted_std(plan, mode, cell, study.noise);
-        for i in 0..q {
-            column.clear();
-            column.extend(
-                (0..trials)
-                    .filter(|t| !samples.failed[t * modes + k])
-                    .map(|t| samples.values[(t * modes + k) * q + i]),
-            );
-            rows.push(RowStats {
-                mode: mode.mode,
+    let predicted: Vec<_> = plan
+        .modes
+        .iter()
+        .map(|mode| predicted_std(plan, mode, cell, study.noise))
+        .collect();
+    (0..modes * q)
+        .into_par_iter()
+        .map(|column_index| {
+            let (k, i) = (column_index / q, column_index % q);
+            let mut column: Vec<f64> = (0..trials)
+                .filter(|t| !samples.failed[t * modes + k])
+                .map(|t| samples.values[(t * modes + k) * q + i])
+                .collect();
+            RowStats {
+                mode: plan.modes[k].mode,
                 param: i,
                 introduced: study.delta[i],
                 trials,
                 failures: trials - column.len(),
                 summary: summarize(&mut column, study.delta[i]),
-                predicted_std: predicted.as_ref().map(|p| p[i]),
-            });
-        }
-    }
-    rows
+                predicted_std: predicted[k].as_ref().map(|p| p[i]),
+            }
+        })
+        .collect()
 }
