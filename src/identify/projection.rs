@@ -91,17 +91,21 @@ impl Projector {
 
     /// [`Projector::project`] for `LANES` shapes at once (`shape[j][l]`, `g[i][l]`), in the
     /// same order of operations: bitwise the same result per lane.
-    #[inline]
+    #[inline(always)]
+    ///
+    /// The loops run g_i by g_i, the sum over j inside with the lanes innermost: every g_i
+    /// is one accumulator of `LANES` trials (vector registers) and P_ij a broadcast scalar.
+    /// The terms of each g_i are added in the order of j, as in [`Projector::project`].
     pub fn project_lanes(&self, shape: &[Lanes], g: &mut [Lanes]) {
-        for gi in g.iter_mut() {
-            *gi = [0.0; LANES];
-        }
-        for (column, yj) in self.pinv.chunks_exact(self.n).zip(shape) {
-            for (gi, pij) in g.iter_mut().zip(column) {
+        for (i, gi) in g.iter_mut().enumerate() {
+            let mut acc = [0.0; LANES];
+            for (column, yj) in self.pinv.chunks_exact(self.n).zip(shape) {
+                let pij = column[i];
                 for l in 0..LANES {
-                    gi[l] += pij * yj[l];
+                    acc[l] += pij * yj[l];
                 }
             }
+            *gi = acc;
         }
     }
 

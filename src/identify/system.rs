@@ -114,7 +114,7 @@ impl ModeSystem {
     /// set l, `ws[i * m + k][l]` and `wb[k][l]` receive its W S_r and W b_r. Each set follows
     /// the same operations in the same order as `assemble`, so the results are bitwise equal;
     /// the lane loops vectorise.
-    #[inline]
+    #[inline(always)]
     pub fn assemble_lanes(
         &self,
         g: &[Lanes],
@@ -147,7 +147,7 @@ impl ModeSystem {
     }
 }
 
-#[inline]
+#[inline(always)]
 fn dot_lanes(a: &[f64], g: &[Lanes]) -> Lanes {
     let mut out = [0.0; LANES];
     for (x, gl) in a.iter().zip(g) {

@@ -75,7 +75,7 @@ pub fn solve_in_place(
 /// [`solve_in_place`] for `LANES` systems at once (`a[i * m + k][l]`, `b[k][l]`), each lane
 /// through the same operations in the same order: bitwise the scalar result. `ok[l]` tells
 /// whether lane l had full rank; the `z` of a rank-deficient lane is meaningless.
-#[inline]
+#[inline(always)]
 pub fn solve_lanes(
     a: &mut [Lanes],
     b: &mut [Lanes],
@@ -124,7 +124,7 @@ pub fn solve_lanes(
     }
 }
 
-#[inline]
+#[inline(always)]
 fn norm_lanes(x: &[Lanes]) -> Lanes {
     let mut ss = [0.0; LANES];
     for v in x {
@@ -139,6 +139,13 @@ fn norm_lanes(x: &[Lanes]) -> Lanes {
         }
         return out;
     }
+    norm_lanes_rescaled(x)
+}
+
+/// [`norm`] lane by lane, for the rare columns whose plain sum of squares over- or underflows.
+#[cold]
+#[inline(never)]
+fn norm_lanes_rescaled(x: &[Lanes]) -> Lanes {
     let mut column = [0.0; 64];
     std::array::from_fn(|l| {
         if x.len() > column.len() {
@@ -151,7 +158,7 @@ fn norm_lanes(x: &[Lanes]) -> Lanes {
     })
 }
 
-#[inline]
+#[inline(always)]
 fn project_out_lanes(u: &[Lanes], x: &mut [Lanes]) -> Lanes {
     let mut ux = [0.0; LANES];
     for (a, b) in u.iter().zip(x.iter()) {
