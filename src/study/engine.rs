@@ -70,6 +70,7 @@ struct Scratch {
     g: Vec<Lanes>,
     ws: Vec<Lanes>,
     wb: Vec<Lanes>,
+    r: Vec<Lanes>,
     z: Vec<Lanes>,
     ok: [bool; LANES],
 }
@@ -82,6 +83,7 @@ impl Scratch {
             g: vec![[0.0; LANES]; n],
             ws: vec![[0.0; LANES]; m * q],
             wb: vec![[0.0; LANES]; m],
+            r: vec![[0.0; LANES]; q * q],
             z: vec![[0.0; LANES]; q],
             ok: [false; LANES],
         }
@@ -187,6 +189,7 @@ impl Block<'_> {
                     &mut s.wb,
                     mode.system.m(),
                     q,
+                    &mut s.r,
                     &mut s.z,
                     &mut s.ok,
                 );
