@@ -9,6 +9,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 
+use super::bench_limit::Limit;
 use crate::cli::BenchArgs;
 use jointid::study::{CellPlan, Study, StudyContext, simulate_cell};
 
@@ -93,11 +94,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "paper cell: case I, n 10, m 5, NF 5, inverse, uniform 4%, modes 1-4; {} trials per run, median of {}",
         args.trials, args.repeat
     );
+    let mut single = 0.0;
     for ((threads, _), rates) in pools.iter().zip(ours) {
-        println!(
-            "jointid, {threads} thread(s): {:.3e} trial-modes/s",
-            median(rates)
-        );
+        let rate = median(rates);
+        if *threads == 1 {
+            single = rate;
+        }
+        println!("jointid, {threads} thread(s): {rate:.3e} trial-modes/s");
     }
     if !numpy.is_empty() {
         println!(
@@ -105,6 +108,18 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             median(numpy)
         );
     }
+    let kernel_ns = 1e9 / single;
+    let limit = pools[0]
+        .1
+        .install(|| Limit::measure(&plan, cell.n.0, args.trials));
+    println!(
+        "kernel, 1 thread: {kernel_ns:.1} ns per trial-mode; limit {:.1} ns = draws alone {:.1} ns + {} flops at {:.3e} flop/s (measured, independent mul and add); {:.1}x the limit",
+        limit.ns(),
+        limit.draws_ns,
+        limit.flops,
+        limit.flop_rate,
+        kernel_ns / limit.ns()
+    );
     Ok(())
 }
 
