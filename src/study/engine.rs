@@ -149,11 +149,22 @@ impl Block<'_> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn run_avx2(&self, s: &mut Scratch, values: &mut [f64], failed: &mut [bool]) {
-        self.run_portable(s, values, failed)
+        self.run_lanes::<true>(s, values, failed)
     }
 
-    #[inline(always)]
     fn run_portable(&self, s: &mut Scratch, values: &mut [f64], failed: &mut [bool]) {
+        self.run_lanes::<false>(s, values, failed)
+    }
+
+    /// The trials, `LANES` at a time; `AVX2` (true only under [`Block::run_avx2`], after the
+    /// CPU was checked) draws uniform shape errors with explicit AVX2 instructions.
+    #[inline(always)]
+    fn run_lanes<const AVX2: bool>(
+        &self,
+        s: &mut Scratch,
+        values: &mut [f64],
+        failed: &mut [bool],
+    ) {
         let (plan, cell) = (self.plan, self.cell);
         let (modes, q) = (plan.modes.len(), plan.q());
         let count = failed.len() / modes;
@@ -162,6 +173,15 @@ impl Block<'_> {
             let mut rng = LaneRng::new(self.seed, cell.index as u64, (self.first + start) as u64);
             for (k, mode) in plan.modes.iter().enumerate() {
                 if cell.shape_noise > 0.0 {
+                    #[cfg(target_arch = "x86_64")]
+                    if AVX2 && self.noise == NoiseKind::Uniform {
+                        // SAFETY: AVX2 is true only in `run_avx2`, called after the CPU was
+                        // checked for AVX2.
+                        unsafe { rng.uniform_shape_errors_avx2(cell.shape_noise, &mut s.shape) };
+                    } else {
+                        rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
+                    }
+                    #[cfg(not(target_arch = "x86_64"))]
                     rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
                     for (y, &exact) in s.shape.iter_mut().zip(&mode.truth_shape) {
                         for e in y.iter_mut() {

@@ -32,6 +32,9 @@ use rand_distr::{Distribution, StandardNormal};
 
 use crate::identify::{LANES, Lanes};
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 /// The noise distribution of a study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NoiseKind {
