@@ -32,10 +32,10 @@ now() { date +%s.%N; }
 for ((r = 0; r < repeat; r++)); do
     for ((b = 0; b < ${#binaries[@]}; b++)); do
         t0=$(now)
-        "${binaries[$b]}" study bench/.speed-cell.toml --quiet --threads "$threads" \
-            --out "$work/out.$b.csv" > /dev/null
+        /usr/bin/time -f "%U %S" -o "$work/cpu" "${binaries[$b]}" study bench/.speed-cell.toml \
+            --quiet --threads "$threads" --out "$work/out.$b.csv" > /dev/null
         t1=$(now)
-        echo "$t0 $t1" >> "$work/jointid.$b"
+        echo "$t0 $t1 $(cat "$work/cpu")" >> "$work/jointid.$b"
         if [ "$r" -eq 0 ] && [ "$b" -gt 0 ]; then
             cmp -s "$work/out.0.csv" "$work/out.$b.csv" \
                 && echo "${binaries[$b]}: CSV identical to ${binaries[0]}" \
@@ -66,12 +66,14 @@ if os.path.exists(os.path.join(work, "numpy")):
     np_wall = statistics.median(t1 - t0 for t0, t1, _ in r)
     np_rate = tm / np_wall
     np_inner = statistics.median(x for _, _, x in r)
-print(f"| program | wall s (median) | trial-modes/s, whole process | x numpy (whole process) |")
-print(f"|---|---|---|---|")
+print(f"| program | wall s | CPU s (user + sys) | trial-modes/s, whole process | x numpy |")
+print(f"|---|---|---|---|---|")
 for b, path in enumerate(binaries):
-    wall = statistics.median(t1 - t0 for t0, t1 in rows(f"jointid.{b}"))
+    r = rows(f"jointid.{b}")
+    wall = statistics.median(t1 - t0 for t0, t1, _, _ in r)
+    cpu = statistics.median(u + s for _, _, u, s in r)
     ratio = f"{tm / wall / np_rate:.1f}" if np_rate else "-"
-    print(f"| jointid study ({path}) | {wall:.3f} | {tm / wall:.3g} | {ratio} |")
+    print(f"| jointid study ({path}) | {wall:.3f} | {cpu:.3f} | {tm / wall:.3g} | {ratio} |")
 if np_rate:
-    print(f"| numpy_baseline.py | {np_wall:.3f} | {np_rate:.3g} (its trial loop alone: {np_inner:.3g}) | 1 |")
+    print(f"| numpy_baseline.py (1 thread) | {np_wall:.3f} | - | {np_rate:.3g} (its trial loop alone: {np_inner:.3g}) | 1 |")
 PY

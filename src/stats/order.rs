@@ -144,7 +144,16 @@ mod tests {
             .collect();
         let constant = vec![2.5; 1000];
         let small: Vec<f64> = raw[..100].to_vec();
-        vec![raw, special, ties, smooth, constant, small, vec![], vec![1.0]]
+        vec![
+            raw,
+            special,
+            ties,
+            smooth,
+            constant,
+            small,
+            vec![],
+            vec![1.0],
+        ]
     }
 
     #[test]

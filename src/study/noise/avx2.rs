@@ -8,9 +8,9 @@
 //! 64-bit rotations into vector shifts), and the draws were then half of the kernel's time.
 
 use std::arch::x86_64::{
-    __m256d, __m256i, _mm256_add_epi64, _mm256_castsi256_pd, _mm256_loadu_si256,
-    _mm256_mul_pd, _mm256_or_si256, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64,
-    _mm256_srli_epi64, _mm256_storeu_pd, _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
+    __m256d, __m256i, _mm256_add_epi64, _mm256_castsi256_pd, _mm256_loadu_si256, _mm256_mul_pd,
+    _mm256_or_si256, _mm256_set1_epi64x, _mm256_set1_pd, _mm256_slli_epi64, _mm256_srli_epi64,
+    _mm256_storeu_pd, _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
 };
 
 use super::LaneRng;
@@ -39,10 +39,8 @@ impl LaneRng {
             for h in 0..HALVES {
                 let [s0, s1, s2, s3] = [s[0][h], s[1][h], s[2][h], s[3][h]];
                 let sum = _mm256_add_epi64(s0, s3);
-                let rotated = _mm256_or_si256(
-                    _mm256_slli_epi64::<23>(sum),
-                    _mm256_srli_epi64::<41>(sum),
-                );
+                let rotated =
+                    _mm256_or_si256(_mm256_slli_epi64::<23>(sum), _mm256_srli_epi64::<41>(sum));
                 let result = _mm256_add_epi64(rotated, s0);
                 let t = _mm256_slli_epi64::<17>(s1);
                 let s2 = _mm256_xor_si256(s2, s0);
