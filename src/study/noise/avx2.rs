@@ -31,13 +31,14 @@ impl LaneRng {
         let load = |w: &[u64; LANES], h: usize| unsafe {
             _mm256_loadu_si256(w.as_ptr().add(4 * h).cast::<__m256i>())
         };
-        let mut s: [[__m256i; HALVES]; 4] =
-            std::array::from_fn(|w| std::array::from_fn(|h| load(&self.s[w], h)));
+        // s[h][w]: word w of the lanes 4h .. 4h + 4.
+        let mut s: [[__m256i; 4]; HALVES] =
+            std::array::from_fn(|h| std::array::from_fn(|w| load(&self.s[w], h)));
         let exponent = _mm256_set1_epi64x(0x3FF0_0000_0000_0000);
         let (one, two, level) = (_mm256_set1_pd(1.0), _mm256_set1_pd(2.0), _mm256_set1_pd(a));
         for o in out.iter_mut() {
-            for h in 0..HALVES {
-                let [s0, s1, s2, s3] = [s[0][h], s[1][h], s[2][h], s[3][h]];
+            for (state, o4) in s.iter_mut().zip(o.chunks_exact_mut(4)) {
+                let [s0, s1, s2, s3] = *state;
                 let sum = _mm256_add_epi64(s0, s3);
                 let rotated =
                     _mm256_or_si256(_mm256_slli_epi64::<23>(sum), _mm256_srli_epi64::<41>(sum));
@@ -49,21 +50,18 @@ impl LaneRng {
                 let s0 = _mm256_xor_si256(s0, s3);
                 let s2 = _mm256_xor_si256(s2, t);
                 let s3 = _mm256_or_si256(_mm256_slli_epi64::<45>(s3), _mm256_srli_epi64::<19>(s3));
-                s[0][h] = s0;
-                s[1][h] = s1;
-                s[2][h] = s2;
-                s[3][h] = s3;
+                *state = [s0, s1, s2, s3];
                 let mantissa = _mm256_or_si256(_mm256_srli_epi64::<12>(result), exponent);
                 let u: __m256d = _mm256_sub_pd(_mm256_castsi256_pd(mantissa), one);
                 let e = _mm256_mul_pd(level, _mm256_sub_pd(_mm256_mul_pd(two, u), one));
-                // SAFETY: 4 f64 stored inside a lane array of 8.
-                unsafe { _mm256_storeu_pd(o.as_mut_ptr().add(4 * h), e) };
+                // SAFETY: 4 f64 stored into a chunk of 4.
+                unsafe { _mm256_storeu_pd(o4.as_mut_ptr(), e) };
             }
         }
-        for (w, word) in s.iter().enumerate() {
-            for (h, v) in word.iter().enumerate() {
+        for (h, state) in s.iter().enumerate() {
+            for (word, v) in self.s.iter_mut().zip(state) {
                 // SAFETY: 4 u64 stored inside a word of 8.
-                unsafe { _mm256_storeu_si256(self.s[w].as_mut_ptr().add(4 * h).cast(), *v) };
+                unsafe { _mm256_storeu_si256(word.as_mut_ptr().add(4 * h).cast(), *v) };
             }
         }
     }
