@@ -11,7 +11,9 @@
 //! run across trials and vectorise; each trial keeps its own order of operations, so its
 //! result is bitwise that of the one-trial path ([`crate::identify::Identifier::identify`]
 //! on the same data). On x86-64 with AVX2 the block kernel is compiled a second time with
-//! AVX2 enabled and chosen at run time; both builds give the same bits.
+//! AVX2 enabled and chosen at run time; both builds give the same bits. The AVX2 build
+//! draws uniform shape errors with the explicit AVX2 generator
+//! ([`super::noise::LaneRng::uniform_shape_errors_avx2`], bitwise the portable one).
 
 use rayon::prelude::*;
 
