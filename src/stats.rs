@@ -68,7 +68,6 @@ pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
         / nf)
         .sqrt();
     let median = quantile_sorted(sorted, 0.5);
-    let mut deviations: Vec<f64> = sorted.iter().map(|x| (x - median).abs()).collect();
     let bias = mean - introduced;
     Some(Summary {
         count: n,
@@ -78,7 +77,7 @@ pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
         std,
         rmse,
         median,
-        mad: order::quantile_select(&mut deviations, 0.5),
+        mad: order::median_deviation_sorted(sorted, median),
         q05: quantile_sorted(sorted, 0.05),
         q25: quantile_sorted(sorted, 0.25),
         q75: quantile_sorted(sorted, 0.75),

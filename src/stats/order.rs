@@ -100,6 +100,52 @@ pub fn quantile_select(values: &mut [f64], p: f64) -> f64 {
     below + (h - lo as f64) * (above - below)
 }
 
+/// The median of |x - median| of an ascending sample (type 7, exactly the value of
+/// [`quantile_select`] on the deviations), by merging instead of selecting: below the median
+/// the deviations grow walking down the sorted sample and above it walking up (subtraction
+/// and |.| are monotone under rounding), so the two walks merged from the median outward give
+/// the deviations in ascending order, and only the first half is walked. Samples with NaN or
+/// an infinite median go through selection.
+pub fn median_deviation_sorted(sorted: &[f64], median: f64) -> f64 {
+    let n = sorted.len();
+    let not_nan = |x: &f64| !x.is_nan();
+    if n == 0 || !median.is_finite() || !not_nan(&sorted[0]) || !not_nan(&sorted[n - 1]) {
+        let mut deviations: Vec<f64> = sorted.iter().map(|x| (x - median).abs()).collect();
+        return quantile_select(&mut deviations, 0.5);
+    }
+    let h = (n - 1) as f64 * 0.5;
+    let lo = h.floor() as usize;
+    let hi = (lo + 1).min(n - 1);
+    // Below: indices < split (x < median), walked down; above: split.., walked up.
+    let split = sorted.partition_point(|&x| x < median);
+    let (mut down, mut up) = (split, split);
+    let mut next = || {
+        let below = (down > 0).then(|| (sorted[down - 1] - median).abs());
+        let above = (up < n).then(|| (sorted[up] - median).abs());
+        match (below, above) {
+            (Some(b), Some(a)) if b < a => {
+                down -= 1;
+                b
+            }
+            (_, Some(a)) => {
+                up += 1;
+                a
+            }
+            (Some(b), None) => {
+                down -= 1;
+                b
+            }
+            (None, None) => unreachable!("at most n deviations are taken"),
+        }
+    };
+    let mut below = 0.0;
+    for _ in 0..=lo {
+        below = next();
+    }
+    let above = if hi > lo { next() } else { below };
+    below + (h - lo as f64) * (above - below)
+}
+
 #[cfg(test)]
 mod tests {
     //! Reference: the standard library's comparison sort in total order, an independent
@@ -180,6 +226,24 @@ mod tests {
             let mut got = v.clone();
             sort_total(&mut got);
             assert_eq!(bits(&got), bits(&expected), "length {}", v.len());
+        }
+    }
+
+    #[test]
+    fn merged_median_deviation_is_the_selected_one() {
+        for v in samples().into_iter().filter(|v| !v.is_empty()) {
+            let mut sorted = v.clone();
+            sorted.sort_by(f64::total_cmp);
+            for w in 1..=sorted.len().min(9) {
+                // Every prefix length up to 9 (odd and even N), then the whole sample.
+                for s in [&sorted[..w], &sorted[..]] {
+                    let median = quantile_sorted(s, 0.5);
+                    let mut deviations: Vec<f64> = s.iter().map(|x| (x - median).abs()).collect();
+                    let expected = quantile_select(&mut deviations, 0.5);
+                    let got = median_deviation_sorted(s, median);
+                    assert_eq!(got.to_bits(), expected.to_bits(), "N {}", s.len());
+                }
+            }
         }
     }
 
