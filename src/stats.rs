@@ -11,8 +11,8 @@
 //! - median_se: distribution-free standard error of the median, half the width of the
 //!   95% order-statistic interval of the median divided by 1.96.
 //!
-//! The sample is sorted by a radix sort and the MAD's median is selected, not sorted
-//! ([`order`]): the same bits as comparison sorts, in linear time.
+//! The sample is sorted by a radix sort and the MAD's median is merged from the sorted
+//! sample, not sorted ([`order`]): the same bits as comparison sorts, in linear time.
 
 pub mod order;
 

@@ -16,7 +16,8 @@
 //! digit is the same for every key are skipped, and the keys are mapped back.
 //!
 //! The median absolute deviation needs two order statistics of |x - median| only: they are
-//! selected (`select_nth_unstable_by`, expected linear time), not sorted.
+//! merged from the sorted sample ([`median_deviation_sorted`], half a pass) or, for samples
+//! with NaN, selected (`select_nth_unstable_by`, expected linear time), never sorted.
 
 /// Bits per radix digit.
 const DIGIT: u32 = 11;
