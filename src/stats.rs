@@ -10,6 +10,11 @@
 //! - bias_se: Monte-Carlo standard error of the mean, std / sqrt(N);
 //! - median_se: distribution-free standard error of the median, half the width of the
 //!   95% order-statistic interval of the median divided by 1.96.
+//!
+//! The sample is sorted by a radix sort and the MAD's median is merged from the sorted
+//! sample, not sorted ([`order`]): the same bits as comparison sorts, in linear time.
+
+pub mod order;
 
 /// The statistics of one sample against its introduced value.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,7 +55,7 @@ pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
     if n == 0 {
         return None;
     }
-    values.sort_by(f64::total_cmp);
+    order::sort_total(values);
     let sorted = &*values;
     let nf = n as f64;
     let mean = sorted.iter().sum::<f64>() / nf;
@@ -63,8 +68,6 @@ pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
         / nf)
         .sqrt();
     let median = quantile_sorted(sorted, 0.5);
-    let mut deviations: Vec<f64> = sorted.iter().map(|x| (x - median).abs()).collect();
-    deviations.sort_by(f64::total_cmp);
     let bias = mean - introduced;
     Some(Summary {
         count: n,
@@ -74,7 +77,7 @@ pub fn summarize(values: &mut [f64], introduced: f64) -> Option<Summary> {
         std,
         rmse,
         median,
-        mad: quantile_sorted(&deviations, 0.5),
+        mad: order::median_deviation_sorted(sorted, median),
         q05: quantile_sorted(sorted, 0.05),
         q25: quantile_sorted(sorted, 0.25),
         q75: quantile_sorted(sorted, 0.75),

@@ -9,6 +9,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 
+use super::bench_limit::Limit;
 use crate::cli::BenchArgs;
 use jointid::study::{CellPlan, Study, StudyContext, simulate_cell};
 
@@ -87,6 +88,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let trial_modes = (args.trials * plan.modes.len()) as f64;
     let mut ours: Vec<Vec<f64>> = vec![Vec::new(); pools.len()];
     let mut numpy = Vec::new();
+    let mut limits = Vec::new();
     // Warm-up, then interleaved timed runs.
     pools[0]
         .1
@@ -98,6 +100,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             ours[k].push(trial_modes / start.elapsed().as_secs_f64());
             std::hint::black_box(samples);
         }
+        limits.push(
+            pools[0]
+                .1
+                .install(|| Limit::measure(&plan, cell.n.0, args.trials)),
+        );
         if let Some(script) = &args.numpy {
             numpy.push(run_numpy(script, args.trials)?);
         }
@@ -106,11 +113,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "paper cell: case I, n 10, m 5, NF 5, inverse, uniform 4%, modes 1-4; {} trials per run, median of {}",
         args.trials, args.repeat
     );
+    let mut single = 0.0;
     for ((threads, _), rates) in pools.iter().zip(ours) {
-        println!(
-            "jointid, {threads} thread(s): {:.3e} trial-modes/s",
-            median(rates)
-        );
+        let rate = median(rates);
+        if *threads == 1 {
+            single = rate;
+        }
+        println!("jointid, {threads} thread(s): {rate:.3e} trial-modes/s");
     }
     if !numpy.is_empty() {
         println!(
@@ -118,6 +127,20 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             median(numpy)
         );
     }
+    let kernel_ns = 1e9 / single;
+    let limit = Limit {
+        draws_ns: median(limits.iter().map(|l| l.draws_ns).collect()),
+        flops: limits[0].flops,
+        flop_rate: median(limits.iter().map(|l| l.flop_rate).collect()),
+    };
+    println!(
+        "kernel, 1 thread: {kernel_ns:.1} ns per trial-mode; limit {:.1} ns = draws alone {:.1} ns + {} flops at {:.3e} flop/s (measured peak of independent mul and add, same runs); {:.1}x the limit",
+        limit.ns(),
+        limit.draws_ns,
+        limit.flops,
+        limit.flop_rate,
+        kernel_ns / limit.ns()
+    );
     Ok(())
 }
 

@@ -1,6 +1,7 @@
 //! One file per command: each reads its inputs, calls the library and writes its outputs.
 
 mod bench;
+mod bench_limit;
 mod check;
 mod cluster;
 mod diagnose;

@@ -91,18 +91,41 @@ impl Projector {
 
     /// [`Projector::project`] for `LANES` shapes at once (`shape[j][l]`, `g[i][l]`), in the
     /// same order of operations: bitwise the same result per lane.
-    #[inline]
+    ///
+    /// The loops run over blocks of four g_i (then two, then one), the sum over j inside and
+    /// the lanes innermost: the block is 4 x `LANES` independent accumulators held in vector
+    /// registers, with P_ij broadcast, so that the additions of different g_i overlap (one
+    /// g_i at a time waits for each addition to finish). The terms of each g_i are still
+    /// added in the order of j, as in [`Projector::project`].
+    #[inline(always)]
     pub fn project_lanes(&self, shape: &[Lanes], g: &mut [Lanes]) {
-        for gi in g.iter_mut() {
-            *gi = [0.0; LANES];
+        let mut i = 0;
+        while i + 4 <= self.n {
+            g[i..i + 4].copy_from_slice(&self.block::<4>(i, shape));
+            i += 4;
         }
+        if i + 2 <= self.n {
+            g[i..i + 2].copy_from_slice(&self.block::<2>(i, shape));
+            i += 2;
+        }
+        if i < self.n {
+            g[i..i + 1].copy_from_slice(&self.block::<1>(i, shape));
+        }
+    }
+
+    /// g_i0 .. g_(i0+B) of [`Projector::project_lanes`].
+    #[inline(always)]
+    fn block<const B: usize>(&self, i0: usize, shape: &[Lanes]) -> [Lanes; B] {
+        let mut acc = [[0.0; LANES]; B];
         for (column, yj) in self.pinv.chunks_exact(self.n).zip(shape) {
-            for (gi, pij) in g.iter_mut().zip(column) {
+            let p = &column[i0..i0 + B];
+            for b in 0..B {
                 for l in 0..LANES {
-                    gi[l] += pij * yj[l];
+                    acc[b][l] += p[b] * yj[l];
                 }
             }
         }
+        acc
     }
 
     /// g = P y~, written into `g` (length n).
@@ -138,6 +161,30 @@ mod tests {
         p.project(&shape, &mut g);
         for (a, b) in g.iter().zip(g_true) {
             assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn lanes_give_bitwise_the_single_projection_for_every_block_size() {
+        // n = 1..=7 covers blocks of four, two and one g_i and their mixtures.
+        for n in 1..=7 {
+            let y = Mat::from_fn(12, n, |i, j| {
+                ((i * 7 + j * 3) % 11) as f64 - 4.5 + 0.1 * j as f64
+            });
+            let p = Projector::new(&y).unwrap();
+            let shapes: Vec<Lanes> = (0..12)
+                .map(|j| std::array::from_fn(|l| ((j * 13 + l * 5) as f64).sin()))
+                .collect();
+            let mut g = vec![[0.0; LANES]; n];
+            p.project_lanes(&shapes, &mut g);
+            for l in 0..LANES {
+                let shape: Vec<f64> = shapes.iter().map(|v| v[l]).collect();
+                let mut g1 = vec![0.0; n];
+                p.project(&shape, &mut g1);
+                for i in 0..n {
+                    assert_eq!(g1[i].to_bits(), g[i][l].to_bits(), "n {n}, g{i}, lane {l}");
+                }
+            }
         }
     }
 

@@ -114,7 +114,7 @@ impl ModeSystem {
     /// set l, `ws[i * m + k][l]` and `wb[k][l]` receive its W S_r and W b_r. Each set follows
     /// the same operations in the same order as `assemble`, so the results are bitwise equal;
     /// the lane loops vectorise.
-    #[inline]
+    #[inline(always)]
     pub fn assemble_lanes(
         &self,
         g: &[Lanes],
@@ -122,37 +122,70 @@ impl ModeSystem {
         ws: &mut [Lanes],
         wb: &mut [Lanes],
     ) {
-        let (m, n) = (self.m(), self.n);
+        let m = self.m();
         for (k, (&s, &w)) in self.rows.rows.iter().zip(&self.rows.weights).enumerate() {
             for l in 0..LANES {
                 wb[k][l] = w * (lambda_m[l] - self.lambda_rows[k]) * g[s][l];
             }
         }
-        for i in 0..self.q {
-            for k in 0..m {
-                let at = (i * m + k) * n;
-                let mut beta = dot_lanes(&self.stiffness[at..at + n], g);
-                if let Some(mass) = &self.mass {
-                    let d = dot_lanes(&mass[at..at + n], g);
-                    for l in 0..LANES {
-                        beta[l] -= lambda_m[l] * d[l];
-                    }
-                }
-                let w = self.rows.weights[k];
+        // Row r = i m + k of W S; its blocks are rows of `stiffness` (and `mass`), so the
+        // dot products run four rows at a time (independent accumulators, each row's terms
+        // in the order of the scalar `dot`), then two, then one.
+        let rows = self.q * m;
+        let mut r = 0;
+        while r < rows {
+            let len = if r + 4 <= rows {
+                self.rows_lanes::<4>(r, g, lambda_m, ws)
+            } else if r + 2 <= rows {
+                self.rows_lanes::<2>(r, g, lambda_m, ws)
+            } else {
+                self.rows_lanes::<1>(r, g, lambda_m, ws)
+            };
+            r += len;
+        }
+    }
+
+    /// Rows r0 .. r0 + B of W S for [`ModeSystem::assemble_lanes`]; returns B.
+    #[inline(always)]
+    fn rows_lanes<const B: usize>(
+        &self,
+        r0: usize,
+        g: &[Lanes],
+        lambda_m: &Lanes,
+        ws: &mut [Lanes],
+    ) -> usize {
+        let (m, n) = (self.m(), self.n);
+        let g = &g[..n];
+        let mut beta = dots_lanes::<B>(&self.stiffness[r0 * n..(r0 + B) * n], g);
+        if let Some(mass) = &self.mass {
+            let d = dots_lanes::<B>(&mass[r0 * n..(r0 + B) * n], g);
+            for b in 0..B {
                 for l in 0..LANES {
-                    ws[i * m + k][l] = w * beta[l];
+                    beta[b][l] -= lambda_m[l] * d[b][l];
                 }
             }
         }
+        for b in 0..B {
+            let w = self.rows.weights[(r0 + b) % m];
+            for l in 0..LANES {
+                ws[r0 + b][l] = w * beta[b][l];
+            }
+        }
+        B
     }
 }
 
-#[inline]
-fn dot_lanes(a: &[f64], g: &[Lanes]) -> Lanes {
-    let mut out = [0.0; LANES];
-    for (x, gl) in a.iter().zip(g) {
-        for l in 0..LANES {
-            out[l] += x * gl[l];
+/// The dot products of the B consecutive rows of length g.len() in `a` with g, per lane.
+#[inline(always)]
+fn dots_lanes<const B: usize>(a: &[f64], g: &[Lanes]) -> [Lanes; B] {
+    let n = g.len();
+    let mut out = [[0.0; LANES]; B];
+    for (j, gl) in g.iter().enumerate() {
+        for b in 0..B {
+            let x = a[b * n + j];
+            for l in 0..LANES {
+                out[b][l] += x * gl[l];
+            }
         }
     }
     out

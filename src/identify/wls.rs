@@ -75,56 +75,59 @@ pub fn solve_in_place(
 /// [`solve_in_place`] for `LANES` systems at once (`a[i * m + k][l]`, `b[k][l]`), each lane
 /// through the same operations in the same order: bitwise the scalar result. `ok[l]` tells
 /// whether lane l had full rank; the `z` of a rank-deficient lane is meaningless.
-#[inline]
+///
+/// `r` (length q * q, any content) is the caller's room for R, row-major; before column k
+/// is processed its diagonal slot holds the original norm of column k, and `z` holds
+/// Q^T b until the back substitution overwrites it in place. Nothing is zeroed per call.
+#[inline(always)]
 pub fn solve_lanes(
     a: &mut [Lanes],
     b: &mut [Lanes],
     m: usize,
     q: usize,
+    r: &mut [Lanes],
     z: &mut [Lanes],
     ok: &mut [bool; LANES],
 ) {
-    assert!(a.len() == m * q && b.len() == m && z.len() == q && m >= q && q <= MAX_Q);
-    let mut rb = [[0.0; LANES]; MAX_Q];
-    let mut r = [[[0.0; LANES]; MAX_Q]; MAX_Q];
-    let mut original = [[0.0; LANES]; MAX_Q];
-    for (k, o) in original.iter_mut().enumerate().take(q) {
-        *o = norm_lanes(&a[k * m..(k + 1) * m]);
+    assert!(a.len() == m * q && b.len() == m && z.len() == q && r.len() == q * q && m >= q);
+    for k in 0..q {
+        r[k * q + k] = norm_lanes(&a[k * m..(k + 1) * m]);
     }
     *ok = [true; LANES];
     for k in 0..q {
         let (done, rest) = a.split_at_mut((k + 1) * m);
         let col = &mut done[k * m..];
         let rkk = norm_lanes(col);
+        let original = r[k * q + k];
         for l in 0..LANES {
-            ok[l] &= rkk[l] > RANK_TOLERANCE * original[k][l];
+            ok[l] &= rkk[l] > RANK_TOLERANCE * original[l];
         }
         for v in col.iter_mut() {
             for l in 0..LANES {
                 v[l] /= rkk[l];
             }
         }
-        r[k][k] = rkk;
+        r[k * q + k] = rkk;
         for j in k + 1..q {
             let aj = &mut rest[(j - k - 1) * m..(j - k) * m];
-            r[k][j] = project_out_lanes(col, aj);
+            r[k * q + j] = project_out_lanes(col, aj);
         }
-        rb[k] = project_out_lanes(col, b);
+        z[k] = project_out_lanes(col, b);
     }
     for k in (0..q).rev() {
-        let mut s = rb[k];
+        let mut s = z[k];
         for j in k + 1..q {
             for l in 0..LANES {
-                s[l] -= r[k][j][l] * z[j][l];
+                s[l] -= r[k * q + j][l] * z[j][l];
             }
         }
         for l in 0..LANES {
-            z[k][l] = s[l] / r[k][k][l];
+            z[k][l] = s[l] / r[k * q + k][l];
         }
     }
 }
 
-#[inline]
+#[inline(always)]
 fn norm_lanes(x: &[Lanes]) -> Lanes {
     let mut ss = [0.0; LANES];
     for v in x {
@@ -139,6 +142,13 @@ fn norm_lanes(x: &[Lanes]) -> Lanes {
         }
         return out;
     }
+    norm_lanes_rescaled(x)
+}
+
+/// [`norm`] lane by lane, for the rare columns whose plain sum of squares over- or underflows.
+#[cold]
+#[inline(never)]
+fn norm_lanes_rescaled(x: &[Lanes]) -> Lanes {
     let mut column = [0.0; 64];
     std::array::from_fn(|l| {
         if x.len() > column.len() {
@@ -151,7 +161,7 @@ fn norm_lanes(x: &[Lanes]) -> Lanes {
     })
 }
 
-#[inline]
+#[inline(always)]
 fn project_out_lanes(u: &[Lanes], x: &mut [Lanes]) -> Lanes {
     let mut ux = [0.0; LANES];
     for (a, b) in u.iter().zip(x.iter()) {
@@ -271,7 +281,9 @@ mod tests {
             .collect();
         let (mut al, mut bl, mut z, mut ok) =
             (a.clone(), b.clone(), vec![[0.0; LANES]; q], [false; LANES]);
-        solve_lanes(&mut al, &mut bl, m, q, &mut z, &mut ok);
+        // R's room starts as garbage: the solver must not read what it has not written.
+        let mut r = vec![[f64::NAN; LANES]; q * q];
+        solve_lanes(&mut al, &mut bl, m, q, &mut r, &mut z, &mut ok);
         for l in 0..LANES {
             let mut a1: Vec<f64> = a.iter().map(|v| v[l]).collect();
             let mut b1: Vec<f64> = b.iter().map(|v| v[l]).collect();

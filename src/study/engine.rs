@@ -11,7 +11,9 @@
 //! run across trials and vectorise; each trial keeps its own order of operations, so its
 //! result is bitwise that of the one-trial path ([`crate::identify::Identifier::identify`]
 //! on the same data). On x86-64 with AVX2 the block kernel is compiled a second time with
-//! AVX2 enabled and chosen at run time; both builds give the same bits.
+//! AVX2 enabled and chosen at run time; both builds give the same bits. The AVX2 build
+//! draws uniform shape errors with the explicit AVX2 generator
+//! ([`super::noise::LaneRng::uniform_shape_errors_avx2`], bitwise the portable one).
 
 use rayon::prelude::*;
 
@@ -70,6 +72,7 @@ struct Scratch {
     g: Vec<Lanes>,
     ws: Vec<Lanes>,
     wb: Vec<Lanes>,
+    r: Vec<Lanes>,
     z: Vec<Lanes>,
     ok: [bool; LANES],
 }
@@ -82,6 +85,7 @@ impl Scratch {
             g: vec![[0.0; LANES]; n],
             ws: vec![[0.0; LANES]; m * q],
             wb: vec![[0.0; LANES]; m],
+            r: vec![[0.0; LANES]; q * q],
             z: vec![[0.0; LANES]; q],
             ok: [false; LANES],
         }
@@ -147,11 +151,22 @@ impl Block<'_> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn run_avx2(&self, s: &mut Scratch, values: &mut [f64], failed: &mut [bool]) {
-        self.run_portable(s, values, failed)
+        self.run_lanes::<true>(s, values, failed)
     }
 
-    #[inline(always)]
     fn run_portable(&self, s: &mut Scratch, values: &mut [f64], failed: &mut [bool]) {
+        self.run_lanes::<false>(s, values, failed)
+    }
+
+    /// The trials, `LANES` at a time; `AVX2` (true only under [`Block::run_avx2`], after the
+    /// CPU was checked) draws uniform shape errors with explicit AVX2 instructions.
+    #[inline(always)]
+    fn run_lanes<const AVX2: bool>(
+        &self,
+        s: &mut Scratch,
+        values: &mut [f64],
+        failed: &mut [bool],
+    ) {
         let (plan, cell) = (self.plan, self.cell);
         let (modes, q) = (plan.modes.len(), plan.q());
         let count = failed.len() / modes;
@@ -160,6 +175,15 @@ impl Block<'_> {
             let mut rng = LaneRng::new(self.seed, cell.index as u64, (self.first + start) as u64);
             for (k, mode) in plan.modes.iter().enumerate() {
                 if cell.shape_noise > 0.0 {
+                    #[cfg(target_arch = "x86_64")]
+                    if AVX2 && self.noise == NoiseKind::Uniform {
+                        // SAFETY: AVX2 is true only in `run_avx2`, called after the CPU was
+                        // checked for AVX2.
+                        unsafe { rng.uniform_shape_errors_avx2(cell.shape_noise, &mut s.shape) };
+                    } else {
+                        rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
+                    }
+                    #[cfg(not(target_arch = "x86_64"))]
                     rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
                     for (y, &exact) in s.shape.iter_mut().zip(&mode.truth_shape) {
                         for e in y.iter_mut() {
@@ -187,6 +211,7 @@ impl Block<'_> {
                     &mut s.wb,
                     mode.system.m(),
                     q,
+                    &mut s.r,
                     &mut s.z,
                     &mut s.ok,
                 );
@@ -207,7 +232,9 @@ impl Block<'_> {
     }
 }
 
-/// The statistics of every (mode, parameter) of a cell, in (mode, parameter) order.
+/// The statistics of every (mode, parameter) of a cell, in (mode, parameter) order. The
+/// columns are gathered and summarised in parallel, one column per task; each column's
+/// result depends on its values alone, so the output does not depend on the thread count.
 pub fn summarize_cell(
     study: &Study,
     cell: &Cell,
@@ -216,27 +243,28 @@ pub fn summarize_cell(
 ) -> Vec<RowStats> {
     let (modes, q) = (samples.modes, samples.q);
     let trials = samples.trials();
-    let mut column = Vec::with_capacity(trials);
-    let mut rows = Vec::with_capacity(modes * q);
-    for (k, mode) in plan.modes.iter().enumerate() {
-        let predicted = predicted_std(plan, mode, cell, study.noise);
-        for i in 0..q {
-            column.clear();
-            column.extend(
-                (0..trials)
-                    .filter(|t| !samples.failed[t * modes + k])
-                    .map(|t| samples.values[(t * modes + k) * q + i]),
-            );
-            rows.push(RowStats {
-                mode: mode.mode,
+    let predicted: Vec<_> = plan
+        .modes
+        .iter()
+        .map(|mode| predicted_std(plan, mode, cell, study.noise))
+        .collect();
+    (0..modes * q)
+        .into_par_iter()
+        .map(|column_index| {
+            let (k, i) = (column_index / q, column_index % q);
+            let mut column: Vec<f64> = (0..trials)
+                .filter(|t| !samples.failed[t * modes + k])
+                .map(|t| samples.values[(t * modes + k) * q + i])
+                .collect();
+            RowStats {
+                mode: plan.modes[k].mode,
                 param: i,
                 introduced: study.delta[i],
                 trials,
                 failures: trials - column.len(),
                 summary: summarize(&mut column, study.delta[i]),
-                predicted_std: predicted.as_ref().map(|p| p[i]),
-            });
-        }
-    }
-    rows
+                predicted_std: predicted[k].as_ref().map(|p| p[i]),
+            }
+        })
+        .collect()
 }

@@ -32,6 +32,9 @@ use rand_distr::{Distribution, StandardNormal};
 
 use crate::identify::{LANES, Lanes};
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 /// The noise distribution of a study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NoiseKind {
@@ -160,7 +163,7 @@ impl TrialRng {
 }
 
 /// The uniform variate on [-1, 1) of 64 random bits (see the module docs).
-#[inline]
+#[inline(always)]
 fn symmetric_unit(x: u64) -> f64 {
     let u = f64::from_bits(0x3FF0_0000_0000_0000 | (x >> 12)) - 1.0;
     2.0 * u - 1.0
@@ -183,7 +186,7 @@ impl LaneRng {
     }
 
     /// The next 64 bits of every lane (xoshiro256++, lane-wise).
-    #[inline]
+    #[inline(always)]
     fn next_lanes(&mut self) -> [u64; LANES] {
         let [s0, s1, s2, s3] = &mut self.s;
         let mut out = [0; LANES];
@@ -199,7 +202,7 @@ impl LaneRng {
     }
 
     /// Relative shape errors of level `a`: `out[j][l]` is the j-th draw of lane l.
-    #[inline]
+    #[inline(always)]
     pub fn shape_errors(&mut self, kind: NoiseKind, a: f64, out: &mut [Lanes]) {
         match kind {
             NoiseKind::Uniform => {
@@ -222,7 +225,7 @@ impl LaneRng {
     }
 
     /// One relative frequency error of standard deviation `sigma` per lane.
-    #[inline]
+    #[inline(always)]
     pub fn frequency_errors(&mut self, kind: NoiseKind, sigma: f64) -> Lanes {
         std::array::from_fn(|l| {
             let mut lane = self.lane(l);
