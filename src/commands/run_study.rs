@@ -90,7 +90,7 @@ pub fn run_studies(
     let runs = args
         .studies
         .iter()
-        .map(|path| prepare(path, args, gate))
+        .map(|path| prepare(path, args, gate, pool.current_num_threads()))
         .collect::<anyhow::Result<Vec<StudyRun>>>()?;
     for run in runs {
         finished(&execute(run, args, &pool)?)?;
@@ -116,7 +116,7 @@ fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
 }
 
 /// Reads and validates one study: its cells, its gate when `gate`, its output paths.
-fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun> {
+fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow::Result<StudyRun> {
     let study = Study::from_path(path)?;
     if gate {
         let Some(spec) = &study.check else {
@@ -143,7 +143,7 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun
     outputs.extend(args.trials_csv.as_deref());
     check_outputs(&outputs, &[&study.file, &study.model_file])?;
     check_memory(
-        peak_bytes(&study),
+        peak_bytes(&study, threads),
         &format!(
             "{} (one cell of {} trials)",
             study.file.display(),

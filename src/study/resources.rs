@@ -1,19 +1,21 @@
 //! The memory a study needs at its peak, known before it runs: cells run one after the
 //! other, and one cell holds every trial's corrections (8 bytes per trial, mode and
 //! parameter, plus a failure flag per trial and mode) and, while its statistics are
-//! computed, a few columns of one value per trial.
+//! computed, three buffers of one value per trial (the column and its two sort buffers) for
+//! every column summarised at once: one per worker thread, at most one per (mode, parameter).
 
 use super::Study;
 
-/// Columns of one value per trial that the statistics of a cell hold beside its samples.
-const STATISTICS_COLUMNS: u64 = 3;
+/// Buffers of one value per trial that the statistics of one column hold.
+const BUFFERS_PER_COLUMN: u64 = 3;
 
-/// Peak bytes of a run of `study`.
-pub fn peak_bytes(study: &Study) -> u64 {
+/// Peak bytes of a run of `study` on `threads` worker threads.
+pub fn peak_bytes(study: &Study, threads: usize) -> u64 {
     let trials = study.trials as u64;
     let modes = study.modes.len() as u64;
     let q = study.model.identified().len() as u64;
-    trials * modes * (8 * q + 1) + STATISTICS_COLUMNS * 8 * trials
+    let columns = (threads as u64).clamp(1, modes * q);
+    trials * modes * (8 * q + 1) + columns * BUFFERS_PER_COLUMN * 8 * trials
 }
 
 #[cfg(test)]
@@ -49,8 +51,14 @@ mod tests {
             Study::from_toml_with_model(&text, Path::new("s.toml"), structure, Path::new("m.toml"))
                 .unwrap();
         assert_eq!(study.model.identified().len(), 16);
-        let expected = 10_000_000u64 * 20 * (8 * 16 + 1) + 3 * 8 * 10_000_000;
-        assert_eq!(peak_bytes(&study), expected);
-        assert!((25.6e9..26.1e9).contains(&(expected as f64)));
+        let expected = 10_000_000u64 * 20 * (8 * 16 + 1) + 2 * 3 * 8 * 10_000_000;
+        assert_eq!(peak_bytes(&study, 2), expected);
+        assert!((25.6e9..26.4e9).contains(&(expected as f64)));
+        // Never more columns at once than (mode, parameter) pairs.
+        assert_eq!(
+            peak_bytes(&study, 10_000) - peak_bytes(&study, 320),
+            0,
+            "320 columns at most"
+        );
     }
 }
