@@ -11,6 +11,12 @@
 //! and the eigenvalues rescaled after: faer's solver loses accuracy on entries of order
 //! 1e12 (as L^-1 K L^-T of a fine beam mesh is) without it.
 
+pub mod lanczos;
+pub mod nelson;
+pub mod refine;
+pub mod sparse_llt;
+
+use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
 use crate::model::Matrices;
@@ -27,6 +33,87 @@ pub enum ModalError {
     /// The symmetric eigensolver did not converge.
     #[error("the symmetric eigensolver did not converge")]
     NoConvergence,
+    /// K and M are not square matrices of one size.
+    #[error(
+        "K is {}x{} and M is {}x{}: both must be square and of one size",
+        k.0, k.1, m.0, m.1
+    )]
+    ShapeMismatch {
+        /// Rows and columns of K.
+        k: (usize, usize),
+        /// Rows and columns of M.
+        m: (usize, usize),
+    },
+    /// The number of wanted pairs is 0 or above the number of DOFs.
+    #[error("{count} eigenpairs requested of a model with {dofs} DOFs: allowed 1 ..= {dofs}")]
+    CountOutOfRange {
+        /// Pairs requested.
+        count: usize,
+        /// DOFs N.
+        dofs: usize,
+    },
+    /// A solver setting is out of its range.
+    #[error("eigensolver setting {name} = {value} is invalid: allowed {allowed}")]
+    InvalidSetting {
+        /// The setting.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The allowed range.
+        allowed: String,
+    },
+    /// K - sigma M met a non-positive Cholesky pivot for every shift tried.
+    #[error(
+        "K - sigma M could not be factorised for sigma = {first:e} .. {last:e} ({attempts} \
+         shifts): K must be positive semidefinite and M positive definite"
+    )]
+    ShiftNotFactorised {
+        /// The first shift tried.
+        first: f64,
+        /// The last shift tried.
+        last: f64,
+        /// Number of shifts tried.
+        attempts: usize,
+    },
+    /// The iterative eigensolver stopped before every wanted pair met the tolerance.
+    #[error(
+        "the Lanczos eigensolver converged {converged} of {requested} pairs in {restarts} \
+         restarts: raise max_restarts or basis_size, or loosen the tolerance"
+    )]
+    NotConverged {
+        /// Pairs that met the tolerance.
+        converged: usize,
+        /// Pairs requested.
+        requested: usize,
+        /// Restarts done.
+        restarts: usize,
+    },
+    /// K - lambda M with the pinned DOF is singular (a repeated eigenvalue: Nelson's method
+    /// needs a simple one).
+    #[error(
+        "K - lambda M with DOF {pinned} pinned is singular at lambda = {lambda:e}: the \
+         eigenvalue must be simple for Nelson's method"
+    )]
+    PinnedMatrixSingular {
+        /// The eigenvalue.
+        lambda: f64,
+        /// The pinned DOF.
+        pinned: usize,
+    },
+    /// The eigenvector given to Nelson's method is not M-normalised.
+    #[error("the eigenvector has y^T M y = {norm}: it must be M-normalised (1)")]
+    NotMassNormalised {
+        /// y^T M y.
+        norm: f64,
+    },
+    /// A vector's length differs from the number of DOFs.
+    #[error("a vector of length {len} was given for a model with {dofs} DOFs")]
+    VectorLength {
+        /// Its length.
+        len: usize,
+        /// DOFs N.
+        dofs: usize,
+    },
 }
 
 /// All eigenpairs of (K, M), under the contract in the module docs.
@@ -73,7 +160,23 @@ impl ModalSolution {
         Ok(ModalSolution { values, vectors })
     }
 
-    /// Number of eigenpairs (N).
+    /// The `count` lowest pairs of a sparse problem (K, M given with both triangles), by
+    /// shift-invert Lanczos with the default [`lanczos::LanczosSettings`]; same contract as
+    /// [`ModalSolution::solve`], [`ModalSolution::len`] is then `count`.
+    pub fn lowest(
+        k: SparseColMatRef<'_, usize, f64>,
+        m: SparseColMatRef<'_, usize, f64>,
+        count: usize,
+    ) -> Result<ModalSolution, ModalError> {
+        let modes = lanczos::lowest_modes(k, m, count, &lanczos::LanczosSettings::default())?;
+        Ok(ModalSolution {
+            values: modes.values,
+            vectors: modes.vectors,
+        })
+    }
+
+    /// Number of eigenpairs (N for [`ModalSolution::solve`], `count` for
+    /// [`ModalSolution::lowest`]).
     pub fn len(&self) -> usize {
         self.values.len()
     }
