@@ -53,11 +53,18 @@ use faer::linalg::matmul::matmul;
 use faer::sparse::{SparseColMatRef, Triplet};
 use faer::{Accum, Mat, MatRef, Par, Side};
 
+use super::refine::refine;
 use super::sparse_llt::{Ordering, SparseLlt};
 use super::{ModalError, fix_sign};
 
 /// How many factorisations of K - sigma M are tried, |sigma| growing 100-fold each time.
 pub const SHIFT_ATTEMPTS: usize = 6;
+
+/// Ritz vectors beyond the wanted ones that enter the refinement.
+pub const REFINE_EXTRA: usize = 4;
+
+/// Most refinement sweeps.
+pub const REFINE_SWEEPS: usize = 10;
 
 /// Settings of [`lowest_modes`].
 #[derive(Debug, Clone, PartialEq)]
@@ -140,17 +147,28 @@ pub fn lowest_modes(
             .filter(|&i| (beta * s[(size - 1, i)]).abs() <= tol * theta[i])
             .count();
         if converged == count || krylov.full() {
-            let pairs = if std::env::var("NOREF").is_ok() {
-                ritz_pairs(k, m, shift, &theta[..count], krylov.basis(&s, count), norms)
-            } else {
-                let p = (count + 4).min(size);
-                let basis = krylov.basis(&s, p);
-                let r = super::refine::refine(k, m, &mut krylov.llt, shift, basis, tol, 10)
-                    .ok_or(ModalError::NoConvergence)?;
-                if std::env::var("VERB").is_ok() { eprintln!("sweeps {}", r.sweeps); }
-                let th: Vec<f64> = r.values[..count].iter().map(|l| 1.0 / (l - shift)).collect();
-                ritz_pairs(k, m, shift, &th, r.vectors.subcols(0, count).to_owned(), norms)
-            };
+            // Rayleigh-Ritz with accurately computed K y (see [`super::refine`]) on the
+            // wanted Ritz vectors and a few more, which absorb the next pairs' components.
+            let extra = (count + REFINE_EXTRA).min(size);
+            let start = krylov.basis(&s, extra);
+            let refined = refine(
+                k,
+                m,
+                &mut krylov.llt,
+                shift,
+                start,
+                tol,
+                REFINE_SWEEPS,
+            )
+            .ok_or(ModalError::NoConvergence)?;
+            let pairs = ritz_pairs(
+                k,
+                m,
+                shift,
+                &refined.values[..count],
+                refined.vectors.subcols(0, count).to_owned(),
+                norms,
+            );
             let accepted = pairs.backward_errors.iter().filter(|&&e| e <= tol).count();
             if accepted == count {
                 return Ok(LowestModes {
@@ -247,7 +265,7 @@ fn lower_triplets(
 }
 
 fn ordering() -> Ordering {
-    if std::env::var("ORDER").is_ok() { Ordering::Natural } else { Ordering::Amd }
+    Ordering::Amd
 }
 
 /// The default shift of [`LanczosSettings::shift`].
@@ -521,31 +539,18 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The Ritz pairs of OP as eigenpairs of (K, M): lambda = sigma + 1/theta ascending, vectors
-/// V s (M-normalised, sign-fixed), and their backward errors.
+/// The refined pairs (values ascending, vectors M-normalised) with signs fixed and their
+/// backward errors.
 fn ritz_pairs(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     shift: f64,
-    theta: &[f64],
+    values: &[f64],
     mut vectors: Mat<f64>,
     (norm_k, norm_m): (f64, f64),
 ) -> LowestModes {
     let (n, count) = (vectors.nrows(), vectors.ncols());
-    let mut values: Vec<f64> = theta[..count].iter().map(|t| shift + 1.0 / t).collect();
-    if std::env::var("NOREF").is_err() {
-        for (v, t) in values.iter_mut().zip(theta) { *v = shift + 1.0 / t; }
-    }
-    if std::env::var("RQ").is_ok() {
-        for j in 0..count {
-            let y = vectors.col_as_slice(j);
-            let mut ky = vec![0.0; n];
-            sparse_mul(k, y, &mut ky);
-            let mut my = vec![0.0; n];
-            sparse_mul(m, y, &mut my);
-            values[j] = dot(y, &ky) / dot(y, &my);
-        }
-    }
+    let values = values[..count].to_vec();
     let (mut ky, mut my) = (vec![0.0; n], vec![0.0; n]);
     let mut backward_errors = Vec::with_capacity(count);
     for (j, &lambda) in values.iter().enumerate() {

@@ -28,7 +28,7 @@ use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 
 use super::ModalError;
 use super::lanczos::sparse_mul;
-use crate::model::SparseSym;
+use crate::structure::SparseSym;
 
 /// Largest allowed |y^T M y - 1| of the vector handed to [`NelsonMode::new`].
 pub const NORMALISATION_TOLERANCE: f64 = 1e-8;
