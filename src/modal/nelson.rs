@@ -160,3 +160,93 @@ impl NelsonMode {
         Ok(EigenDerivative { value, vector })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! Against central differences of eigen-solutions of the perturbed model: the dense solve
+    //! of the paper's model (38 DOFs) and the sparse solve of the chain refined to 2 x 150
+    //! elements (604 DOFs, above the dense threshold), which share no code with Nelson's
+    //! method.
+    use super::*;
+    use crate::modal::ModalSolution;
+    use crate::model::chain::{Chain, Joint};
+    use crate::model::fixtures::steel_bar;
+    use crate::structure::{Matrices, Structure};
+
+    fn chain(elements: usize) -> Structure {
+        Chain::free(
+            vec![steel_bar(0.2, elements), steel_bar(0.3, elements)],
+            vec![Joint::identified(1e7, 1e4)],
+        )
+        .build()
+    }
+
+    /// Checks modes `modes` of `structure` for k2 of the joint and a point mass of 0.3 kg on
+    /// the joint's first w DOF; `tol_value`, `tol_vector` relative to the derivative's size.
+    fn check(structure: &Structure, modes: &[usize], tol_value: f64, tol_vector: f64) {
+        let count = modes.iter().max().unwrap() + 1;
+        let k2 = structure.identified()[1].clone();
+        let joint_w = (0..structure.dof_count())
+            .find(|&i| k2.stiffness.entries().iter().any(|e| e.0 == i))
+            .unwrap()
+            - 1;
+        let mut point_mass = SparseSym::zero();
+        point_mass.add(joint_w, joint_w, 1.0);
+        let base = structure.assemble();
+        let with = |dk: &SparseSym, dm: &SparseSym, p: f64| {
+            let mats: Matrices = base.plus(&[(dk, dm, p)]);
+            ModalSolution::lowest_of(&mats, count).unwrap()
+        };
+        let zero = SparseSym::zero();
+        let p0 = 0.3;
+        for (dk, dm, h, at) in [
+            (&k2.stiffness, &zero, 1e-3 * k2.value, 0.0),
+            (&zero, &point_mass, 1e-3 * p0, p0),
+        ] {
+            let nominal = with(dk, dm, at);
+            let (plus, minus) = (with(dk, dm, at + h), with(dk, dm, at - h));
+            let mats = base.plus(&[(dk, dm, at)]);
+            for &s in modes {
+                let y = nominal.vectors().col(s).iter().copied().collect::<Vec<_>>();
+                let mode =
+                    NelsonMode::new(mats.k.as_faer(), mats.m.as_faer(), nominal.values()[s], &y)
+                        .unwrap();
+                let d = mode.derivative(dk, dm).unwrap();
+                let fd = (plus.values()[s] - minus.values()[s]) / (2.0 * h);
+                assert!(
+                    (d.value - fd).abs() < tol_value * d.value.abs(),
+                    "mode {s}: d lambda {} vs {fd}",
+                    d.value
+                );
+                let scale = d.vector.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                for (i, dyi) in d.vector.iter().enumerate() {
+                    let fd = (plus.vectors()[(i, s)] - minus.vectors()[(i, s)]) / (2.0 * h);
+                    assert!(
+                        (dyi - fd).abs() < tol_vector * scale,
+                        "mode {s}, dof {i}: dy {dyi} vs {fd}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_central_differences_dense_model() {
+        // Central differences at 1e-3 relative steps: truncation error about 1e-6 relative.
+        check(&chain(7), &[2, 3, 5], 1e-5, 1e-5);
+    }
+
+    #[test]
+    fn derivatives_match_central_differences_sparse_model() {
+        check(&chain(150), &[2, 3, 6], 1e-6, 1e-5);
+    }
+
+    #[test]
+    fn a_vector_not_mass_normalised_is_refused() {
+        let mats = chain(7).assemble();
+        let sol = ModalSolution::solve(&mats).unwrap();
+        let y: Vec<f64> = sol.vectors().col(2).iter().map(|v| 2.0 * v).collect();
+        let err = NelsonMode::new(mats.k.as_faer(), mats.m.as_faer(), sol.values()[2], &y);
+        assert!(matches!(err, Err(ModalError::NotMassNormalised { .. })));
+    }
+}
