@@ -31,7 +31,7 @@ pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
 
 use crate::identify::{Settings, Weighting};
 use crate::measured::MeasuredModes;
-use crate::modal::{ModalError, ModalSolution};
+use crate::modal::ModalError;
 use crate::model::effects::{Effect, EffectContext, candidates};
 use crate::stats::chi2_sf;
 use crate::structure::Structure;
@@ -98,7 +98,7 @@ pub fn diagnose(
             parameters: joint_parameters,
         });
     }
-    let nominal = ModalSolution::solve(&model.assemble())?;
+    let nominal = model.modes(rigid + 1)?;
     let ctx = Arc::new(EffectContext::new(
         model.clone(),
         &measured.points(),

@@ -28,6 +28,7 @@
 use faer::{Mat, Side};
 use faer::sparse::SparseColMatRef;
 
+use super::lanczos::sparse_mul;
 use super::sparse_llt::SparseLlt;
 
 /// Corrections of M-norm below this (for M-normalised vectors) are left out: their content is
@@ -119,7 +120,15 @@ pub fn refine(
         }
         out
     };
-    let (mut ky, mut my) = (mul_all(k, &y), mul_all(m, &y));
+    // M is well conditioned: its products need no extra precision.
+    let plain = |q: &Mat<f64>| {
+        let mut out = Mat::<f64>::zeros(n, q.ncols());
+        for j in 0..q.ncols() {
+            sparse_mul(m, q.col_as_slice(j), out.col_as_slice_mut(j));
+        }
+        out
+    };
+    let (mut ky, mut my) = (mul_all(k, &y), plain(&y));
     let (values, x) = dense_pencil(&(y.transpose() * &ky), &(y.transpose() * &my))?;
     let mut y = &y * &x;
     ky = &ky * &x;
@@ -129,9 +138,10 @@ pub fn refine(
         // Corrections.
         let mut d = Mat::<f64>::zeros(n, p);
         for j in 0..p {
+            let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
             let col = d.col_as_slice_mut(j);
-            for i in 0..n {
-                col[i] = ky[(i, j)] - values[j] * my[(i, j)];
+            for ((c, a), b) in col.iter_mut().zip(kc).zip(mc) {
+                *c = a - values[j] * b;
             }
             llt.solve_in_place(col);
         }
@@ -139,20 +149,28 @@ pub fn refine(
             let c = my.transpose() * &d;
             d -= &y * &c;
         }
-        let md = mul_all(m, &d);
+        let md = plain(&d);
         let keep: Vec<usize> = (0..p)
             .filter(|&j| {
-                let norm2: f64 = (0..n).map(|i| d[(i, j)] * md[(i, j)]).sum();
+                let norm2: f64 = d
+                    .col_as_slice(j)
+                    .iter()
+                    .zip(md.col_as_slice(j))
+                    .map(|(a, b)| a * b)
+                    .sum();
                 norm2.sqrt() > NOISE_FLOOR
             })
             .collect();
         if keep.is_empty() {
             return Some(Refined { values, vectors: y, sweeps: sweep - 1 });
         }
-        let dk = Mat::from_fn(n, keep.len(), |i, j| d[(i, keep[j])]);
+        let mut dk = Mat::<f64>::zeros(n, keep.len());
+        for (j, &c) in keep.iter().enumerate() {
+            dk.col_as_slice_mut(j).copy_from_slice(d.col_as_slice(c));
+        }
         let q = concat(&y, &dk);
         let kq = concat(&ky, &mul_all(k, &dk));
-        let mq = concat(&my, &mul_all(m, &dk));
+        let mq = concat(&my, &plain(&dk));
         let (new_values, x) = dense_pencil(&(q.transpose() * &kq), &(q.transpose() * &mq))?;
         let x = x.subcols(0, p).to_owned();
         let moved = (0..p)
@@ -171,5 +189,8 @@ pub fn refine(
 
 fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
     let (n, p) = (a.nrows(), a.ncols());
-    Mat::from_fn(n, p + b.ncols(), |i, j| if j < p { a[(i, j)] } else { b[(i, j - p)] })
+    let mut out = Mat::<f64>::zeros(n, p + b.ncols());
+    out.subcols_mut(0, p).copy_from(a);
+    out.subcols_mut(p, b.ncols()).copy_from(b);
+    out
 }
