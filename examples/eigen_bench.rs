@@ -62,7 +62,8 @@ fn main() {
     let mut sol = None;
     for _ in 0..repeat {
         let t = Instant::now();
-        sol = Some(ModalSolution::lowest(mats.k.as_faer(), mats.m.as_faer(), count).expect("solve"));
+        sol =
+            Some(ModalSolution::lowest(mats.k.as_faer(), mats.m.as_faer(), count).expect("solve"));
         times.push(t.elapsed().as_secs_f64());
     }
     times.sort_by(f64::total_cmp);
@@ -74,6 +75,8 @@ fn main() {
         peak_rss_mb(),
         before
     );
-    let frequencies: Vec<String> = (0..count).map(|i| format!("{:.9}", sol.frequency_hz(i))).collect();
+    let frequencies: Vec<String> = (0..count)
+        .map(|i| format!("{:.9}", sol.frequency_hz(i)))
+        .collect();
     println!("frequencies_hz {}", frequencies.join(" "));
 }

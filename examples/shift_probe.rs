@@ -3,8 +3,8 @@
 use jointid::modal::lambda_to_hz;
 use jointid::modal::lanczos::{LanczosSettings, default_shift, lowest_modes};
 use jointid::model::chain::Chain;
-use jointid::model::fixtures::steel_bar;
 use jointid::model::chain::joint::Joint;
+use jointid::model::fixtures::steel_bar;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -19,15 +19,35 @@ fn main() {
     let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
     println!("N = {} default shift {:e}", k.nrows(), default_shift(k, m));
     for s in &args[4..] {
-        let shift: Option<f64> = if s == "d" { None } else { Some(-s.parse::<f64>().unwrap()) };
+        let shift: Option<f64> = if s == "d" {
+            None
+        } else {
+            Some(-s.parse::<f64>().unwrap())
+        };
         let t = std::time::Instant::now();
-        let r = lowest_modes(k, m, count, &LanczosSettings { shift, ..Default::default() });
+        let r = lowest_modes(
+            k,
+            m,
+            count,
+            &LanczosSettings {
+                shift,
+                ..Default::default()
+            },
+        );
         let dt = t.elapsed().as_secs_f64();
         match r {
             Ok(r) => println!(
-                "shift {:e}: {:.3} s restarts {} ops {} f = {:?} eta max {:e}",
-                r.shift, dt, r.restarts, r.operator_applications,
-                r.values.iter().take(7).map(|l| format!("{:.6}", lambda_to_hz(*l))).collect::<Vec<_>>(),
+                "shift {:e}: {:.3} s restarts {} ops {} sweeps {} f = {:?} eta max {:e}",
+                r.shift,
+                dt,
+                r.restarts,
+                r.operator_applications,
+                r.refinement_sweeps,
+                r.values
+                    .iter()
+                    .take(7)
+                    .map(|l| format!("{:.6}", lambda_to_hz(*l)))
+                    .collect::<Vec<_>>(),
                 r.backward_errors.iter().cloned().fold(0.0, f64::max)
             ),
             Err(e) => println!("shift {s}: {e} ({dt:.3} s)"),

@@ -47,10 +47,11 @@ fn determinant(mut a: Vec<Vec<f64>>) -> f64 {
             return 0.0;
         }
         det *= pivot;
-        for r in c + 1..n {
-            let f = a[r][c] / pivot;
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
+        let (top, below) = a.split_at_mut(c + 1);
+        for row in below {
+            let f = row[c] / pivot;
+            for (x, y) in row[c..].iter_mut().zip(&top[c][c..]) {
+                *x -= f * y;
             }
         }
     }

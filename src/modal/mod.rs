@@ -1,4 +1,5 @@
-//! The modal solution of eq. (1)-(2): K y = lambda M y for all pairs.
+//! The modal solution of eq. (1)-(2): K y = lambda M y, every pair of a small model, the
+//! lowest pairs of a large one.
 //!
 //! Contract of [`ModalSolution`]:
 //! - eigenvalues ascending (the free-free chain's two rigid-body modes first, near zero);
@@ -6,7 +7,12 @@
 //! - sign fixed: the component of largest magnitude of every vector is positive (the first
 //!   such component on a tie).
 //!
-//! Method: Cholesky reduction. M = L L^T, A = L^-1 K L^-T, standard symmetric eigenproblem
+//! Up to [`DENSE_MAX_DOFS`] DOFs every pair is computed densely; above, [`ModalSolution::lowest_of`]
+//! and [`ModalSolution::covering`] compute the lowest pairs by shift-invert Lanczos on the
+//! sparse matrices ([`lanczos`], with the refinement of [`refine`]), and [`nelson`] gives the
+//! derivatives of one pair without the others.
+//!
+//! Dense method: Cholesky reduction. M = L L^T, A = L^-1 K L^-T, standard symmetric eigenproblem
 //! A x = lambda x, y = L^-T x. A is scaled to unit largest entry before the symmetric solver
 //! and the eigenvalues rescaled after: faer's solver loses accuracy on entries of order
 //! 1e12 (as L^-1 K L^-T of a fine beam mesh is) without it.

@@ -99,7 +99,8 @@ impl NelsonMode {
         }
         entries.push(Triplet::new(pinned, pinned, 1.0));
         let singular = ModalError::PinnedMatrixSingular { lambda, pinned };
-        let a = SparseColMat::try_new_from_triplets(n, n, &entries).map_err(|_| singular.clone())?;
+        let a =
+            SparseColMat::try_new_from_triplets(n, n, &entries).map_err(|_| singular.clone())?;
         let symbolic = SymbolicLu::try_new(a.symbolic()).map_err(|_| singular.clone())?;
         let lu = Lu::try_new_with_symbolic(symbolic, a.as_ref()).map_err(|_| singular)?;
         Ok(NelsonMode {

@@ -4,12 +4,12 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::perm::PermRef;
 use faer::{Conj, MatMut, Par, Side};
 
 /// Fill-reducing ordering of the factorisation.
@@ -54,9 +54,9 @@ impl SparseLlt {
             Ordering::Amd => SymmetricOrdering::Amd,
             // Identity as an explicit permutation: faer's symbolic analysis then reads the
             // given side like for any other ordering.
-            Ordering::Natural => SymmetricOrdering::Custom(PermRef::new_checked(
-                &identity, &identity, n,
-            )),
+            Ordering::Natural => {
+                SymmetricOrdering::Custom(PermRef::new_checked(&identity, &identity, n))
+            }
         };
         let symbolic = factorize_symbolic_cholesky(
             a.symbolic(),
