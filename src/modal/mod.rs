@@ -360,6 +360,71 @@ mod tests {
         );
     }
 
+    /// The paper's chain refined to 2 x 30 elements (124 DOFs, above the threshold), against
+    /// its dense solution (accurate to 3e-9 there, README "Large models").
+    fn refined_chain() -> Matrices {
+        use crate::model::chain::{Chain, Joint};
+        use crate::model::fixtures::steel_bar;
+        Chain::free(
+            vec![steel_bar(0.2, 30), steel_bar(0.3, 30)],
+            vec![Joint::identified(1e7, 1e4)],
+        )
+        .build()
+        .assemble()
+    }
+
+    #[test]
+    fn lowest_of_is_dense_up_to_the_threshold_and_sparse_above() {
+        let small = paper_model(1e7, 1e4).assemble();
+        assert!(small.size() <= DENSE_MAX_DOFS);
+        let (a, b) = (
+            ModalSolution::lowest_of(&small, 3).unwrap(),
+            ModalSolution::solve(&small).unwrap(),
+        );
+        assert_eq!(a.len(), small.size());
+        assert!(
+            a.values()
+                .iter()
+                .zip(b.values())
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+        );
+
+        let large = refined_chain();
+        assert!(large.size() > DENSE_MAX_DOFS);
+        let sparse = ModalSolution::lowest_of(&large, 10).unwrap();
+        let dense = ModalSolution::solve(&large).unwrap();
+        assert_eq!(sparse.len(), 10);
+        assert_eq!(sparse.dof_count(), large.size());
+        for i in 2..10 {
+            let (s, d) = (sparse.frequency_hz(i), dense.frequency_hz(i));
+            assert!((s - d).abs() < 1e-8 * d, "mode {i}: {s} vs {d}");
+            // Same vector, same sign convention.
+            let diff = (0..large.size())
+                .map(|r| (sparse.vectors()[(r, i)] - dense.vectors()[(r, i)]).abs())
+                .fold(0.0, f64::max);
+            assert!(
+                diff < 1e-6 * dense.vectors().col(i).norm_max(),
+                "mode {i}: {diff}"
+            );
+        }
+        assert_eq!(
+            ModalSolution::lowest_of(&large, 0).unwrap_err(),
+            ModalError::CountOutOfRange {
+                count: 0,
+                dofs: large.size()
+            }
+        );
+    }
+
+    #[test]
+    fn covering_reaches_the_frequency_asked_for() {
+        let large = refined_chain();
+        // 3 pairs end at 150 Hz: doubled to 6 (the sixth is at 5356 Hz).
+        let sol = ModalSolution::covering(&large, 3, 3000.0).unwrap();
+        assert_eq!(sol.len(), 6);
+        assert!(sol.frequency_hz(5) > 3000.0 && sol.frequency_hz(4) < 3000.0);
+    }
+
     #[test]
     fn frequency_conversions_invert() {
         assert!((lambda_to_hz(hz_to_lambda(123.4)) - 123.4).abs() < 1e-12);
