@@ -1,5 +1,9 @@
-//! Probe: lowest frequencies of the paper's chain refined to `na` + `nb` elements, by the
-//! sparse shift-invert solver at the given shifts (`d` = default rule).
+//! Probe of the sparse eigensolver (module docs of `jointid::modal::lanczos`): the lowest
+//! `count` frequencies of the paper's chain refined to `na` + `nb` elements, for each shift
+//! given (a positive number s means sigma = -s; `d` the default rule), with time, restarts,
+//! operator applications, refinement sweeps and the largest backward error.
+//!
+//! `cargo run --release --example shift_probe -- 5000 5000 7 1e6 1e8 d`
 use jointid::modal::lambda_to_hz;
 use jointid::modal::lanczos::{LanczosSettings, default_shift, lowest_modes};
 use jointid::model::chain::Chain;
