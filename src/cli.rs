@@ -29,6 +29,9 @@ pub enum Command {
     /// Measured modes simulated from a model, with optional measurement errors, in the
     /// measured-modes CSV format.
     Simulate(SimulateArgs),
+    /// Modal parameters from measured FRFs (universal files): poles with a stabilisation
+    /// chart, residues, real modes and their complexity, as a measured-modes CSV.
+    Extract(ExtractArgs),
     /// Diagnose measured data: calibrate the joint, trace the residual to a missing effect,
     /// report before and after.
     Diagnose(DiagnoseArgs),
@@ -36,6 +39,19 @@ pub enum Command {
     Report(ReportArgs),
     /// Speed of the study engine on the paper cell, optionally beside the numpy baseline.
     Bench(BenchArgs),
+    /// Write a model as an external model (`kind = "matrices"`): Matrix Market K, M, dK/dp
+    /// (dM/dp) per parameter, the DOF table and a model.toml that reads back.
+    Export(ExportArgs),
+}
+
+/// `jointid export`.
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Model to export (any kind).
+    pub model: PathBuf,
+    /// A new folder for the files (it must not exist, or be empty).
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `jointid study` and `jointid check`.
@@ -56,6 +72,63 @@ pub struct StudyArgs {
     /// No progress bar (it is hidden anyway when stderr is not a terminal).
     #[arg(long)]
     pub quiet: bool,
+}
+
+/// `jointid extract`.
+#[derive(Debug, Args)]
+pub struct ExtractArgs {
+    /// FRF files (universal file, dataset 58 ASCII or 58b): FRFs of one reference, with their
+    /// coherences (optional); several files are read as one set.
+    #[arg(long, required = true, num_args = 1..)]
+    pub frf: Vec<PathBuf>,
+    /// Geometry (universal file, dataset 15 or 2411): x along the beam of every response node.
+    #[arg(long)]
+    pub geometry: PathBuf,
+    /// Measured-modes CSV to write (`x,dof` rows, damping_ratio and mpc columns).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Analysis band LO:HI in Hz (default: where the mean coherence reaches 0.8, else every
+    /// line).
+    #[arg(long, value_parser = parse_band)]
+    pub band: Option<(f64, f64)>,
+    /// Number of modes (default: as many as the stabilisation chart shows).
+    #[arg(long)]
+    pub modes: Option<usize>,
+    /// Highest model order of the LSCF estimator.
+    #[arg(long, default_value_t = jointid::extract::MAX_ORDER)]
+    pub max_order: usize,
+    /// The FRFs' response quantity when the files do not say it.
+    #[arg(long)]
+    pub quantity: Option<FrfQuantity>,
+    /// Also write the stabilisation chart (SVG) with the FRF sum and the synthesised FRFs.
+    #[arg(long)]
+    pub chart: Option<PathBuf>,
+    /// No progress on stderr.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// The response quantity of FRFs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FrfQuantity {
+    /// Receptance.
+    Displacement,
+    /// Mobility.
+    Velocity,
+    /// Accelerance.
+    Acceleration,
+}
+
+fn parse_band(text: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("{text:?} is not a band LO:HI in Hz with 0 <= LO < HI (e.g. 5:110)");
+    let (lo, hi) = text.split_once(':').ok_or_else(bad)?;
+    let lo: f64 = lo.trim().parse().map_err(|_| bad())?;
+    let hi: f64 = hi.trim().parse().map_err(|_| bad())?;
+    if lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi {
+        Ok((lo, hi))
+    } else {
+        Err(bad())
+    }
 }
 
 /// Which DOFs a simulated test measures.

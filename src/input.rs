@@ -87,6 +87,22 @@ fn span_line(text: &str, span: Option<std::ops::Range<usize>>) -> Option<usize> 
     Some(text[..start].bytes().filter(|&b| b == b'\n').count() + 1)
 }
 
+/// A number as a message shows it: the shortest form that reads back to the same value,
+/// in exponent form when it is very large or very small (never 309 digits).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number(pub f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
 /// A check of one numeric field, producing [`InputError::Invalid`] with the allowed range.
 pub struct FieldCheck<'a> {
     /// The file the value comes from.
@@ -104,7 +120,11 @@ impl FieldCheck<'_> {
         if value.is_finite() && value > 0.0 {
             Ok(value)
         } else {
-            Err(self.invalid(path, value, format!("it must be finite and > 0 ({unit})")))
+            Err(self.invalid(
+                path,
+                Number(value),
+                format!("it must be finite and > 0 ({unit})"),
+            ))
         }
     }
 
@@ -118,7 +138,29 @@ impl FieldCheck<'_> {
         if value.is_finite() && value >= 0.0 {
             Ok(value)
         } else {
-            Err(self.invalid(path, value, format!("it must be finite and >= 0 ({unit})")))
+            Err(self.invalid(
+                path,
+                Number(value),
+                format!("it must be finite and >= 0 ({unit})"),
+            ))
+        }
+    }
+
+    /// Requires a relative level: finite, from 0 to below 1 (100%).
+    pub fn relative_level(
+        &self,
+        path: impl Into<String>,
+        value: f64,
+        what: &str,
+    ) -> Result<f64, InputError> {
+        if value.is_finite() && (0.0..1.0).contains(&value) {
+            Ok(value)
+        } else {
+            Err(self.invalid(
+                path,
+                Number(value),
+                format!("it must be a {what} from 0 to below 1 (100%)"),
+            ))
         }
     }
 
@@ -153,6 +195,24 @@ impl FieldCheck<'_> {
             path: path.into(),
             value: value.to_string(),
             allowed: allowed.into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Number;
+
+    #[test]
+    fn numbers_in_messages_are_short_and_exact() {
+        assert_eq!(Number(1e300).to_string(), "1e300");
+        assert_eq!(Number(-2.5e-7).to_string(), "-2.5e-7");
+        assert_eq!(Number(0.04).to_string(), "0.04");
+        assert_eq!(Number(20000000.0).to_string(), "20000000");
+        assert_eq!(Number(f64::MAX).to_string(), "1.7976931348623157e308");
+        assert_eq!(Number(f64::NAN).to_string(), "NaN");
+        for v in [1e300, 3.3e-200, 0.1, 12345.678, 1e9, 9.99e8] {
+            assert_eq!(Number(v).to_string().parse::<f64>().unwrap(), v);
         }
     }
 }

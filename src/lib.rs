@@ -4,7 +4,7 @@
 //!
 //! The data flow one way; open the modules in this order:
 //! 1. [`model`]: the model file, beam elements, the joint of eq. (17), assembly of K, M and
-//!    of the parameter derivatives dK/dp (eq. (8));
+//!    of the parameter derivatives dK/dp (eq. (8)); or external matrices (Matrix Market);
 //! 2. [`modal`]: the eigensolution of eq. (1)-(2);
 //! 3. [`measured`]: measured modes (eigenvalues and partial shapes);
 //! 4. [`identify`]: the per-mode method, eq. (5)-(16), and the first-order propagation of
@@ -16,9 +16,12 @@
 //!
 //! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
 //! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
-//! (universal files: measured FRFs and geometry in, mode shapes out).
+//! (universal files: measured FRFs and geometry in, mode shapes out), [`extract`] (modal
+//! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
+//! their complexity).
 
 pub mod diagnose;
+pub mod extract;
 pub mod identify;
 pub mod input;
 pub mod measured;

@@ -4,10 +4,11 @@
 
 use std::sync::Arc;
 
+use crate::input::Number;
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
 use crate::model::effects::{Configured, EffectContext, by_name, candidates, outside_library};
-use crate::structure::{Observation, Structure};
+use crate::structure::{Observation, Structure, check_elastic};
 use crate::study::noise::{NoiseKind, TrialRng};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
@@ -104,7 +105,7 @@ pub enum SimulateError {
         known: String,
     },
     /// A size that makes the model unphysical.
-    #[error("{name} = {size} is invalid: {reason}")]
+    #[error("{name} = {size} is invalid: {reason}", size = Number(*.size))]
     Inadmissible {
         /// The effect.
         name: String,
@@ -121,6 +122,9 @@ pub enum SimulateError {
         /// Deformable modes of the model.
         deformable: usize,
     },
+    /// The simulated structure is a mechanism.
+    #[error("the simulated structure")]
+    Mechanism(#[from] crate::structure::Mechanism),
     /// The simulated model has no eigensolution.
     #[error("the simulated model has no eigensolution")]
     Modal(#[from] crate::modal::ModalError),
@@ -182,6 +186,18 @@ pub fn simulate(
                 reason: "this structure has no site for it".into(),
             });
         }
+        let parameters = effect.parameters(&ctx);
+        if let Some(p) = parameters
+            .iter()
+            .zip(&theta)
+            .find(|(p, t)| p.non_negative && **t < 0.0)
+        {
+            return Err(SimulateError::Inadmissible {
+                name: name.clone(),
+                size: *size,
+                reason: format!("{} = {} {} must be >= 0", p.0.name, Number(*p.1), p.0.unit),
+            });
+        }
         effect
             .admissible(&ctx, structure, &theta)
             .map_err(|reason| SimulateError::Inadmissible {
@@ -210,7 +226,9 @@ pub fn simulate(
             structure: rising_structure,
             effects: applied.clone(),
         };
-        let modal = ModalSolution::lowest_of(&truth.assemble(), highest)?;
+        let matrices = truth.assemble();
+        let modal = ModalSolution::lowest_of(&matrices, highest)?;
+        check_elastic(&matrices, &modal, rigid)?;
         out.extend(
             measured_modes(&modal, rigid, &[r], points, errors)
                 .modes()

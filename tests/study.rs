@@ -324,7 +324,11 @@ fn bad_study_fields_name_their_path_and_what_is_allowed() {
         ),
         (
             SMALL.replace("shape_noise = [0.002, 0.04]", "shape_noise = [-0.01]"),
-            "s.toml: grid.shape_noise[0] = -0.01 is invalid: it must be finite and >= 0",
+            "s.toml: grid.shape_noise[0] = -0.01 is invalid: it must be a relative error from 0 to below 1 (100%)",
+        ),
+        (
+            SMALL.replace("frequency_noise = [0.0005]", "frequency_noise = [1e308]"),
+            "s.toml: grid.frequency_noise[0] = 1e308 is invalid: it must be a relative standard deviation from 0 to below 1",
         ),
         (
             SMALL.replace("\"9:w\"", "\"99:w\""),

@@ -12,6 +12,9 @@ use anyhow::{Context, bail};
 use crate::cli::BenchArgs;
 use jointid::study::{CellPlan, Study, StudyContext, simulate_cell};
 
+/// The most timed runs per configuration.
+const MAX_REPEAT: usize = 1000;
+
 const MODEL: &str = include_str!("../../models/paper-case-1.toml");
 
 fn paper_cell_study(trials: usize) -> anyhow::Result<Study> {
@@ -51,8 +54,18 @@ fn median(mut x: Vec<f64>) -> f64 {
 }
 
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
-    if args.trials == 0 || args.repeat == 0 {
-        bail!("--trials and --repeat must be at least 1");
+    let max_trials = jointid::study::config::MAX_TRIALS as usize;
+    if !(1..=max_trials).contains(&args.trials) {
+        bail!(
+            "--trials {} is invalid: it must be from 1 to {max_trials}",
+            args.trials
+        );
+    }
+    if !(1..=MAX_REPEAT).contains(&args.repeat) {
+        bail!(
+            "--repeat {} is invalid: it must be from 1 to {MAX_REPEAT}",
+            args.repeat
+        );
     }
     let study = paper_cell_study(args.trials)?;
     let context = StudyContext::new(&study)?;

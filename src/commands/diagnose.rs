@@ -7,9 +7,9 @@ use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_plots::diagnose_figures;
-use jointid::output::{diagnose as out, write_atomically};
+use jointid::output::{check_outputs, diagnose as out, stage};
 
-use crate::commands::report::write_figures;
+use crate::commands::report::{commit_all, stage_figures};
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     for (name, v) in [
@@ -22,6 +22,11 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             );
         }
     }
+    let inputs = [args.model.as_path(), args.measured.as_path()];
+    let mut outputs: Vec<&std::path::Path> = args.json.iter().map(|p| p.as_path()).collect();
+    let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
+    outputs.extend(index.as_deref());
+    check_outputs(&outputs, &inputs)?;
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let per_mode = match (args.n, args.m) {
@@ -55,11 +60,14 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     };
     let report = diagnose(&model, &measured, settings)
         .with_context(|| format!("{}", args.measured.display()))?;
+    let mut staged = Vec::new();
     if let Some(path) = &args.json {
-        write_atomically(path, |w| {
-            serde_json::to_writer_pretty(&mut *w, &report).map_err(std::io::Error::other)
-        })
-        .with_context(|| format!("{}: cannot write", path.display()))?;
+        staged.push(
+            stage(path, |w| {
+                serde_json::to_writer_pretty(&mut *w, &report).map_err(std::io::Error::other)
+            })
+            .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
     }
     if let Some(dir) = &args.plots {
         let figures = diagnose_figures(&report, &measured)?;
@@ -71,8 +79,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
                 _ => "unexplained",
             })
         );
-        write_figures(dir, &title, &figures)?;
+        staged.extend(stage_figures(dir, &title, &figures, &inputs)?);
     }
+    commit_all(staged)?;
     out::write_text(&mut std::io::stdout().lock(), &report)?;
     Ok(())
 }

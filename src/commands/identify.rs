@@ -8,13 +8,19 @@ use crate::cli::IdentifyArgs;
 use jointid::identify::{Identifier, Selection, Settings};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
-use jointid::output::{identify as out, write_atomically};
+use jointid::output::{check_outputs, identify as out, write_atomically};
+use jointid::structure::check_elastic;
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
+    let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();
+    check_outputs(&outputs, &[&args.model, &args.measured])?;
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
-    let modal = ModalSolution::solve(&model.assemble())
+    let matrices = model.assemble();
+    let modal = ModalSolution::solve(&matrices)
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
+    check_elastic(&matrices, &modal, model.rigid)
+        .with_context(|| format!("{}", args.model.display()))?;
     let settings = Settings {
         n: args.n,
         m: args.m,

@@ -3,13 +3,14 @@
 use anyhow::Context;
 
 use crate::cli::ReportArgs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use jointid::output::study_report::{Figure, figure_page, index_html, study_figures};
-use jointid::output::write_atomically;
+use jointid::output::{Staged, check_outputs, stage};
 use jointid::report::StudyResults;
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    check_outputs(&[&args.out.join("index.html")], &[&args.results])?;
     let results = StudyResults::from_path(&args.results)?;
     let title = args.title.clone().unwrap_or_else(|| {
         args.results
@@ -23,7 +24,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         &results,
         &figures,
     );
-    write_page(&args.out, &figures, &page)?;
+    let staged = stage_page(&args.out, &figures, &page, &[&args.results])?;
+    commit_all(staged)?;
     println!(
         "{}: {} figure(s) and index.html",
         args.out.display(),
@@ -32,20 +34,64 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Writes the figures and a plain page showing them (for `diagnose --plots`).
-pub fn write_figures(dir: &Path, title: &str, figures: &[Figure]) -> anyhow::Result<()> {
-    write_page(dir, figures, &figure_page(title, figures))
+/// Stages the figures and a plain page showing them (for `diagnose --plots`), to be
+/// committed with the run's other outputs.
+pub fn stage_figures(
+    dir: &Path,
+    title: &str,
+    figures: &[Figure],
+    inputs: &[&Path],
+) -> anyhow::Result<Vec<Staged>> {
+    stage_page(dir, figures, &figure_page(title, figures), inputs)
 }
 
-fn write_page(dir: &Path, figures: &[Figure], page: &str) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
-    for f in figures {
-        let path = dir.join(&f.name);
-        write_atomically(&path, |w| w.write_all(f.svg.as_bytes()))
+/// Commits staged files, in order.
+pub fn commit_all(staged: Vec<Staged>) -> anyhow::Result<()> {
+    for file in staged {
+        let path = file.path().to_path_buf();
+        file.commit()
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
+    Ok(())
+}
+
+/// The figures and the page, staged in `dir` (created if absent; removed again when it was
+/// created here and a file cannot be staged).
+fn stage_page(
+    dir: &Path,
+    figures: &[Figure],
+    page: &str,
+    inputs: &[&Path],
+) -> anyhow::Result<Vec<Staged>> {
     let index = dir.join("index.html");
-    write_atomically(&index, |w| w.write_all(page.as_bytes()))
-        .with_context(|| format!("{}: cannot write", index.display()))
+    let paths: Vec<PathBuf> = figures
+        .iter()
+        .map(|f| dir.join(&f.name))
+        .chain(std::iter::once(index))
+        .collect();
+    let refs: Vec<&Path> = paths.iter().map(|p| p.as_path()).collect();
+    check_outputs(&refs, inputs)?;
+    let created = !dir.exists();
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+    let contents = figures
+        .iter()
+        .map(|f| f.svg.as_bytes())
+        .chain(std::iter::once(page.as_bytes()));
+    let mut staged = Vec::with_capacity(paths.len());
+    for (path, bytes) in paths.iter().zip(contents) {
+        match stage(path, |w| w.write_all(bytes)) {
+            Ok(file) => staged.push(file),
+            Err(e) => {
+                drop(staged);
+                if created {
+                    let _ = std::fs::remove_dir(dir);
+                }
+                return Err(
+                    anyhow::Error::new(e).context(format!("{}: cannot write", path.display()))
+                );
+            }
+        }
+    }
+    Ok(staged)
 }

@@ -10,7 +10,12 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
 use jointid::output::study::{TrialsWriter, write_results};
-use jointid::output::write_atomically;
+use jointid::output::{check_outputs, stage};
+use jointid::study::check::selected_rows;
+
+use crate::commands::report::commit_all;
+use crate::commands::resources::check_memory;
+use jointid::study::resources::peak_bytes;
 use jointid::study::{CellResult, Study, StudyRun};
 
 /// A finished study.
@@ -20,9 +25,12 @@ pub struct Finished {
     pub names: Vec<String>,
 }
 
-/// Reads, validates and runs every study of `args` in turn, handing each to `finished`.
+/// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs
+/// them in turn, handing each to `finished`. Nothing is computed or written before every
+/// study and every output path has passed.
 pub fn run_studies(
     args: &StudyArgs,
+    gate: bool,
     mut finished: impl FnMut(&Finished) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     if args.studies.len() > 1 && (args.out.is_some() || args.trials_csv.is_some()) {
@@ -31,20 +39,76 @@ pub fn run_studies(
             args.studies.len()
         );
     }
-    for path in &args.studies {
-        finished(&run_study(path, args)?)?;
+    let pool = worker_pool(args.threads)?;
+    let runs = args
+        .studies
+        .iter()
+        .map(|path| prepare(path, args, gate))
+        .collect::<anyhow::Result<Vec<StudyRun>>>()?;
+    for run in runs {
+        finished(&execute(run, args, &pool)?)?;
     }
     Ok(())
 }
 
-/// Reads, validates and runs one study, writing its outputs.
-fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
-    let study = Study::from_path(path)?;
-    let run = StudyRun::new(study)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
+/// The most worker threads a run may ask for, per core.
+const THREADS_PER_CORE: usize = 8;
+
+fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let limit = THREADS_PER_CORE * cores;
+    if let Some(t) = threads.filter(|t| !(1..=limit).contains(t)) {
+        bail!(
+            "--threads {t} is invalid: it must be from 1 to {limit} ({THREADS_PER_CORE} per core, {cores} core(s) here)"
+        );
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
         .build()
-        .context("cannot start the worker threads")?;
+        .context("cannot start the worker threads")
+}
+
+/// Reads and validates one study: its cells, its gate when `gate`, its output paths.
+fn prepare(path: &Path, args: &StudyArgs, gate: bool) -> anyhow::Result<StudyRun> {
+    let study = Study::from_path(path)?;
+    if gate {
+        let Some(spec) = &study.check else {
+            bail!(
+                "{}: there is no [check] table: nothing to hold the study to",
+                study.file.display()
+            );
+        };
+        let names: Vec<String> = study
+            .model
+            .identified()
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
+            bail!(
+                "{}: [check].where selects no (cell, mode, parameter) of the grid",
+                study.file.display()
+            );
+        }
+    }
+    let out = args.out.as_deref().unwrap_or(&study.output_csv);
+    let mut outputs = vec![out];
+    outputs.extend(args.trials_csv.as_deref());
+    check_outputs(&outputs, &[&study.file, &study.model_file])?;
+    check_memory(
+        peak_bytes(&study),
+        &format!(
+            "{} (one cell of {} trials)",
+            study.file.display(),
+            study.trials
+        ),
+        "monte_carlo.trials, the number of grid modes, or the identified parameters (hold some with `fixed`)",
+    )?;
+    Ok(StudyRun::new(study)?)
+}
+
+/// Runs a validated study and writes its outputs together.
+fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow::Result<Finished> {
     let names: Vec<String> = run.context.params.iter().map(|p| p.name.clone()).collect();
     let bar = progress_bar(run.trial_count(), args.quiet);
     let done = AtomicU64::new(0);
@@ -52,15 +116,17 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
         let total = done.fetch_add(count, Ordering::Relaxed) + count;
         bar.set_position(total);
     };
-    let results = match &args.trials_csv {
-        None => run
-            .cells
-            .iter()
-            .map(|cell| pool.install(|| run.run_cell(cell, &progress)).0)
-            .collect(),
+    let (results, trials) = match &args.trials_csv {
+        None => (
+            run.cells
+                .iter()
+                .map(|cell| pool.install(|| run.run_cell(cell, &progress)).0)
+                .collect(),
+            None,
+        ),
         Some(path) => {
             let mut results = Vec::with_capacity(run.cells.len());
-            write_atomically(path, |w| {
+            let staged = stage(path, |w| {
                 let mut trials = TrialsWriter::new(w)?;
                 for cell in &run.cells {
                     let (result, samples) = pool.install(|| run.run_cell(cell, &progress));
@@ -70,12 +136,24 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
                 trials.finish()
             })
             .with_context(|| format!("{}: cannot write the trials", path.display()))?;
-            results
+            (results, Some(staged))
         }
     };
     bar.finish_and_clear();
     let out = args.out.as_deref().unwrap_or(&run.study.output_csv);
-    write_output(out, &results, &names, &run)?;
+    let created = create_parent(out)?;
+    let staged = stage(out, |w| write_results(w, &results, &names, run.study.noise))
+        .with_context(|| format!("{}: cannot write the results", out.display()));
+    let staged = match staged {
+        Ok(s) => s,
+        Err(e) => {
+            if let Some(dir) = created {
+                let _ = std::fs::remove_dir(dir);
+            }
+            return Err(e);
+        }
+    };
+    commit_all(trials.into_iter().chain(std::iter::once(staged)).collect())?;
     Ok(Finished {
         run,
         results,
@@ -83,18 +161,19 @@ fn run_study(path: &Path, args: &StudyArgs) -> anyhow::Result<Finished> {
     })
 }
 
-fn write_output(
-    out: &Path,
-    results: &[CellResult],
-    names: &[String],
-    run: &StudyRun,
-) -> anyhow::Result<()> {
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+/// Creates the directory of `out` when missing; the directory created, if any.
+fn create_parent(out: &Path) -> anyhow::Result<Option<&Path>> {
+    match out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty() && !d.exists())
+    {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+            Ok(Some(dir))
+        }
+        None => Ok(None),
     }
-    write_atomically(out, |w| write_results(w, results, names, run.study.noise))
-        .with_context(|| format!("{}: cannot write the results", out.display()))
 }
 
 fn progress_bar(total: u64, quiet: bool) -> ProgressBar {

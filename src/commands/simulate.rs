@@ -3,12 +3,13 @@
 use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
-use jointid::output::write_atomically;
+use jointid::output::{check_outputs, write_atomically};
 use jointid::simulate::{Errors, simulate};
 use jointid::structure::Observation;
 use jointid::study::NoiseKind;
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
+    check_outputs(&[&args.out], &[&args.model])?;
     let model = jointid::model::from_path(&args.model)?;
     let deformable = model.dof_count() - model.rigid;
     if args.modes == 0 || args.modes > deformable {

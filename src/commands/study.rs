@@ -7,7 +7,7 @@ use crate::commands::run_study::run_studies;
 use jointid::output::study::write_paper_table;
 
 pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
-    run_studies(args, |finished| {
+    run_studies(args, false, |finished| {
         let study = &finished.run.study;
         let mut out = std::io::stdout().lock();
         writeln!(

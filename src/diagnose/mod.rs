@@ -29,12 +29,12 @@ pub use fit::{Calibration, Estimate, FitError, Fitted, Noise};
 pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
 
-use crate::identify::{Settings, Weighting};
+use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
-use crate::modal::ModalError;
+use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Effect, EffectContext, candidates};
 use crate::stats::chi2_sf;
-use crate::structure::Structure;
+use crate::structure::{Structure, check_elastic};
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -60,6 +60,17 @@ pub enum DiagnoseError {
         /// chi^2 after the calibration.
         after: f64,
     },
+    /// The nominal model is a mechanism.
+    #[error("the model as given")]
+    Mechanism(#[from] crate::structure::Mechanism),
+    /// The model has nothing to calibrate.
+    #[error(
+        "the model identifies no joint parameter (no joint, or every parameter held fixed): there is nothing to calibrate"
+    )]
+    NoParameters,
+    /// The per-mode settings given cannot serve the measured modes.
+    #[error("per-mode corrections (--n, --m)")]
+    PerMode(#[from] crate::identify::IdentifyError),
     /// Fewer modes than joint parameters.
     #[error(
         "{modes} measured mode(s) cannot calibrate {parameters} joint parameters: measure at least {parameters} modes"
@@ -92,13 +103,31 @@ pub fn diagnose(
 ) -> Result<Report, DiagnoseError> {
     let rigid = model.rigid;
     let joint_parameters = model.identified().len();
+    if joint_parameters == 0 {
+        return Err(DiagnoseError::NoParameters);
+    }
     if measured.modes().len() < joint_parameters {
         return Err(DiagnoseError::TooFewModes {
             modes: measured.modes().len(),
             parameters: joint_parameters,
         });
     }
-    let nominal = model.modes(rigid + 1)?;
+    let matrices = model.assemble();
+    // The lowest pairs the checks and the per-mode basis need (all of them up to
+    // DENSE_MAX_DOFS).
+    let wanted = settings
+        .per_mode
+        .as_ref()
+        .map_or(0, |s| s.n)
+        .max(rigid + 1)
+        .min(matrices.size());
+    let nominal = ModalSolution::lowest_of(&matrices, wanted)?;
+    check_elastic(&matrices, &nominal, rigid)?;
+    if let Some(per_mode) = settings.per_mode {
+        let identifier = Identifier::for_structure(model, &nominal, per_mode)?;
+        let highest = measured.modes().iter().map(|m| m.mode).max().unwrap_or(1);
+        identifier.basis_index(highest)?;
+    }
     let ctx = Arc::new(EffectContext::new(
         model.clone(),
         &measured.points(),

@@ -182,8 +182,12 @@ pub fn per_mode_corrections(
     for (r, m) in measured.modes().iter().enumerate() {
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
+        // A mode paired beyond the sub-basis has no retained system (its outcome is the
+        // error that says so).
+        let in_basis = s < identifier.settings().n;
         let std = Projector::new(&observe(identifier.basis(), &m.points))
             .ok()
+            .filter(|_| in_basis)
             .and_then(|projector| {
                 let jac = jacobian(
                     &projector,

@@ -56,6 +56,11 @@ pub enum IdentifyError {
         /// N.
         dofs: usize,
     },
+    /// Nothing to identify.
+    #[error(
+        "the model identifies no parameter (no joint, or every parameter held fixed): there is nothing to identify"
+    )]
+    NoParameters,
     /// m below the number of parameters.
     #[error("m = {m} is invalid: it must be at least the number of parameters q = {q}")]
     TooFewEquations {
@@ -155,6 +160,9 @@ impl Identifier {
         settings: Settings,
     ) -> Result<Self, IdentifyError> {
         let Settings { n, m, .. } = settings;
+        if params.is_empty() {
+            return Err(IdentifyError::NoParameters);
+        }
         if n <= rigid || n > modal.len() {
             return Err(IdentifyError::BasisSize {
                 n,

@@ -2,12 +2,18 @@
 //!
 //! - [`chain`]: beam chains as tests are set up (the paper's Fig. 1 and real set-ups:
 //!   supports, stepped beams, point masses, sensors anywhere);
+//! - [`matrices`]: external finite-element models (Matrix Market K, M, dK/dp, a DOF table),
+//!   and the export of any structure as one;
+//! - [`matrix_market`]: the Matrix Market reader and writer;
 //! - [`effects`]: physical effects a model may lack, for `diagnose` and `simulate`.
 //!
-//! A model file is TOML; `kind` says which builder reads it: `"chain"` (the default).
+//! A model file is TOML; `kind` says which builder reads it: `"chain"` (the default) or
+//! `"matrices"`.
 
 pub mod chain;
 pub mod effects;
+pub mod matrices;
+pub mod matrix_market;
 
 use std::path::Path;
 
@@ -23,7 +29,24 @@ pub fn from_path(path: &Path) -> Result<Structure, InputError> {
 
 /// Parses and validates model TOML text; `file` names it in errors.
 pub fn from_toml(text: &str, file: &Path) -> Result<Structure, InputError> {
-    Ok(chain_from_toml(text, file)?.build())
+    match kind(text, file)?.as_deref() {
+        Some("matrices") => matrices::from_toml(text, file).map_err(|e| e.into_input(file)),
+        None | Some("chain") => Ok(chain_from_toml(text, file)?.build()),
+        Some(other) => Err(crate::input::FieldCheck { file }.invalid(
+            "kind",
+            format!("\"{other}\""),
+            "it must be \"chain\" (the default) or \"matrices\"",
+        )),
+    }
+}
+
+/// The `kind` of a model file, if it names one.
+fn kind(text: &str, file: &Path) -> Result<Option<String>, InputError> {
+    #[derive(serde::Deserialize)]
+    struct Kind {
+        kind: Option<String>,
+    }
+    Ok(parse_toml::<Kind>(text, file)?.kind)
 }
 
 /// Parses and validates a beam-chain model file.

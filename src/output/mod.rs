@@ -4,10 +4,13 @@
 pub mod atomic;
 pub mod diagnose;
 pub mod diagnose_plots;
+pub mod guard;
 pub mod identify;
 pub mod plot;
+pub mod stabilization;
 pub mod study;
 pub mod study_report;
 pub mod table;
 
-pub use atomic::write_atomically;
+pub use atomic::{Staged, stage, write_atomically};
+pub use guard::check_outputs;

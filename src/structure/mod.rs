@@ -5,7 +5,7 @@
 //! K and M are linear in the parameters: K(p) = K_base + sum_i p_i dK/dp_i, and the same for
 //! M, so the first-order expansion of eq. (8) is exact in them. Builders make a structure:
 //! the beam chain ([`crate::model::chain`]) and external matrices
-//! ([`crate::model::external`]); identify, study, simulate and diagnose never ask which.
+//! ([`crate::model::matrices`]); identify, study, simulate and diagnose never ask which.
 //!
 //! - [`sparse`]: derivative matrices, a list of entries;
 //! - [`matrix`]: K and M, compressed sparse columns;
@@ -76,6 +76,50 @@ impl Matrices {
     /// N.
     pub fn size(&self) -> usize {
         self.k.size()
+    }
+
+    /// The eigenvalue below which a computed lambda is zero to round-off: 1e3 eps times the
+    /// largest Rayleigh quotient of a unit vector, max K_ii / M_ii, which bounds the largest
+    /// eigenvalue from below and sets the size of the solver's rounding errors.
+    pub fn zero_eigenvalue_level(&self) -> f64 {
+        let scale = self
+            .k
+            .diagonal()
+            .iter()
+            .zip(self.m.diagonal())
+            .filter(|(_, m)| *m > 0.0)
+            .map(|(k, m)| k.abs() / m)
+            .fold(0.0, f64::max);
+        1e3 * f64::EPSILON * scale
+    }
+}
+
+/// A structure whose first deformable eigenvalue is zero to round-off: it moves without
+/// deforming more ways than its rigid-body count says.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "deformable mode {mode} has frequency {frequency_hz:.3e} Hz, at the round-off level of zero: the structure is a mechanism (a joint or support stiffness too small for the rest of the model, or all stiffness removed somewhere)"
+)]
+pub struct Mechanism {
+    /// The deformable mode (1-based).
+    pub mode: usize,
+    /// Its computed frequency, Hz.
+    pub frequency_hz: f64,
+}
+
+/// Checks that the first deformable eigenvalue of `modal` (the solution of `matrices`, with
+/// `rigid` rigid-body modes first) stands above the round-off level of zero.
+pub fn check_elastic(
+    matrices: &Matrices,
+    modal: &ModalSolution,
+    rigid: usize,
+) -> Result<(), Mechanism> {
+    match modal.values().get(rigid) {
+        Some(&lambda) if lambda <= matrices.zero_eigenvalue_level() => Err(Mechanism {
+            mode: 1,
+            frequency_hz: modal.frequency_hz(rigid),
+        }),
+        _ => Ok(()),
     }
 }
 

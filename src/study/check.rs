@@ -49,6 +49,15 @@ fn cell_selected(spec: &CheckSpec, cell: &Cell) -> bool {
         && selected(&spec.frequency_noise, &cell.frequency_noise)
 }
 
+/// How many (cell, mode, parameter) rows of the grid the gate selects, before anything is
+/// computed: `modes` are the study's modes, `names` its parameter names.
+pub fn selected_rows(spec: &CheckSpec, cells: &[Cell], modes: &[usize], names: &[String]) -> usize {
+    let cells = cells.iter().filter(|c| cell_selected(spec, c)).count();
+    let modes = modes.iter().filter(|m| selected(&spec.modes, m)).count();
+    let params = names.iter().filter(|n| selected(&spec.params, n)).count();
+    cells * modes * params
+}
+
 /// Evaluates the gate over the results of a study; `names` are the parameter names.
 pub fn evaluate(spec: &CheckSpec, results: &[CellResult], names: &[String]) -> GateReport {
     let mut checked = 0;

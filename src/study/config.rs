@@ -39,7 +39,7 @@ use serde::de::{MapAccess, SeqAccess, Visitor};
 
 use super::noise::NoiseKind;
 use crate::identify::Weighting;
-use crate::input::{FieldCheck, InputError, parse_toml, read_file};
+use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
 use crate::structure::{Direction, DofMap, Structure};
 
 /// Largest number of trials per cell: a cell keeps every trial's corrections in memory
@@ -299,6 +299,13 @@ impl Study {
         let check = FieldCheck { file };
         let base = file.parent().unwrap_or(Path::new(""));
         let params = model.identified();
+        if params.is_empty() {
+            return Err(check.invalid(
+                "model",
+                format!("\"{}\"", model_file.display()),
+                "the model identifies no parameter (no joint, or every parameter held fixed): a study needs at least one",
+            ));
+        }
         let names: Vec<&str> = params.iter().map(|p| p.name.as_str()).collect();
         for (key, value) in &raw.truth.delta {
             if !names.contains(&key.as_str()) {
@@ -311,7 +318,7 @@ impl Study {
             if !value.is_finite() {
                 return Err(check.invalid(
                     format!("truth.delta.{key}"),
-                    value,
+                    Number(*value),
                     "it must be finite",
                 ));
             }
@@ -332,10 +339,12 @@ impl Study {
                 if p.value + d <= 0.0 {
                     return Err(check.invalid(
                         format!("truth.delta.{}", p.name),
-                        d,
+                        Number(d),
                         format!(
                             "the modified {} = {} + {} must stay > 0",
-                            p.name, p.value, d
+                            p.name,
+                            Number(p.value),
+                            Number(d)
                         ),
                     ));
                 }
@@ -371,17 +380,6 @@ impl Study {
                 e,
             )
         })?;
-        for g in &grids {
-            for (i, &a) in g.shape_noise.iter().enumerate() {
-                if noise == NoiseKind::Uniform && a >= 1.0 {
-                    return Err(check.invalid(
-                        format!("{}.shape_noise[{i}]", g.path),
-                        a,
-                        "a uniform relative error must stay below 1 (100%)",
-                    ));
-                }
-            }
-        }
         let trials =
             check.int_range("monte_carlo.trials", raw.monte_carlo.trials, 1, MAX_TRIALS)?;
         let seed = check.int_range("monte_carlo.seed", raw.monte_carlo.seed, 0, i64::MAX)? as u64;
@@ -446,7 +444,7 @@ fn levels(
     values
         .iter()
         .enumerate()
-        .map(|(i, &v)| check.non_negative(format!("{path}[{i}]"), v, unit))
+        .map(|(i, &v)| check.relative_level(format!("{path}[{i}]"), v, unit))
         .collect()
 }
 
@@ -511,7 +509,12 @@ fn grid(
         m: ints(&raw.m, &at("m"), 1, deformable, check)?,
         nf,
         weighting: weightings(&raw.weighting, &at("weighting"), check)?,
-        shape_noise: levels(&raw.shape_noise, &at("shape_noise"), "relative", check)?,
+        shape_noise: levels(
+            &raw.shape_noise,
+            &at("shape_noise"),
+            "relative error",
+            check,
+        )?,
         frequency_noise: levels(
             &raw.frequency_noise,
             &at("frequency_noise"),

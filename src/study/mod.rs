@@ -16,12 +16,15 @@ pub mod engine;
 pub mod noise;
 pub mod plan;
 pub mod predicted;
+pub mod resources;
 pub mod unidentified;
 
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
 pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
 pub use noise::NoiseKind;
 pub use plan::{Cell, CellPlan, StudyContext};
+
+use crate::structure::check_elastic;
 
 /// The statistics of one cell.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +48,16 @@ pub enum StudyError {
         file: std::path::PathBuf,
         /// Why.
         cause: crate::modal::ModalError,
+    },
+    /// The model as given, or with the study's modification, is a mechanism.
+    #[error("{file}: the {which} model: {cause}")]
+    Mechanism {
+        /// The study file.
+        file: std::path::PathBuf,
+        /// `nominal` or `modified (truth.delta)`.
+        which: &'static str,
+        /// The zero frequency.
+        cause: crate::structure::Mechanism,
     },
     /// Some cells of the grid cannot be computed.
     #[error("{file}: {count} impossible cell(s) in the grid, nothing was computed:\n{list}", count = problems.len(), list = problems.join("\n"))]
@@ -73,6 +86,23 @@ impl StudyRun {
             file: study.model_file.clone(),
             cause,
         })?;
+        let rigid = study.model.rigid;
+        for (which, structure, modal) in [
+            ("nominal", study.model.clone(), &context.nominal),
+            (
+                "modified (truth.delta)",
+                study.model.with_delta(&study.delta),
+                &context.truth,
+            ),
+        ] {
+            check_elastic(&structure.assemble(), modal, rigid).map_err(|cause| {
+                StudyError::Mechanism {
+                    file: study.file.clone(),
+                    which,
+                    cause,
+                }
+            })?;
+        }
         let cells = study.cells();
         let problems: Vec<String> = cells
             .iter()

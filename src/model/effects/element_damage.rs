@@ -73,4 +73,18 @@ impl Effect for ElementDamage {
     fn size_of_theta(&self, _ctx: &EffectContext, theta: &[f64]) -> f64 {
         theta[0]
     }
+
+    fn admissible(
+        &self,
+        _ctx: &EffectContext,
+        _current: &crate::structure::Structure,
+        theta: &[f64],
+    ) -> Result<(), String> {
+        match theta.first() {
+            Some(&f) if !(0.0..1.0).contains(&f) => Err(format!(
+                "the lost fraction of EI is {f}; it must be from 0 to below 1"
+            )),
+            _ => Ok(()),
+        }
+    }
 }

@@ -1,0 +1,92 @@
+//! `jointid export`: a model written as an external model (`kind = "matrices"`) into a new
+//! folder. The files go into a temporary folder beside it, are read back and compared with
+//! the model bit for bit, and the folder is renamed into place: on any error nothing is left.
+//! The target must not exist or be empty, so no file (the model's inputs among them) is ever
+//! overwritten.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+
+use crate::cli::ExportArgs;
+use jointid::model::matrices::{export, export::identical};
+
+pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
+    let model = jointid::model::from_path(&args.model)?;
+    let out = &args.out;
+    if out.exists() {
+        let empty = out.is_dir()
+            && std::fs::read_dir(out)
+                .with_context(|| format!("{}: cannot read the folder", out.display()))?
+                .next()
+                .is_none();
+        if !empty {
+            bail!(
+                "--out {} exists and is not an empty folder: export writes into a new folder and never overwrites files (the model's inputs among them); remove it or choose another",
+                out.display()
+            );
+        }
+    }
+    let exported = export(&model, &args.model.display().to_string())
+        .with_context(|| format!("{}: cannot export", args.model.display()))?;
+    let tmp = temporary_beside(out)?;
+    let result = (|| -> anyhow::Result<()> {
+        std::fs::create_dir(&tmp)
+            .with_context(|| format!("{}: cannot create the folder", tmp.display()))?;
+        for (name, bytes) in &exported.files {
+            let path = tmp.join(name);
+            let mut f = std::fs::File::create(&path)
+                .with_context(|| format!("{}: cannot create", path.display()))?;
+            f.write_all(bytes)
+                .and_then(|()| f.sync_all())
+                .with_context(|| format!("{}: cannot write", path.display()))?;
+        }
+        let back = jointid::model::from_path(&tmp.join("model.toml"))
+            .context("the exported model does not read back")?;
+        identical(&model, &back).map_err(|why| {
+            anyhow::anyhow!("the exported model reads back different from the model: {why}")
+        })?;
+        std::fs::rename(&tmp, out).with_context(|| {
+            format!(
+                "{}: cannot move the exported folder into place",
+                out.display()
+            )
+        })?;
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+    result?;
+    let mut err = std::io::stderr().lock();
+    for note in &exported.notes {
+        writeln!(err, "note: {note}")?;
+    }
+    let names: Vec<&str> = exported.files.iter().map(|f| f.0.as_str()).collect();
+    println!(
+        "{}: {} ({} DOFs, {} parameters, {} rigid-body modes)",
+        out.display(),
+        names.join(", "),
+        model.dof_count(),
+        model.parameters.len(),
+        model.rigid
+    );
+    Ok(())
+}
+
+/// A temporary folder name in the parent of `out`.
+fn temporary_beside(out: &Path) -> anyhow::Result<PathBuf> {
+    let parent = match out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let Some(name) = out.file_name() else {
+        bail!("--out {} is not a folder name", out.display());
+    };
+    Ok(parent.join(format!(
+        ".{}.export-{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    )))
+}

@@ -1,0 +1,155 @@
+//! `jointid extract`: FRFs in universal files to a measured-modes CSV (and a stabilisation
+//! chart). Every input is read and checked, and the extraction done, before anything is
+//! written; the files are written whole or not at all.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, bail};
+
+use crate::cli::{ExtractArgs, FrfQuantity};
+use jointid::extract::{Quantity, Settings, csv, extract, universal};
+use jointid::output::stabilization::stabilization_svg;
+use jointid::output::{check_outputs, stage};
+
+use crate::commands::report::commit_all;
+use jointid::uff::{Record, read_path};
+
+/// Below this MPC a mode is named on stderr as complex.
+const MPC_WARN: f64 = 0.9;
+
+pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
+    let say = |text: String| {
+        if !args.quiet {
+            eprintln!("{text}");
+        }
+    };
+    let mut inputs: Vec<&std::path::Path> = args.frf.iter().map(|p| p.as_path()).collect();
+    inputs.push(&args.geometry);
+    let mut outputs = vec![args.out.as_path()];
+    outputs.extend(args.chart.as_deref());
+    check_outputs(&outputs, &inputs)?;
+    let mut files: Vec<(PathBuf, Vec<Record>)> = Vec::new();
+    for path in &args.frf {
+        say(format!("reading {}", path.display()));
+        files.push((path.clone(), read_path(path)?));
+    }
+    let quantity = args.quantity.map(|q| match q {
+        FrfQuantity::Displacement => Quantity::Displacement,
+        FrfQuantity::Velocity => Quantity::Velocity,
+        FrfQuantity::Acceleration => Quantity::Acceleration,
+    });
+    let input = universal::frfs(&files, quantity)?;
+    drop(files);
+    let geometry: Vec<_> = read_path(&args.geometry)?
+        .into_iter()
+        .filter_map(|r| match r {
+            Record::Nodes(n) => Some(n),
+            _ => None,
+        })
+        .collect();
+    let x = universal::positions(&input.channels, &geometry, &args.geometry)?;
+    let inputs = args
+        .frf
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    input
+        .set
+        .validate()
+        .with_context(|| format!("{inputs}: the FRFs cannot be used"))?;
+    say(format!(
+        "{} FRFs ({}, {}) to reference node {} direction {}, {} lines, coherence {}",
+        input.channels.len(),
+        input.set.quantity.name(),
+        input.units,
+        input.reference.0,
+        input.reference.1,
+        input.set.frequencies_hz.len(),
+        if input.set.coherence.is_some() {
+            "given"
+        } else {
+            "absent"
+        }
+    ));
+    if args.modes == Some(0) {
+        bail!("--modes 0 is invalid: at least one mode is needed");
+    }
+    let settings = Settings {
+        band_hz: args.band,
+        n_modes: args.modes,
+        max_order: args.max_order,
+        ..Settings::default()
+    };
+    let last = std::cell::Cell::new(0);
+    let ex = extract(&input.set, &settings, &|done, total| {
+        let tenth = 10 * done / total.max(1);
+        if tenth > last.get() {
+            last.set(tenth);
+            say(format!("extracting: {}%", 10 * tenth));
+        }
+    })
+    .with_context(|| format!("{inputs}: extraction failed"))?;
+    say(format!(
+        "band {:.3}..{:.3} Hz, {} modes:",
+        ex.band_hz.0,
+        ex.band_hz.1,
+        ex.modes.len()
+    ));
+    for (r, m) in ex.modes.iter().enumerate() {
+        say(format!(
+            "  mode {}: {:.4} Hz, damping {:.4}%, MPC {:.4}, MPD {:.2} deg, stable orders {}..{}",
+            r + 1,
+            m.frequency_hz,
+            100.0 * m.damping_ratio,
+            m.mpc,
+            m.mpd_deg,
+            m.stable_orders.0,
+            m.stable_orders.1
+        ));
+    }
+    for (r, m) in ex.modes.iter().enumerate() {
+        if m.mpc < MPC_WARN {
+            say(format!(
+                "  note: mode {} has MPC {:.2} < {MPC_WARN}: a complex mode (noise, a mode out of \
+                 the bending plane, a spurious pole, or a band wider than the well-excited \
+                 one); see the chart, narrow --band or fix --modes",
+                r + 1,
+                m.mpc
+            ));
+        }
+    }
+    let chart = match &args.chart {
+        Some(_) => {
+            let names: Vec<String> = args
+                .frf
+                .iter()
+                .map(|p| {
+                    p.file_name()
+                        .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
+                })
+                .collect();
+            let title = format!("Stabilisation chart: {}", names.join(", "));
+            Some(stabilization_svg(&input.set, &ex, &title).context("cannot draw the chart")?)
+        }
+        None => None,
+    };
+    let mut staged = vec![
+        stage(&args.out, |w| {
+            csv::write_modes(w, &ex.modes, &input.channels, &x).map_err(std::io::Error::other)
+        })
+        .with_context(|| format!("{}: cannot write", args.out.display()))?,
+    ];
+    if let (Some(path), Some(svg)) = (&args.chart, chart) {
+        staged.push(
+            stage(path, |w| w.write_all(svg.as_bytes()))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    commit_all(staged)?;
+    say(format!("wrote {}", args.out.display()));
+    if let Some(path) = &args.chart {
+        say(format!("wrote {}", path.display()));
+    }
+    Ok(())
+}

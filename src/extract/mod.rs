@@ -1,0 +1,286 @@
+//! Modal parameters from measured FRFs of one reference: poles, damping, complex and real mode
+//! shapes, their complexity, and the stabilisation chart that supports the choice.
+//!
+//! The steps, one file each:
+//! 1. [`frf`]: the input ([`FrfSet`]) checked; the analysis band and its line weights (the
+//!    coherence averaged over the responses when given, else 1);
+//! 2. [`lscf`]: the common-denominator LSCF estimator in the z-domain with real coefficients
+//!    (Guillaume et al., IMAC 2003; Peeters et al., "The PolyMAX frequency-domain method",
+//!    Shock and Vibration 11, 2004), solved for every model order 1..=`max_order`; its poles
+//!    (stable, positive frequency, in the band) from the companion matrix;
+//! 3. [`lsfd`]: residues of those poles per order by least squares in the frequency domain,
+//!    with lower and upper residual terms in the form of the FRF's quantity;
+//! 4. [`stabilization`]: each pole classified stable in frequency, damping and shape against
+//!    the previous order, chains of poles across orders, the automatic choice of the physical
+//!    poles and of their number;
+//! 5. [`refine`]: the chosen poles refined by nonlinear least squares of the modal model to the
+//!    FRFs (residues eliminated), then the final LSFD residues;
+//! 6. [`shapes`]: real normal modes, MPC and MPD from the complex residue vectors; the FRFs of
+//!    the model and a relative fit error per response.
+//!
+//! Around them: [`universal`] gathers the FRFs of universal files and the positions of their
+//! nodes, [`csv`] writes the modes as a measured-modes CSV (both for `jointid extract`).
+//!
+//! Contract of [`Mode`]: frequency_hz is the undamped natural frequency |lambda| / 2 pi, the
+//! damping ratio -Re(lambda) / |lambda|; the residues are receptance residues (displacement per
+//! unit reference, times rad/s) whatever the quantity of the FRFs; modes ascend in frequency.
+
+pub mod csv;
+pub mod frf;
+pub mod lscf;
+pub mod lsfd;
+pub mod lstsq;
+pub mod refine;
+pub mod shapes;
+pub mod stabilization;
+pub mod universal;
+
+mod run;
+
+use faer::c64;
+
+pub use frf::{FrfSet, Quantity};
+pub use run::extract;
+pub use stabilization::{
+    ChartPole, Criteria, DAMPING_TOLERANCE, FREQUENCY_TOLERANCE, MAC_MIN, MAX_DAMPING,
+    StabilityClass,
+};
+
+/// Default highest model order (degree of the common denominator).
+pub const MAX_ORDER: usize = 60;
+/// Default least coherence (averaged over the responses) of the lines of the automatic band.
+pub const COHERENCE_MIN: f64 = 0.8;
+
+/// Settings of the extraction; [`Settings::default`] gives the documented defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Analysis band (Hz); default: the whole FRF band, or the coherent band (see [`frf::band`]).
+    pub band_hz: Option<(f64, f64)>,
+    /// Highest model order, >= 2; default [`MAX_ORDER`].
+    pub max_order: usize,
+    /// Number of modes wanted; default: as many as the chart shows.
+    pub n_modes: Option<usize>,
+    /// Least number of stable poles of a physical chain; default
+    /// [`stabilization::min_stable_default`] of `max_order`.
+    pub min_stable: Option<usize>,
+    /// Relative frequency tolerance of stability, in (0, 1); default [`FREQUENCY_TOLERANCE`].
+    pub frequency_tolerance: f64,
+    /// Relative damping tolerance of stability, in (0, 1); default [`DAMPING_TOLERANCE`].
+    pub damping_tolerance: f64,
+    /// Least MAC of stability in shape, in (0, 1); default [`MAC_MIN`].
+    pub mac_min: f64,
+    /// Largest damping ratio of a physical pole, in (0, 1]; default [`MAX_DAMPING`].
+    pub max_damping: f64,
+    /// Least mean coherence of the automatic band, in [0, 1]; default [`COHERENCE_MIN`].
+    pub coherence_min: f64,
+    /// Terms of each residual expansion (see [`lsfd`]): 0 (every mode in the band), 1 (the
+    /// classical mass-like lower and stiffness-like upper residual) or 2; default 2.
+    pub residual_terms: usize,
+    /// Refine the chosen poles by nonlinear least squares ([`refine`]); default true.
+    pub refine: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            band_hz: None,
+            max_order: MAX_ORDER,
+            n_modes: None,
+            min_stable: None,
+            frequency_tolerance: FREQUENCY_TOLERANCE,
+            damping_tolerance: DAMPING_TOLERANCE,
+            mac_min: MAC_MIN,
+            max_damping: MAX_DAMPING,
+            coherence_min: COHERENCE_MIN,
+            residual_terms: 2,
+            refine: true,
+        }
+    }
+}
+
+/// One identified mode.
+#[derive(Debug, Clone)]
+pub struct Mode {
+    /// Undamped natural frequency (Hz).
+    pub frequency_hz: f64,
+    /// Damping ratio (fraction of critical).
+    pub damping_ratio: f64,
+    /// The pole lambda (rad/s), positive imaginary part.
+    pub pole: c64,
+    /// Receptance residue per response.
+    pub residues: Vec<c64>,
+    /// The residues scaled so that the largest component is 1 + 0i.
+    pub complex_shape: Vec<c64>,
+    /// The real normal mode, largest component +1 (see [`shapes`]).
+    pub real_shape: Vec<f64>,
+    /// Modal phase collinearity, in [0, 1] (1: real mode).
+    pub mpc: f64,
+    /// Mean phase deviation (degrees), in [0, 90] (0: real mode).
+    pub mpd_deg: f64,
+    /// First and last model order at which its chain was stable.
+    pub stable_orders: (usize, usize),
+    /// Number of stable poles of its chain.
+    pub stable_count: usize,
+}
+
+/// Everything the extraction found.
+#[derive(Debug, Clone)]
+pub struct Extraction {
+    /// The modes, ascending in frequency.
+    pub modes: Vec<Mode>,
+    /// Every pole of every order with its stability flags; the chosen ones `selected`.
+    pub chart: Vec<ChartPole>,
+    /// The thresholds the chart and the choice used.
+    pub criteria: Criteria,
+    /// Highest model order computed.
+    pub max_order: usize,
+    /// The analysis band (Hz).
+    pub band_hz: (f64, f64),
+    /// The frequency lines of the band (Hz).
+    pub frequencies_hz: Vec<f64>,
+    /// Their indices on the axis of the [`FrfSet`].
+    pub lines: Vec<usize>,
+    /// The FRFs of the identified model on those lines, `[response][line]`.
+    pub synthesized: Vec<Vec<c64>>,
+    /// Relative fit error per response: ||H - H_model|| / ||H|| over the band.
+    pub fit_error: Vec<f64>,
+    /// Lower residual coefficients [L_1, L_2] per response (see [`lsfd`] for their form per
+    /// quantity; 0 when not fitted).
+    pub lower_residual: Vec<[f64; 2]>,
+    /// Upper residual coefficients [U_1, U_2] per response.
+    pub upper_residual: Vec<[f64; 2]>,
+    /// Mean coherence per response over the band, when coherence was given.
+    pub mean_coherence: Option<Vec<f64>>,
+    /// Whether the poles were refined (false when off, or when the refinement left the band or
+    /// merged poles and the chart's poles were kept).
+    pub refined: bool,
+}
+
+/// Why the extraction failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExtractError {
+    /// No response FRF.
+    #[error("no response FRFs were given; at least one is needed")]
+    NoResponses,
+    /// A frequency is negative or not finite.
+    #[error("frequency line {index} is {value} Hz; frequencies must be finite and >= 0")]
+    BadFrequency { index: usize, value: f64 },
+    /// Frequencies do not ascend.
+    #[error("frequencies must ascend: line {index} is {value} Hz after {previous} Hz")]
+    NotAscending {
+        index: usize,
+        value: f64,
+        previous: f64,
+    },
+    /// Frequencies are not evenly spaced.
+    #[error(
+        "frequencies must be evenly spaced: line {index} is {value} Hz, expected {expected} Hz \
+         (step {step} Hz, tolerance {tolerance} Hz)"
+    )]
+    UnevenSpacing {
+        index: usize,
+        value: f64,
+        expected: f64,
+        step: f64,
+        tolerance: f64,
+    },
+    /// A response has another length than the frequency axis.
+    #[error(
+        "response {response} has {len} values for {expected} frequency lines; one per line is needed"
+    )]
+    LengthMismatch {
+        response: usize,
+        len: usize,
+        expected: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error(
+        "response {response} at line {index} ({frequency_hz} Hz) is {re} + {im}i; FRF values must be finite"
+    )]
+    NonFinite {
+        response: usize,
+        index: usize,
+        frequency_hz: f64,
+        re: f64,
+        im: f64,
+    },
+    /// A response is zero over the whole band.
+    #[error("response {response} is zero over the band {lo}..{hi} Hz; it carries no mode")]
+    ZeroResponse { response: usize, lo: f64, hi: f64 },
+    /// Coherence given for another number of responses.
+    #[error("coherence is given for {count} responses, but there are {expected}")]
+    CoherenceCount { count: usize, expected: usize },
+    /// A coherence has another length than the frequency axis.
+    #[error("coherence of response {response} has {len} values for {expected} frequency lines")]
+    CoherenceLength {
+        response: usize,
+        len: usize,
+        expected: usize,
+    },
+    /// A coherence value outside [0, 1].
+    #[error(
+        "coherence of response {response} at line {index} ({frequency_hz} Hz) is {value}; it must be in [0, 1]"
+    )]
+    CoherenceRange {
+        response: usize,
+        index: usize,
+        frequency_hz: f64,
+        value: f64,
+    },
+    /// No line is coherent enough for the automatic band.
+    #[error(
+        "no frequency band has a mean coherence >= {threshold} (best line {best}); give the band \
+         explicitly or lower the coherence threshold"
+    )]
+    NoCoherentBand { threshold: f64, best: f64 },
+    /// The band asked for is empty or outside the data.
+    #[error(
+        "band {lo}..{hi} Hz is invalid: it needs {data_lo} <= lo < hi <= {data_hi} Hz (the FRF's lines)"
+    )]
+    BadBand {
+        lo: f64,
+        hi: f64,
+        data_lo: f64,
+        data_hi: f64,
+    },
+    /// Too few lines for the model order.
+    #[error(
+        "the band holds {lines} frequency lines above 0 Hz; model order {max_order} needs at least {needed}"
+    )]
+    TooFewLines {
+        lines: usize,
+        needed: usize,
+        max_order: usize,
+    },
+    /// A setting out of its range.
+    #[error("setting {name} = {value} is invalid: it must be {allowed}")]
+    InvalidSetting {
+        name: &'static str,
+        value: String,
+        allowed: &'static str,
+    },
+    /// No chain of poles qualified as physical.
+    #[error(
+        "no mode found in {lo}..{hi} Hz: no chain of poles was stable (frequency, damping and \
+         shape) at {min_stable} or more of the orders 1..={max_order}; the band may hold no \
+         resonance, or a higher max order is needed"
+    )]
+    NoModes {
+        lo: f64,
+        hi: f64,
+        min_stable: usize,
+        max_order: usize,
+    },
+    /// Fewer physical chains than modes requested.
+    #[error(
+        "{requested} modes were requested but only {found} chains of poles were stable at \
+         {min_stable} or more orders in {lo}..{hi} Hz"
+    )]
+    TooFewModes {
+        requested: usize,
+        found: usize,
+        min_stable: usize,
+        lo: f64,
+        hi: f64,
+    },
+}

@@ -1,0 +1,267 @@
+//! The extraction, step by step (see the module docs of [`super`]).
+
+use std::f64::consts::PI;
+
+use faer::c64;
+
+use super::lscf::{self, Lscf};
+use super::stabilization::{self, Criteria, OrderPoles};
+use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
+
+fn invalid(name: &'static str, value: impl ToString, allowed: &'static str) -> ExtractError {
+    ExtractError::InvalidSetting {
+        name,
+        value: value.to_string(),
+        allowed,
+    }
+}
+
+/// Checks every setting against its range.
+fn check(settings: &Settings) -> Result<(), ExtractError> {
+    let open_unit = |v: f64| v > 0.0 && v < 1.0;
+    if settings.max_order < 2 {
+        return Err(invalid("max_order", settings.max_order, "an integer >= 2"));
+    }
+    if settings.n_modes == Some(0) {
+        return Err(invalid("n_modes", 0, "an integer >= 1"));
+    }
+    if let Some(m) = settings.min_stable
+        && (m == 0 || m > settings.max_order)
+    {
+        return Err(invalid("min_stable", m, "an integer in 1..=max_order"));
+    }
+    if !open_unit(settings.frequency_tolerance) {
+        return Err(invalid(
+            "frequency_tolerance",
+            settings.frequency_tolerance,
+            "in (0, 1)",
+        ));
+    }
+    if !open_unit(settings.damping_tolerance) {
+        return Err(invalid(
+            "damping_tolerance",
+            settings.damping_tolerance,
+            "in (0, 1)",
+        ));
+    }
+    if !open_unit(settings.mac_min) {
+        return Err(invalid("mac_min", settings.mac_min, "in (0, 1)"));
+    }
+    if !(settings.max_damping > 0.0 && settings.max_damping <= 1.0) {
+        return Err(invalid("max_damping", settings.max_damping, "in (0, 1]"));
+    }
+    if settings.residual_terms > 2 {
+        return Err(invalid(
+            "residual_terms",
+            settings.residual_terms,
+            "0, 1 or 2",
+        ));
+    }
+    if !(0.0..=1.0).contains(&settings.coherence_min) {
+        return Err(invalid(
+            "coherence_min",
+            settings.coherence_min,
+            "in [0, 1]",
+        ));
+    }
+    Ok(())
+}
+
+fn frequency(s: c64) -> f64 {
+    s.norm() / (2.0 * PI)
+}
+
+/// Whether refined poles can replace the chart's: each stays stable, in the band, below the
+/// damping bound and within the frequency tolerance of its start (in |delta s| / |s|), and no
+/// two merge.
+fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Criteria) -> bool {
+    let each = refined.iter().zip(start).all(|(r, s)| {
+        let f = frequency(*r);
+        r.re < 0.0
+            && r.im > 0.0
+            && f >= band.0
+            && f <= band.1
+            && -r.re / r.norm() < criteria.max_damping
+            && (r - s).norm() < criteria.frequency_tolerance * s.norm()
+    });
+    let distinct = refined.iter().enumerate().all(|(i, a)| {
+        refined[i + 1..]
+            .iter()
+            .all(|b| (a - b).norm() > 1e-9 * a.norm())
+    });
+    each && distinct
+}
+
+/// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
+/// called after each response of the reduction, each model order and at the end.
+pub fn extract(
+    frf: &FrfSet,
+    settings: &Settings,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Extraction, ExtractError> {
+    check(settings)?;
+    frf.validate()?;
+    let band = frf::band(frf, settings)?;
+    let max_order = settings.max_order;
+    let needed = 2 * (max_order + 1);
+    if band.lines.len() < needed {
+        return Err(ExtractError::TooFewLines {
+            lines: band.lines.len(),
+            needed,
+            max_order,
+        });
+    }
+    let f = &frf.frequencies_hz;
+    let frequencies_hz: Vec<f64> = band.lines.iter().map(|&k| f[k]).collect();
+    let omega: Vec<f64> = frequencies_hz.iter().map(|x| 2.0 * PI * x).collect();
+    let (lo, hi) = (band.lo, band.hi);
+    let responses: Vec<Vec<c64>> = frf
+        .responses
+        .iter()
+        .map(|h| band.lines.iter().map(|&k| h[k]).collect())
+        .collect();
+    let mut scaled = Vec::with_capacity(responses.len());
+    for (response, h) in responses.iter().enumerate() {
+        let rms = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / h.len() as f64).sqrt();
+        if rms == 0.0 || !rms.is_finite() {
+            return Err(ExtractError::ZeroResponse { response, lo, hi });
+        }
+        scaled.push(h.iter().map(|v| v / rms).collect::<Vec<c64>>());
+    }
+    let basis = lsfd::Basis {
+        power: frf.quantity.power(),
+        terms: settings.residual_terms,
+    };
+    let total = responses.len() + max_order + 1;
+    let mut done = 0;
+    let lscf = Lscf::new(&omega, &band.weights, &scaled, hi, max_order, &mut || {
+        done += 1;
+        progress(done, total);
+    });
+    drop(scaled);
+
+    let mut orders = Vec::with_capacity(max_order);
+    for order in 1..=max_order {
+        let alpha = lscf.denominator(order);
+        let mut poles: Vec<c64> = lscf::poles(&alpha, lscf.dt)
+            .into_iter()
+            .filter(|s| {
+                let fs = frequency(*s);
+                s.im > 0.0 && s.re < 0.0 && fs >= lo && fs <= hi
+            })
+            .collect();
+        poles.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
+        let residues = if poles.is_empty() {
+            Vec::new()
+        } else {
+            lsfd::fit(&omega, &band.weights, &poles, basis, &responses).residues
+        };
+        orders.push(OrderPoles {
+            order,
+            poles,
+            residues,
+        });
+        done += 1;
+        progress(done, total);
+    }
+
+    let criteria = Criteria {
+        frequency_tolerance: settings.frequency_tolerance,
+        damping_tolerance: settings.damping_tolerance,
+        mac_min: settings.mac_min,
+        min_stable: settings
+            .min_stable
+            .unwrap_or_else(|| stabilization::min_stable_default(max_order)),
+        max_damping: settings.max_damping,
+    };
+    let mut chart = stabilization::classify(&orders, &criteria);
+    let residue_refs: Vec<&[c64]> = orders
+        .iter()
+        .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
+        .collect();
+    let chosen = stabilization::choose(&mut chart, &residue_refs, &criteria, settings.n_modes);
+    if chosen.is_empty() {
+        return Err(ExtractError::NoModes {
+            lo,
+            hi,
+            min_stable: criteria.min_stable,
+            max_order,
+        });
+    }
+    if let Some(requested) = settings.n_modes
+        && chosen.len() < requested
+    {
+        return Err(ExtractError::TooFewModes {
+            requested,
+            found: chosen.len(),
+            min_stable: criteria.min_stable,
+            lo,
+            hi,
+        });
+    }
+
+    let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
+    let (poles, refined) = if settings.refine {
+        let r = refine::refine(&omega, &band.weights, &start, basis, &responses);
+        if acceptable(&r.poles, &start, (lo, hi), &criteria) {
+            (r.poles, true)
+        } else {
+            (start, false)
+        }
+    } else {
+        (start, false)
+    };
+    let fit = lsfd::fit(&omega, &band.weights, &poles, basis, &responses);
+    let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
+    let fit_error = responses
+        .iter()
+        .zip(&synthesized)
+        .map(|(h, m)| {
+            let num: f64 = h.iter().zip(m).map(|(a, b)| (a - b).norm_sqr()).sum();
+            let den: f64 = h.iter().map(|a| a.norm_sqr()).sum();
+            (num / den).sqrt()
+        })
+        .collect();
+    let mut modes: Vec<Mode> = chosen
+        .iter()
+        .zip(&poles)
+        .zip(&fit.residues)
+        .map(|((c, &pole), residues)| {
+            let real = shapes::real_mode(residues);
+            Mode {
+                frequency_hz: frequency(pole),
+                damping_ratio: -pole.re / pole.norm(),
+                pole,
+                residues: residues.clone(),
+                complex_shape: shapes::complex_unit_peak(residues),
+                real_shape: real.shape,
+                mpc: real.mpc,
+                mpd_deg: real.mpd_deg,
+                stable_orders: c.orders,
+                stable_count: c.stable_count,
+            }
+        })
+        .collect();
+    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    let mean_coherence = frf.coherence.as_ref().map(|c| {
+        c.iter()
+            .map(|r| band.lines.iter().map(|&k| r[k]).sum::<f64>() / band.lines.len() as f64)
+            .collect()
+    });
+    progress(total, total);
+    Ok(Extraction {
+        modes,
+        chart,
+        criteria,
+        max_order,
+        band_hz: (lo, hi),
+        frequencies_hz,
+        lines: band.lines,
+        synthesized,
+        fit_error,
+        lower_residual: fit.lower,
+        upper_residual: fit.upper,
+        mean_coherence,
+        refined,
+    })
+}

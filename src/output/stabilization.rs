@@ -1,0 +1,251 @@
+//! The stabilisation chart of an extraction as SVG: every pole of every model order at its
+//! frequency (x, Hz) and order (y), its marker by stability class, the chosen poles circled and
+//! the identified frequencies as vertical lines; on a secondary log axis, the sum over the
+//! responses of |H| measured and of the identified model (the usual overlay that shows which
+//! peaks the chosen modes explain).
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::plot::{PALETTE, PlotError, svg, tick};
+use crate::extract::{Extraction, FrfSet, Quantity, StabilityClass};
+
+const FONT: &str = "sans-serif";
+
+fn err<E: std::fmt::Debug>(e: E) -> PlotError {
+    PlotError(format!("{e:?}"))
+}
+
+/// The unit of an FRF of this quantity per newton.
+fn unit(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Displacement => "m/N",
+        Quantity::Velocity => "(m/s)/N",
+        Quantity::Acceleration => "(m/s^2)/N",
+    }
+}
+
+/// Marker colour and legend text of a class.
+fn style(class: StabilityClass) -> (RGBColor, &'static str) {
+    match class {
+        StabilityClass::New => (RGBColor(170, 170, 170), "new (not stable in frequency)"),
+        StabilityClass::Frequency => (PALETTE[0], "stable in frequency"),
+        StabilityClass::Damping => (PALETTE[4], "stable in frequency and damping"),
+        StabilityClass::Shape => (PALETTE[3], "stable in frequency and shape"),
+        StabilityClass::Stable => (PALETTE[2], "stable (frequency, damping, shape)"),
+    }
+}
+
+const CLASSES: [StabilityClass; 5] = [
+    StabilityClass::New,
+    StabilityClass::Frequency,
+    StabilityClass::Damping,
+    StabilityClass::Shape,
+    StabilityClass::Stable,
+];
+
+/// The sum over responses of |H| on the band's lines.
+fn magnitude_sum(series: impl Iterator<Item = Vec<f64>>, len: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; len];
+    for s in series {
+        for (acc, v) in sum.iter_mut().zip(s) {
+            *acc += v;
+        }
+    }
+    sum
+}
+
+/// Draws the chart of `ex` (extracted from `frf`) on `area`.
+pub fn draw(
+    area: &DrawingArea<SVGBackend, Shift>,
+    frf: &FrfSet,
+    ex: &Extraction,
+    title: &str,
+) -> Result<(), PlotError> {
+    let (width, _) = area.dim_in_pixel();
+    let (plot_area, legend_area) = area.split_horizontally(width as i32 - 300);
+    let n = ex.frequencies_hz.len();
+    let measured = magnitude_sum(
+        frf.responses
+            .iter()
+            .map(|h| ex.lines.iter().map(|&k| h[k].norm()).collect()),
+        n,
+    );
+    let model = magnitude_sum(
+        ex.synthesized
+            .iter()
+            .map(|h| h.iter().map(|v| v.norm()).collect()),
+        n,
+    );
+    let positive = measured
+        .iter()
+        .chain(&model)
+        .copied()
+        .filter(|v| *v > 0.0 && v.is_finite());
+    let (mut lo, mut hi) =
+        positive.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+    if !lo.is_finite() || hi <= 0.0 {
+        (lo, hi) = (1e-12, 1.0);
+    }
+    let (x0, x1) = ex.band_hz;
+    let top = ex.max_order as f64 + 1.0;
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(title, (FONT, 16))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .right_y_label_area_size(80)
+        .build_cartesian_2d(x0..x1, 0.0..top)
+        .map_err(err)?
+        .set_secondary_coord(x0..x1, ((lo / 3.0)..(hi * 3.0)).log_scale());
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("frequency (Hz)")
+        .y_desc("model order")
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    chart
+        .configure_secondary_axes()
+        .y_desc(format!(
+            "sum over responses of |H| ({})",
+            unit(frf.quantity)
+        ))
+        .y_label_formatter(&|v| tick(*v))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    let points = |values: &[f64]| -> Vec<(f64, f64)> {
+        ex.frequencies_hz
+            .iter()
+            .zip(values)
+            .filter(|(_, v)| **v > 0.0 && v.is_finite())
+            .map(|(f, v)| (*f, *v))
+            .collect()
+    };
+    chart
+        .draw_secondary_series(LineSeries::new(
+            points(&measured),
+            BLACK.mix(0.55).stroke_width(1),
+        ))
+        .map_err(err)?;
+    chart
+        .draw_secondary_series(DashedLineSeries::new(
+            points(&model),
+            6,
+            4,
+            PALETTE[1].stroke_width(1),
+        ))
+        .map_err(err)?;
+    for mode in &ex.modes {
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(mode.frequency_hz, 0.0), (mode.frequency_hz, top)],
+                3,
+                3,
+                PALETTE[1].mix(0.6).stroke_width(1),
+            ))
+            .map_err(err)?;
+    }
+    for class in CLASSES {
+        let (colour, _) = style(class);
+        let these = ex.chart.iter().filter(|p| p.class() == class);
+        let at = |p: &crate::extract::ChartPole| (p.frequency_hz, p.order as f64);
+        match class {
+            StabilityClass::New => chart
+                .draw_series(these.map(|p| Circle::new(at(p), 2, colour.stroke_width(1))))
+                .map(|_| ()),
+            StabilityClass::Frequency => chart
+                .draw_series(these.map(|p| Cross::new(at(p), 3, colour.stroke_width(1))))
+                .map(|_| ()),
+            StabilityClass::Damping | StabilityClass::Shape => chart
+                .draw_series(these.map(|p| TriangleMarker::new(at(p), 3, colour.filled())))
+                .map(|_| ()),
+            StabilityClass::Stable => chart
+                .draw_series(these.map(|p| Circle::new(at(p), 3, colour.filled())))
+                .map(|_| ()),
+        }
+        .map_err(err)?;
+    }
+    chart
+        .draw_series(ex.chart.iter().filter(|p| p.selected).map(|p| {
+            Circle::new(
+                (p.frequency_hz, p.order as f64),
+                7,
+                PALETTE[1].stroke_width(2),
+            )
+        }))
+        .map_err(err)?;
+    legend(&legend_area, frf, ex)
+}
+
+/// The legend in its strip: marker classes, the chosen poles, the FRF sums, the thresholds.
+fn legend(
+    area: &DrawingArea<SVGBackend, Shift>,
+    frf: &FrfSet,
+    ex: &Extraction,
+) -> Result<(), PlotError> {
+    let text = |s: String, y: i32| Text::new(s, (34, y - 6), (FONT, 12).into_font());
+    let mut y = 50;
+    for class in CLASSES {
+        let (colour, name) = style(class);
+        let at = (16, y);
+        match class {
+            StabilityClass::New => area.draw(&Circle::new(at, 2, colour.stroke_width(1))),
+            StabilityClass::Frequency => area.draw(&Cross::new(at, 3, colour.stroke_width(1))),
+            StabilityClass::Damping | StabilityClass::Shape => {
+                area.draw(&TriangleMarker::new(at, 3, colour.filled()))
+            }
+            StabilityClass::Stable => area.draw(&Circle::new(at, 3, colour.filled())),
+        }
+        .map_err(err)?;
+        area.draw(&text(name.to_string(), y)).map_err(err)?;
+        y += 20;
+    }
+    area.draw(&Circle::new((16, y), 7, PALETTE[1].stroke_width(2)))
+        .map_err(err)?;
+    area.draw(&text(format!("chosen pole ({} modes)", ex.modes.len()), y))
+        .map_err(err)?;
+    y += 20;
+    area.draw(&PathElement::new(
+        vec![(6, y), (26, y)],
+        BLACK.mix(0.55).stroke_width(1),
+    ))
+    .map_err(err)?;
+    area.draw(&text("measured, sum of |H| (right axis)".into(), y))
+        .map_err(err)?;
+    y += 20;
+    area.draw(&PathElement::new(
+        vec![(6, y), (26, y)],
+        PALETTE[1].stroke_width(1),
+    ))
+    .map_err(err)?;
+    area.draw(&text("identified model, sum of |H|".into(), y))
+        .map_err(err)?;
+    y += 30;
+    let c = &ex.criteria;
+    for line in [
+        format!("{} responses, {}", frf.responses.len(), frf.quantity.name()),
+        format!(
+            "stable: df/f < {}, dzeta/zeta < {},",
+            c.frequency_tolerance, c.damping_tolerance
+        ),
+        format!(
+            "MAC > {}; chosen: >= {} stable orders",
+            c.mac_min, c.min_stable
+        ),
+    ] {
+        area.draw(&Text::new(line, (6, y), (FONT, 12).into_font()))
+            .map_err(err)?;
+        y += 18;
+    }
+    Ok(())
+}
+
+/// The chart as an SVG document of 1200 x 650 pixels.
+pub fn stabilization_svg(frf: &FrfSet, ex: &Extraction, title: &str) -> Result<String, PlotError> {
+    svg((1200, 650), |area| draw(area, frf, ex, title))
+}

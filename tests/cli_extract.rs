@@ -1,0 +1,259 @@
+//! `jointid extract` end to end: universal files written by `jointid::uff`'s writer from FRFs
+//! of a lumped system solved directly per line (tests/common/frf.rs, independent of the
+//! extractor), extracted to a measured-modes CSV that reads back against the UNESP-BERT model;
+//! then every bad input of the issue (truncated record, no peak in the band, a response node
+//! missing from the geometry, mixed units) with its message, exit code 2 and no output file.
+
+#[path = "common/frf.rs"]
+mod frf;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use faer::c64;
+use frf::{frf_set, lines, prescribed, receptance};
+use jointid::extract::Quantity;
+use jointid::measured::MeasuredModes;
+use jointid::uff::{
+    Abscissa, Axis, Dof, Encoding, Function, FunctionType, Node, NodeFormat, Nodes, Precision,
+    Values, write_function, write_nodes,
+};
+
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Self {
+        let dir =
+            std::env::temp_dir().join(format!("jointid-extract-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+const TRUE_HZ: [f64; 3] = [30.0, 90.0, 200.0];
+const POSITIONS: [f64; 3] = [0.5, 0.357, 0.176];
+
+fn axis(data_type: i32, label: &str, units: &str) -> Axis {
+    Axis {
+        data_type,
+        length_exponent: 0,
+        force_exponent: 0,
+        temperature_exponent: 0,
+        label: label.into(),
+        units: units.into(),
+    }
+}
+
+/// The accelerance FRF of response node `node` (direction 2) to node 100, as dataset 58.
+fn function(node: u64, step: f64, values: Vec<c64>, units: &str) -> Function {
+    Function {
+        id_lines: [
+            format!("H node {node}"),
+            "synthetic".into(),
+            "NONE".into(),
+            "NONE".into(),
+            "NONE".into(),
+        ],
+        function_type: FunctionType::Frf,
+        function_id: node as i64,
+        version: 1,
+        load_case: 0,
+        response: Dof {
+            entity: "NONE".into(),
+            node,
+            direction: 2,
+        },
+        reference: Dof {
+            entity: "NONE".into(),
+            node: 100,
+            direction: 2,
+        },
+        precision: Precision::Double,
+        abscissa: Abscissa::Even { start: 0.0, step },
+        z_value: 0.0,
+        abscissa_axis: axis(18, "Frequency", "Hz"),
+        ordinate_axis: axis(12, "Acceleration", units),
+        denominator_axis: axis(13, "Force", "N"),
+        z_axis: axis(0, "NONE", "NONE"),
+        ordinate: Values::Complex(values),
+        encoding: Encoding::Ascii,
+    }
+}
+
+/// FRFs of nodes 1..=3 (one file each when `split`, else one file), geometry of `nodes`.
+fn write_case(dir: &Scratch, split: bool, geometry_nodes: &[u64]) -> (Vec<PathBuf>, PathBuf) {
+    let sys = prescribed(&TRUE_HZ, &[0.01, 0.005, 0.02], 3);
+    let freqs = lines(0.25, 300.0);
+    let h = receptance(&sys, 0, &freqs);
+    let set = frf_set(&h, &freqs, &[0, 1, 2], Quantity::Acceleration);
+    let mut files = Vec::new();
+    let mut text = Vec::new();
+    for (o, values) in set.responses.into_iter().enumerate() {
+        let units = if split && o == 2 { "g/N" } else { "m/s^2/N" };
+        let mut bytes = Vec::new();
+        write_function(&mut bytes, &function(o as u64 + 1, 0.25, values, units)).unwrap();
+        if split {
+            let p = dir.path(&format!("frf{}.uff", o + 1));
+            std::fs::write(&p, bytes).unwrap();
+            files.push(p);
+        } else {
+            text.extend(bytes);
+        }
+    }
+    if !split {
+        let p = dir.path("frf.uff");
+        std::fs::write(&p, text).unwrap();
+        files.push(p);
+    }
+    let nodes = Nodes {
+        format: NodeFormat::Single15,
+        nodes: geometry_nodes
+            .iter()
+            .map(|&label| Node {
+                label,
+                definition_cs: 0,
+                displacement_cs: 0,
+                color: 1,
+                coordinates: [
+                    POSITIONS.get(label as usize - 1).copied().unwrap_or(0.085),
+                    0.0,
+                    0.0,
+                ],
+            })
+            .collect(),
+    };
+    let mut g = Vec::new();
+    write_nodes(&mut g, &nodes).unwrap();
+    let geometry = dir.path("geometry.uff");
+    std::fs::write(&geometry, g).unwrap();
+    (files, geometry)
+}
+
+fn run(frf: &[PathBuf], geometry: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_jointid"));
+    cmd.arg("extract").arg("--frf").args(frf);
+    cmd.arg("--geometry").arg(geometry).arg("--out").arg(out);
+    cmd.args(["--max-order", "16"]).args(extra);
+    cmd.output().unwrap()
+}
+
+fn assert_refused(output: &Output, out: &Path, needles: &[&str]) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{n:?} not in {stderr}");
+    }
+    assert!(!out.exists(), "{} was written", out.display());
+    let dir = out.parent().unwrap();
+    let leftovers: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+#[test]
+fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
+    let dir = Scratch::new("good");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3, 100]);
+    let out = dir.path("modes.csv");
+    let chart = dir.path("chart.svg");
+    let output = run(
+        &files,
+        &geometry,
+        &out,
+        &["--chart", chart.to_str().unwrap()],
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(stderr.contains("3 modes"), "{stderr}");
+    assert!(std::fs::read_to_string(&chart).unwrap().starts_with("<svg"));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.starts_with("mode,frequency_hz,x,dof,value,damping_ratio,mpc\n"),
+        "{text}"
+    );
+    let model = jointid::model::from_path(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("models/unesp-bert.toml"),
+    )
+    .unwrap();
+    let measured = MeasuredModes::from_path(&out, &model).unwrap();
+    assert_eq!(measured.modes().len(), 3);
+    for (m, (f, z)) in measured
+        .modes()
+        .iter()
+        .zip(TRUE_HZ.iter().zip([0.01, 0.005, 0.02]))
+    {
+        assert!(
+            (m.frequency_hz - f).abs() < 1e-3 * f,
+            "{} vs {f}",
+            m.frequency_hz
+        );
+        let zeta = m.damping_ratio.unwrap();
+        assert!((zeta - z).abs() < 0.1 * z, "{zeta} vs {z}");
+        assert!(m.mpc.unwrap() > 0.999);
+        // The reader orders the points along the chain.
+        let x: Vec<f64> = m.points.iter().map(|p| p.x).collect();
+        assert_eq!(x, [POSITIONS[2], POSITIONS[1], POSITIONS[0]]);
+    }
+}
+
+#[test]
+fn truncated_record_names_file_record_and_line() {
+    let dir = Scratch::new("truncated");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    // Cut inside the values of the second FRF (record 2).
+    let second = text.match_indices("H node 2").next().unwrap().0;
+    std::fs::write(&files[0], &text[..second + 4000]).unwrap();
+    let out = dir.path("modes.csv");
+    let output = run(&files, &geometry, &out, &[]);
+    assert_refused(&output, &out, &["frf.uff", "record 2", "line"]);
+}
+
+#[test]
+fn no_peak_in_the_band_is_refused() {
+    let dir = Scratch::new("nopeak");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let out = dir.path("modes.csv");
+    let output = run(&files, &geometry, &out, &["--band", "120:180"]);
+    assert_refused(&output, &out, &["frf.uff", "no mode found in 120..180 Hz"]);
+}
+
+#[test]
+fn response_node_missing_from_the_geometry_is_refused() {
+    let dir = Scratch::new("geometry");
+    let (files, geometry) = write_case(&dir, false, &[1, 3, 100]);
+    let out = dir.path("modes.csv");
+    let output = run(&files, &geometry, &out, &[]);
+    assert_refused(
+        &output,
+        &out,
+        &["geometry.uff", "response node 2", "record 2", "1, 3, 100"],
+    );
+}
+
+#[test]
+fn mixed_units_are_refused() {
+    let dir = Scratch::new("units");
+    let (files, geometry) = write_case(&dir, true, &[1, 2, 3]);
+    assert_eq!(files.len(), 3);
+    let out = dir.path("modes.csv");
+    let output = run(&files, &geometry, &out, &[]);
+    assert_refused(
+        &output,
+        &out,
+        &["frf3.uff", "record 1", "g/N", "m/s^2/N", "mixed units"],
+    );
+}
