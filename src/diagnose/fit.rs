@@ -23,11 +23,11 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use super::pairing::{Pairing, PairingRule, Unpaired, pair};
-use super::sensitivity::eigen_derivative;
+use super::sensitivity::ModeDerivative;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
-use crate::structure::Parameter;
+use crate::structure::{Matrices, Parameter};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
 pub const SHAPE_FLOOR: f64 = 0.02;
@@ -218,10 +218,21 @@ impl Problem<'_> {
         Ok(())
     }
 
+    /// The model modes the pairing can reach: every mode up to (1 + window) times the highest
+    /// measured frequency and at least those paired by number (all of them for a model solved
+    /// densely, see [`ModalSolution::covering`]).
+    fn modes(&self, mats: &Matrices) -> Result<ModalSolution, ModalError> {
+        let modes = self.measured.modes();
+        let given = self.pairing.given.iter().map(|g| g.1).max().unwrap_or(0);
+        let count = self.rigid() + modes.len().max(given) + 2;
+        let f_max = modes.iter().map(|m| m.frequency_hz).fold(0.0, f64::max);
+        ModalSolution::covering(mats, count, (1.0 + self.pairing.window) * f_max)
+    }
+
     /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
     fn evaluate(&self, x: &[f64], pairing: &Pairing) -> Result<Evaluation, ModalError> {
         let configured = self.configured(x);
-        let modal = ModalSolution::solve(&configured.assemble())?;
+        let modal = self.modes(&configured.assemble())?;
         let scale_at = self.joint_count() + self.effect_count();
         let y = modal.vectors();
         let mut residual = Vec::new();
@@ -260,6 +271,7 @@ impl Problem<'_> {
                     .zip(self.scales()),
             )
             .collect();
+        let mats = eval.configured.assemble();
         let unknowns = x.len();
         let rows = eval.residual.len();
         let scale_at = self.joint_count() + self.effect_count();
@@ -269,8 +281,9 @@ impl Problem<'_> {
             let s = pairing.model_index[r];
             let sign = model_sign(&eval.modal, s, m);
             let f = eval.modal.frequency_hz(s);
+            let derivative = ModeDerivative::new(&mats, &eval.modal, s);
             for (col, (p, chain)) in params.iter().enumerate() {
-                let (d_lambda, dy) = eigen_derivative(&eval.modal, s, &p.stiffness, &p.mass);
+                let (d_lambda, dy) = derivative.of(&p.stiffness, &p.mass);
                 let df = d_lambda
                     / (8.0
                         * std::f64::consts::PI
@@ -388,7 +401,7 @@ fn run(
         .join(" + ");
     let mut x = vec![0.0; unknowns];
     let start = problem.configured(&x);
-    let start_modal = ModalSolution::solve(&start.assemble())?;
+    let start_modal = problem.modes(&start.assemble())?;
     let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
     initial_scales(&problem, &start_modal, &pairing, &mut x);
     if !iterate {

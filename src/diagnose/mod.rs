@@ -113,7 +113,15 @@ pub fn diagnose(
         });
     }
     let matrices = model.assemble();
-    let nominal = ModalSolution::solve(&matrices)?;
+    // The lowest pairs the checks and the per-mode basis need (all of them up to
+    // DENSE_MAX_DOFS).
+    let wanted = settings
+        .per_mode
+        .as_ref()
+        .map_or(0, |s| s.n)
+        .max(rigid + 1)
+        .min(matrices.size());
+    let nominal = ModalSolution::lowest_of(&matrices, wanted)?;
     check_elastic(&matrices, &nominal, rigid)?;
     if let Some(per_mode) = settings.per_mode {
         let identifier = Identifier::for_structure(model, &nominal, per_mode)?;

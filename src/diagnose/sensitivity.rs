@@ -7,9 +7,40 @@
 //!                - 1/2 y_s (y_s^T dM y_s)
 //! ```
 //! for M-normalised vectors and a simple eigenvalue lambda_s.
+//!
+//! [`ModeDerivative`] is what the fit uses: Nelson's method ([`crate::modal::nelson`]), which
+//! needs only mode s and so works on the lowest modes of a large model; the expansion above
+//! is its fallback when K - lambda_s M with the pinned DOF is singular (a repeated
+//! eigenvalue), exact only when `modal` holds every pair.
 
 use crate::modal::ModalSolution;
-use crate::structure::SparseSym;
+use crate::modal::nelson::NelsonMode;
+use crate::structure::{Matrices, SparseSym};
+
+/// The derivatives of one mode with respect to any parameter (module docs).
+pub struct ModeDerivative<'a> {
+    modal: &'a ModalSolution,
+    s: usize,
+    nelson: Option<NelsonMode>,
+}
+
+impl<'a> ModeDerivative<'a> {
+    /// Mode `s` of `modal`, the solution of `mats`: one sparse LU factorisation.
+    pub fn new(mats: &Matrices, modal: &'a ModalSolution, s: usize) -> Self {
+        let y: Vec<f64> = modal.vectors().col(s).iter().copied().collect();
+        let nelson =
+            NelsonMode::new(mats.k.as_faer(), mats.m.as_faer(), modal.values()[s], &y).ok();
+        Self { modal, s, nelson }
+    }
+
+    /// d lambda_s and d y_s for the derivative matrices `dk`, `dm` of one parameter.
+    pub fn of(&self, dk: &SparseSym, dm: &SparseSym) -> (f64, Vec<f64>) {
+        match self.nelson.as_ref().map(|n| n.derivative(dk, dm)) {
+            Some(Ok(d)) => (d.value, d.vector),
+            _ => eigen_derivative(self.modal, self.s, dk, dm),
+        }
+    }
+}
 
 /// d lambda_s and d y_s for the derivative matrices `dk`, `dm` of one parameter.
 pub fn eigen_derivative(

@@ -1,0 +1,712 @@
+//! The lowest eigenpairs of a large sparse problem K y = lambda M y: shift-invert Lanczos with
+//! thick restarts (Krylov-Schur), for models past the reach of the dense solver in
+//! [`super`].
+//!
+//! K is symmetric positive semidefinite (singular for a free-free structure: its rigid-body
+//! modes have lambda = 0), M symmetric positive definite; both are given with both triangles
+//! stored.
+//!
+//! Method (Ericsson & Ruhe, "The spectral transformation Lanczos method for the numerical
+//! solution of large sparse generalized symmetric eigenvalue problems", Math. Comp. 35 (1980);
+//! Stewart, "A Krylov-Schur algorithm for large eigenproblems", SIAM J. Matrix Anal. Appl. 23
+//! (2001); Wu & Simon, "Thick-restart Lanczos method for large symmetric eigenvalue problems",
+//! SIAM J. Matrix Anal. Appl. 22 (2000)):
+//!
+//! 1. Shift. sigma < 0, so that K - sigma M is positive definite and is factorised by sparse
+//!    Cholesky (faer, approximate-minimum-degree ordering). The default rule:
+//!    `sigma = -1e-4 * mean_i(K_ii / M_ii) / N^2`, a unit-free fraction of the stiffness/mass
+//!    scale of the mesh (see [`LanczosSettings::shift`] for its reasons and limits); if the factorisation meets a
+//!    non-positive pivot (round-off on a near-singular K), |sigma| is multiplied by 100 and the
+//!    factorisation repeated, at most [`SHIFT_ATTEMPTS`] times.
+//! 2. Lanczos on OP = (K - sigma M)^-1 M, which is self-adjoint in the M-inner product
+//!    <a, b> = a^T M b and has the eigenvalues theta = 1 / (lambda - sigma) > 0: the lowest
+//!    lambda are the largest theta, well separated. Every new vector is M-orthogonalised
+//!    against the whole basis twice (classical Gram-Schmidt, "twice is enough"), so that the
+//!    basis stays M-orthonormal to round-off; the products M v are kept beside the basis.
+//! 3. Thick restart: when the basis holds `basis_size` vectors, the Ritz pairs of the
+//!    projected matrix H = V^T M OP V are computed, the best `keep` Ritz vectors kept, and
+//!    the expansion continues from the residual vector (the Krylov-Schur form).
+//! 4. A Ritz pair (theta, x) has the shift-invert residual ||OP x - theta x||_M =
+//!    |beta * s_last|; when the `count` largest theta all satisfy
+//!    ||OP x - theta x||_M <= tol * theta, the Ritz vectors (and [`REFINE_EXTRA`] more) are
+//!    refined on the original pencil by [`super::refine`]: Rayleigh-Ritz with K y accumulated
+//!    in twice the working precision, corrections preconditioned by the factor of
+//!    K - sigma M. The eigenvalues are then Rayleigh quotients of the stored K and M, not
+//!    sigma + 1/theta, whose round-off grows with the condition number of K (see below). Each
+//!    pair is accepted when its backward error
+//!
+//!    ```text
+//!      eta = ||K y - lambda M y||_2 / ((||K||_1 + |lambda| ||M||_1) ||y||_2) <= tol
+//!    ```
+//!
+//!    (Higham & Higham, "Structured backward error and condition of generalized eigenvalue
+//!    problems", SIAM J. Matrix Anal. Appl. 20 (1998); ||.||_1 is the largest column sum, an
+//!    upper bound of ||.||_2 for a symmetric matrix).
+//!
+//! What limits the accuracy. A small backward error does not make a low eigenvalue accurate:
+//! the condition number of a beam's K grows like (L / h)^4, and round-off of the size
+//! eps ||K|| moves the lowest eigenvalue by eps lambda_max. Without the refinement, the first
+//! elastic frequency of the paper's chain at 2 x 2000 elements (N = 8004) comes out
+//! 149.690 Hz instead of 150.0539 (scipy's `eigsh` fails the same way, worse on a cantilever
+//! of 1e5 DOFs: README, "Large models"); with it, 150.053849 (1.1e-8 relative). What is left
+//! is the rounding of the stored entries of K themselves (each element matrix stored in
+//! double precision no longer has the rigid-body motions in its null space exactly): no
+//! solver working on the stored K can do better. Measured on that chain, relative error of the
+//! first elastic frequency against the continuum: 2e-9 at N = 2004, 4e-9 at 4004, 1.1e-8 at
+//! 8004 (elements of 0.1 and 0.15 mm), then 2e-5 at 12004 and 4e-5 at 20004, where the
+//! rigid-body pair shows the same rounding as a spurious 0.88 Hz; the result is then the
+//! same for every shift from -1e6 to -5e10. On the clamped-free cantilever (no rigid-body
+//! modes) the error stays at 1.2e-6 at N = 1e5 (elements of 0.02 mm). The remedy would be
+//! an assembly in a deformation basis (K = B^T D B with the element strains B u computed
+//! from the DOFs), which the sparse-matrix interface of a structure does not carry.
+//!
+//! Memory is linear in N: the basis V and M V (N x (basis_size + 1) each), the Cholesky factor
+//! of the banded or sparse K - sigma M, the refinement's blocks (N x (count + REFINE_EXTRA),
+//! a few of them) and N x count for the result.
+//!
+//! A limit shared with every single-vector Krylov method: an eigenvalue of exact multiplicity
+//! m > 1 shows its further copies only through round-off, after some delay. The rigid-body
+//! pair of a free-free structure is found this way (its two eigenvalues are split by
+//! round-off); an exactly repeated elastic eigenvalue of a symmetric structure may need a
+//! larger `basis_size`.
+
+use faer::linalg::matmul::matmul;
+use faer::sparse::{SparseColMatRef, Triplet};
+use faer::{Accum, Mat, MatRef, Par, Side};
+
+use super::refine::refine;
+use super::sparse_llt::{Ordering, SparseLlt};
+use super::{ModalError, fix_sign};
+
+/// How many factorisations of K - sigma M are tried, |sigma| growing 100-fold each time.
+pub const SHIFT_ATTEMPTS: usize = 6;
+
+/// Ritz vectors beyond the wanted ones that enter the refinement.
+pub const REFINE_EXTRA: usize = 4;
+
+/// Most refinement sweeps.
+pub const REFINE_SWEEPS: usize = 10;
+
+/// Settings of [`lowest_modes`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LanczosSettings {
+    /// The shift sigma (rad^2/s^2), below every wanted eigenvalue and < 0 so that K - sigma M
+    /// is positive definite for a semidefinite K. Default `None`: the rule
+    /// `sigma = -1e-4 * mean_i(K_ii / M_ii) / N^2`. For a mesh of a continuum, K_ii / M_ii is
+    /// the eigenvalue scale of one element, (c / h)^2 (h the element size, c a wave speed),
+    /// and the lowest elastic eigenvalue is of order (c / L)^2 = (c / h)^2 / N^(2/d) (d the
+    /// number of refined dimensions), so that |sigma| stays below it. For a finely meshed beam
+    /// (bending: K_ii / M_ii grows like 1/h^4) the rule gives a |sigma| above the first
+    /// elastic eigenvalue (-4.7e10 against 8.9e5 at N = 20004); the refined results do not
+    /// depend on it there (module docs), only the number of restarts does. If the
+    /// factorisation meets a non-positive pivot, |sigma| grows 100-fold, at most
+    /// [`SHIFT_ATTEMPTS`] times. Range: finite, < 0.
+    pub shift: Option<f64>,
+    /// Convergence tolerance tol of the module docs: the shift-invert residual relative to
+    /// theta and the backward error eta. Default 1e-10; range [1e-15, 1e-2].
+    pub tolerance: f64,
+    /// Most thick restarts before [`ModalError::NotConverged`]. Default 300; at least 1.
+    pub max_restarts: usize,
+    /// Vectors in the Krylov basis. Default `None`: max(2 count + 1, count + 20), at most N.
+    /// Range: count + 1 ..= N (count + 2 at least when N allows).
+    pub basis_size: Option<usize>,
+}
+
+impl Default for LanczosSettings {
+    fn default() -> Self {
+        LanczosSettings {
+            shift: None,
+            tolerance: 1e-10,
+            max_restarts: 300,
+            basis_size: None,
+        }
+    }
+}
+
+/// The converged pairs and how they were obtained.
+#[derive(Debug, Clone)]
+pub struct LowestModes {
+    /// Eigenvalues lambda, ascending, rad^2/s^2.
+    pub values: Vec<f64>,
+    /// Eigenvectors as columns (N x count), M-normalised, sign fixed (module docs of
+    /// [`super`]).
+    pub vectors: Mat<f64>,
+    /// Backward error eta of every pair (module docs).
+    pub backward_errors: Vec<f64>,
+    /// The shift sigma that was factorised.
+    pub shift: f64,
+    /// Thick restarts used.
+    pub restarts: usize,
+    /// Applications of OP (one sparse triangular solve pair each).
+    pub operator_applications: usize,
+    /// Refinement sweeps ([`super::refine`]).
+    pub refinement_sweeps: usize,
+}
+
+/// The `count` lowest eigenpairs of K y = lambda M y (module docs).
+pub fn lowest_modes(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    count: usize,
+    settings: &LanczosSettings,
+) -> Result<LowestModes, ModalError> {
+    let n = check_problem(k, m, count)?;
+    let size = check_settings(settings, count, n)?;
+    if lower_triplets(m, 1.0)
+        .and_then(|t| SparseLlt::new(n, &t, ordering()))
+        .is_none()
+    {
+        return Err(ModalError::MassNotPositiveDefinite);
+    }
+    let (shift, llt) = factor_shifted(k, m, settings.shift)?;
+    let norms = (norm_1(k), norm_1(m));
+    let mut krylov = Krylov::new(n, size, m, llt);
+    let keep = (count + (size - count) / 2).clamp(count, size - 1);
+    let tol = settings.tolerance;
+    for restart in 0..=settings.max_restarts {
+        krylov.expand();
+        let (theta, s) = krylov.ritz();
+        let beta = krylov.beta;
+        let converged = (0..count)
+            .filter(|&i| (beta * s[(size - 1, i)]).abs() <= tol * theta[i])
+            .count();
+        if converged == count || krylov.full() {
+            // Rayleigh-Ritz with accurately computed K y (see [`super::refine`]) on the
+            // wanted Ritz vectors and a few more, which absorb the next pairs' components.
+            let extra = (count + REFINE_EXTRA).min(size);
+            let start = krylov.basis(&s, extra);
+            let refined = refine(k, m, &mut krylov.llt, shift, start, tol, REFINE_SWEEPS)
+                .ok_or(ModalError::NoConvergence)?;
+            let pairs = ritz_pairs(
+                k,
+                m,
+                shift,
+                &refined.values[..count],
+                refined.vectors.subcols(0, count).to_owned(),
+                norms,
+            );
+            let accepted = pairs.backward_errors.iter().filter(|&&e| e <= tol).count();
+            if accepted == count {
+                return Ok(LowestModes {
+                    restarts: restart,
+                    operator_applications: krylov.applications,
+                    refinement_sweeps: refined.sweeps,
+                    ..pairs
+                });
+            }
+            if krylov.full() {
+                return Err(ModalError::NotConverged {
+                    converged: accepted,
+                    requested: count,
+                    restarts: restart,
+                });
+            }
+        }
+        if restart == settings.max_restarts {
+            return Err(ModalError::NotConverged {
+                converged,
+                requested: count,
+                restarts: restart,
+            });
+        }
+        krylov.restart(&theta, &s, keep);
+    }
+    unreachable!("the loop returns on its last pass")
+}
+
+fn check_problem(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    count: usize,
+) -> Result<usize, ModalError> {
+    let n = k.nrows();
+    if k.ncols() != n || m.nrows() != n || m.ncols() != n {
+        return Err(ModalError::ShapeMismatch {
+            k: (k.nrows(), k.ncols()),
+            m: (m.nrows(), m.ncols()),
+        });
+    }
+    if count == 0 || count > n {
+        return Err(ModalError::CountOutOfRange { count, dofs: n });
+    }
+    if !k.val().iter().chain(m.val()).all(|v| v.is_finite()) {
+        return Err(ModalError::NonFinite);
+    }
+    Ok(n)
+}
+
+fn check_settings(s: &LanczosSettings, count: usize, n: usize) -> Result<usize, ModalError> {
+    let bad = |name: &'static str, value: f64, allowed: String| ModalError::InvalidSetting {
+        name,
+        value,
+        allowed,
+    };
+    if let Some(sigma) = s.shift
+        && !(sigma.is_finite() && sigma < 0.0)
+    {
+        return Err(bad("shift", sigma, "finite and < 0 (rad^2/s^2)".into()));
+    }
+    if !(1e-15..=1e-2).contains(&s.tolerance) {
+        return Err(bad("tolerance", s.tolerance, "1e-15 ..= 1e-2".into()));
+    }
+    if s.max_restarts == 0 {
+        return Err(bad("max_restarts", 0.0, "at least 1".into()));
+    }
+    let smallest = (count + 2).min(n);
+    let size = s
+        .basis_size
+        .unwrap_or((2 * count + 1).max(count + 20))
+        .min(n);
+    if s.basis_size.is_some_and(|b| b < smallest || b > n) {
+        return Err(bad(
+            "basis_size",
+            size as f64,
+            format!("{smallest} ..= {n} (count + 2 ..= N)"),
+        ));
+    }
+    Ok(size.max(smallest))
+}
+
+/// The lower triangle of `scale * a` as triplets (`None` on a non-finite product).
+fn lower_triplets(
+    a: SparseColMatRef<'_, usize, f64>,
+    scale: f64,
+) -> Option<Vec<Triplet<usize, usize, f64>>> {
+    let mut out = Vec::with_capacity(a.val().len() / 2 + a.ncols());
+    for j in 0..a.ncols() {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            if i >= j {
+                out.push(Triplet::new(i, j, scale * v));
+            }
+        }
+    }
+    out.iter().all(|t| t.val.is_finite()).then_some(out)
+}
+
+fn ordering() -> Ordering {
+    Ordering::Amd
+}
+
+/// The default shift of [`LanczosSettings::shift`].
+pub fn default_shift(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+) -> f64 {
+    let n = k.nrows();
+    let (dk, dm) = (diagonal(k), diagonal(m));
+    let mean = dk
+        .iter()
+        .zip(&dm)
+        .map(|(kk, mm)| if *mm > 0.0 { kk / mm } else { 0.0 })
+        .sum::<f64>()
+        / n.max(1) as f64;
+    let sigma = -1e-4 * mean / (n as f64 * n as f64);
+    if sigma < 0.0 && sigma.is_finite() {
+        sigma
+    } else {
+        -1.0
+    }
+}
+
+fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    let mut d = vec![0.0; a.ncols()];
+    for (j, dj) in d.iter_mut().enumerate() {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            if i == j {
+                *dj += v;
+            }
+        }
+    }
+    d
+}
+
+fn factor_shifted(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    shift: Option<f64>,
+) -> Result<(f64, SparseLlt), ModalError> {
+    let n = k.nrows();
+    let first = shift.unwrap_or_else(|| default_shift(k, m));
+    let mut sigma = first;
+    for _ in 0..SHIFT_ATTEMPTS {
+        let mut lower = lower_triplets(k, 1.0).ok_or(ModalError::NonFinite)?;
+        if let Some(scaled) = lower_triplets(m, -sigma) {
+            lower.extend(scaled);
+            if let Some(llt) = SparseLlt::new(n, &lower, ordering()) {
+                return Ok((sigma, llt));
+            }
+        }
+        sigma *= 100.0;
+    }
+    Err(ModalError::ShiftNotFactorised {
+        first,
+        last: sigma / 100.0,
+        attempts: SHIFT_ATTEMPTS,
+    })
+}
+
+/// ||A||_1, the largest absolute column sum.
+fn norm_1(a: SparseColMatRef<'_, usize, f64>) -> f64 {
+    (0..a.ncols())
+        .map(|j| a.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// `y = A x` for a matrix stored with both triangles.
+pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
+    y.fill(0.0);
+    for (j, &xj) in x.iter().enumerate() {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            y[i] += v * xj;
+        }
+    }
+}
+
+/// The M-orthonormal Krylov basis in Krylov-Schur form: OP V = V H + beta v_size e^T.
+struct Krylov<'a> {
+    m: SparseColMatRef<'a, usize, f64>,
+    llt: SparseLlt,
+    /// V, N x (size + 1); column `size` is the residual direction.
+    v: Mat<f64>,
+    /// M V.
+    z: Mat<f64>,
+    /// H = V^T M OP V (size x size), filled for columns < `filled`.
+    h: Mat<f64>,
+    size: usize,
+    /// Columns of H (and V) already built; the next expansion starts here.
+    filled: usize,
+    /// Coupling of the last basis vector to the residual direction.
+    beta: f64,
+    applications: usize,
+    seed: u64,
+}
+
+impl<'a> Krylov<'a> {
+    fn new(n: usize, size: usize, m: SparseColMatRef<'a, usize, f64>, llt: SparseLlt) -> Self {
+        let mut krylov = Krylov {
+            m,
+            llt,
+            v: Mat::zeros(n, size + 1),
+            z: Mat::zeros(n, size + 1),
+            h: Mat::zeros(size, size),
+            size,
+            filled: 0,
+            beta: 0.0,
+            applications: 0,
+            seed: 0x9e37_79b9_7f4a_7c15,
+        };
+        // Start: OP applied to a pseudo-random vector, which removes the components of the
+        // eigenvectors of large lambda by the factor theta.
+        let start = krylov.random_vector();
+        krylov.z.col_as_slice_mut(0).copy_from_slice(&start);
+        let mut w = krylov.apply(0);
+        krylov.orthonormalise_into(&mut w, 0);
+        krylov
+    }
+
+    /// Whether the basis spans the whole space (no residual direction exists).
+    fn full(&self) -> bool {
+        self.size == self.v.nrows()
+    }
+
+    /// OP v_j = (K - sigma M)^-1 (M v_j).
+    fn apply(&mut self, j: usize) -> Vec<f64> {
+        let mut w = self.z.col_as_slice(j).to_vec();
+        self.llt.solve_in_place(&mut w);
+        self.applications += 1;
+        w
+    }
+
+    fn random_vector(&mut self) -> Vec<f64> {
+        (0..self.v.nrows())
+            .map(|_| {
+                // splitmix64
+                self.seed = self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+                let mut x = self.seed;
+                x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                x ^= x >> 31;
+                (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .collect()
+    }
+
+    /// M-orthogonalises `w` against v_0 .. v_{j-1} (twice), stores it normalised as v_j and
+    /// returns the coefficients and the norm before normalisation.
+    fn orthonormalise_into(&mut self, w: &mut [f64], j: usize) -> (Vec<f64>, f64) {
+        let n = w.len();
+        let mut coefficients = vec![0.0; j];
+        let mut mw = vec![0.0; n];
+        for _ in 0..2 {
+            if j > 0 {
+                let mut c = Mat::<f64>::zeros(j, 1);
+                let wr = MatRef::from_column_major_slice(w, n, 1);
+                matmul(
+                    &mut c,
+                    Accum::Replace,
+                    self.z.subcols(0, j).transpose(),
+                    wr,
+                    1.0,
+                    Par::Seq,
+                );
+                let wm = faer::MatMut::from_column_major_slice_mut(w, n, 1);
+                matmul(wm, Accum::Add, self.v.subcols(0, j), &c, -1.0, Par::Seq);
+                for (a, b) in coefficients.iter_mut().zip(c.col_as_slice(0)) {
+                    *a += b;
+                }
+            }
+        }
+        sparse_mul(self.m, w, &mut mw);
+        let norm = dot(w, &mw).max(0.0).sqrt();
+        if norm > 0.0 {
+            w.iter_mut().chain(mw.iter_mut()).for_each(|a| *a /= norm);
+        }
+        self.v.col_as_slice_mut(j).copy_from_slice(w);
+        self.z.col_as_slice_mut(j).copy_from_slice(&mw);
+        (coefficients, norm)
+    }
+
+    /// Extends the basis to `size` vectors (and the residual direction).
+    fn expand(&mut self) {
+        let n = self.v.nrows();
+        for j in self.filled..self.size {
+            let mut w = self.apply(j);
+            let next = j + 1;
+            if next == n {
+                // The basis spans the space: OP v_j lies in it.
+                let (c, _) = self.project_only(&mut w, next);
+                self.set_column(j, &c);
+                self.beta = 0.0;
+                break;
+            }
+            let (c, norm) = self.orthonormalise_into(&mut w, next);
+            self.set_column(j, &c);
+            let mut beta = norm;
+            if norm <= 1e-12 * (dot(&c, &c) + norm * norm).sqrt() {
+                // Invariant subspace: continue with a fresh direction, uncoupled.
+                let mut r = self.random_vector();
+                self.orthonormalise_into(&mut r, next);
+                beta = 0.0;
+            }
+            if next < self.size {
+                self.h[(next, j)] = beta;
+                self.h[(j, next)] = beta;
+            } else {
+                self.beta = beta;
+            }
+        }
+        self.filled = self.size;
+    }
+
+    fn project_only(&mut self, w: &mut [f64], j: usize) -> (Vec<f64>, f64) {
+        let n = w.len();
+        let mut c = Mat::<f64>::zeros(j, 1);
+        let wr = MatRef::from_column_major_slice(w, n, 1);
+        matmul(
+            &mut c,
+            Accum::Replace,
+            self.z.subcols(0, j).transpose(),
+            wr,
+            1.0,
+            Par::Seq,
+        );
+        (c.col_as_slice(0).to_vec(), 0.0)
+    }
+
+    /// Column j of H from the Gram-Schmidt coefficients of OP v_j (rows 0..=j), mirrored.
+    fn set_column(&mut self, j: usize, c: &[f64]) {
+        for (i, &value) in c.iter().enumerate().take(j + 1) {
+            self.h[(i, j)] = value;
+            self.h[(j, i)] = value;
+        }
+    }
+
+    /// Ritz values theta (descending) and vectors S of H.
+    fn ritz(&self) -> (Vec<f64>, Mat<f64>) {
+        let size = self.size;
+        let scale = (0..size)
+            .flat_map(|j| (0..size).map(move |i| (i, j)))
+            .map(|(i, j)| self.h[(i, j)].abs())
+            .fold(f64::MIN_POSITIVE, f64::max);
+        let a = Mat::from_fn(size, size, |i, j| {
+            0.5 * (self.h[(i, j)] + self.h[(j, i)]) / scale
+        });
+        let evd = a
+            .self_adjoint_eigen(Side::Lower)
+            .expect("the symmetric eigensolver of a small finite matrix converges");
+        let theta = (0..size).rev().map(|i| evd.S()[i] * scale).collect();
+        let s = Mat::from_fn(size, size, |i, j| evd.U()[(i, size - 1 - j)]);
+        (theta, s)
+    }
+
+    /// V S[:, ..count].
+    fn basis(&self, s: &Mat<f64>, count: usize) -> Mat<f64> {
+        self.v.subcols(0, self.size) * s.subcols(0, count)
+    }
+
+    /// Thick restart: keeps the `keep` best Ritz vectors, then the residual direction.
+    fn restart(&mut self, theta: &[f64], s: &Mat<f64>, keep: usize) {
+        let size = self.size;
+        let kept_v = self.v.subcols(0, size) * s.subcols(0, keep);
+        let kept_z = self.z.subcols(0, size) * s.subcols(0, keep);
+        self.v.subcols_mut(0, keep).copy_from(&kept_v);
+        self.z.subcols_mut(0, keep).copy_from(&kept_z);
+        let residual_v = self.v.col(size).to_owned();
+        let residual_z = self.z.col(size).to_owned();
+        self.v.col_mut(keep).copy_from(&residual_v);
+        self.z.col_mut(keep).copy_from(&residual_z);
+        self.h.fill(0.0);
+        for i in 0..keep {
+            self.h[(i, i)] = theta[i];
+            let b = self.beta * s[(size - 1, i)];
+            self.h[(i, keep)] = b;
+            self.h[(keep, i)] = b;
+        }
+        self.filled = keep;
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The refined pairs (values ascending, vectors M-normalised) with signs fixed and their
+/// backward errors.
+fn ritz_pairs(
+    k: SparseColMatRef<'_, usize, f64>,
+    m: SparseColMatRef<'_, usize, f64>,
+    shift: f64,
+    values: &[f64],
+    mut vectors: Mat<f64>,
+    (norm_k, norm_m): (f64, f64),
+) -> LowestModes {
+    let (n, count) = (vectors.nrows(), vectors.ncols());
+    let values = values[..count].to_vec();
+    let (mut ky, mut my) = (vec![0.0; n], vec![0.0; n]);
+    let mut backward_errors = Vec::with_capacity(count);
+    for (j, &lambda) in values.iter().enumerate() {
+        fix_sign(&mut vectors, j);
+        let y = vectors.col_as_slice(j);
+        sparse_mul(k, y, &mut ky);
+        sparse_mul(m, y, &mut my);
+        let r = ky
+            .iter()
+            .zip(&my)
+            .map(|(a, b)| (a - lambda * b).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let norm_y = dot(y, y).sqrt();
+        backward_errors.push(r / ((norm_k + lambda.abs() * norm_m) * norm_y));
+    }
+    LowestModes {
+        values,
+        vectors,
+        backward_errors,
+        shift,
+        restarts: 0,
+        operator_applications: 0,
+        refinement_sweeps: 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Refusals of bad input, and the pairs of a problem small enough to be checked against
+    //! the dense solver of [`super::super`] (a different method: Cholesky reduction).
+    use super::*;
+    use crate::modal::ModalSolution;
+    use crate::model::fixtures::paper_model;
+    use crate::structure::SymMatrix;
+
+    #[test]
+    fn lowest_pairs_of_the_paper_model_match_the_dense_solution() {
+        let mats = paper_model(1e7, 1e4).assemble();
+        let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
+        let sparse = lowest_modes(k, m, 8, &LanczosSettings::default()).unwrap();
+        let dense = ModalSolution::solve(&mats).unwrap();
+        // The dense eigenvalues carry a round-off of a few eps lambda_max; measured difference
+        // 7.3e-11 relative on pair 2.
+        let lambda_max = dense.values()[dense.len() - 1];
+        for i in 2..8 {
+            let (s, d) = (sparse.values[i], dense.values()[i]);
+            assert!(
+                (s - d).abs() < 1e-10 * d.max(1e-4 * lambda_max),
+                "pair {i}: {s} vs {d}"
+            );
+        }
+        assert!(sparse.backward_errors.iter().all(|&e| e <= 1e-10));
+        assert!(sparse.shift < 0.0);
+    }
+
+    #[test]
+    fn bad_input_is_refused_with_the_reason() {
+        let mats = paper_model(1e7, 1e4).assemble();
+        let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
+        let n = mats.size();
+        let with = |s: LanczosSettings| lowest_modes(k, m, 4, &s).unwrap_err();
+        assert!(matches!(
+            with(LanczosSettings {
+                shift: Some(1.0),
+                ..Default::default()
+            }),
+            ModalError::InvalidSetting { name: "shift", .. }
+        ));
+        assert!(matches!(
+            with(LanczosSettings {
+                tolerance: 0.5,
+                ..Default::default()
+            }),
+            ModalError::InvalidSetting {
+                name: "tolerance",
+                ..
+            }
+        ));
+        assert!(matches!(
+            with(LanczosSettings {
+                basis_size: Some(5),
+                ..Default::default()
+            }),
+            ModalError::InvalidSetting {
+                name: "basis_size",
+                ..
+            }
+        ));
+        assert_eq!(
+            lowest_modes(k, m, n + 1, &LanczosSettings::default()).unwrap_err(),
+            ModalError::CountOutOfRange {
+                count: n + 1,
+                dofs: n
+            }
+        );
+        let small = SymMatrix::from_entries(2, &[(0, 0, 1.0), (1, 1, 1.0)]);
+        assert!(matches!(
+            lowest_modes(k, small.as_faer(), 1, &LanczosSettings::default()).unwrap_err(),
+            ModalError::ShapeMismatch { .. }
+        ));
+        let massless = SymMatrix::from_entries(2, &[(0, 0, 1.0), (1, 1, 0.0)]);
+        assert_eq!(
+            lowest_modes(
+                small.as_faer(),
+                massless.as_faer(),
+                1,
+                &LanczosSettings::default()
+            )
+            .unwrap_err(),
+            ModalError::MassNotPositiveDefinite
+        );
+        let nan = SymMatrix::from_entries(2, &[(0, 0, f64::NAN), (1, 1, 1.0)]);
+        assert_eq!(
+            lowest_modes(
+                nan.as_faer(),
+                small.as_faer(),
+                1,
+                &LanczosSettings::default()
+            )
+            .unwrap_err(),
+            ModalError::NonFinite
+        );
+    }
+}
