@@ -236,7 +236,7 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         MODEL,
         &good,
         &["--n", "39", "--m", "5", "--weighting", "inverse"],
-        "n = 39 is invalid: it must be from 3 to 38",
+        "--n 39 is invalid: it must be from 3 to 38",
     );
     assert_fails(
         "beyond-basis",

@@ -17,7 +17,15 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let matrices = model.assemble();
-    let modal = ModalSolution::solve(&matrices)
+    let dofs = model.dof_count();
+    if args.n <= model.rigid || args.n > dofs {
+        bail!(
+            "--n {} is invalid: it must be from {} to {dofs} (the model's DOFs), rigid-body modes included",
+            args.n,
+            model.rigid + 1
+        );
+    }
+    let modal = ModalSolution::lowest_of(&matrices, args.n)
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     check_elastic(&matrices, &modal, model.rigid)
         .with_context(|| format!("{}", args.model.display()))?;

@@ -107,15 +107,30 @@ pub struct Mechanism {
     pub frequency_hz: f64,
 }
 
+/// How far above the computed rigid-body eigenvalues (the sparse solver's zero) the first
+/// deformable one must stand.
+const RIGID_MARGIN: f64 = 1e2;
+
 /// Checks that the first deformable eigenvalue of `modal` (the solution of `matrices`, with
-/// `rigid` rigid-body modes first) stands above the round-off level of zero.
+/// `rigid` rigid-body modes first) stands above the solver's zero: for the dense solve of a
+/// small model, the round-off level [`Matrices::zero_eigenvalue_level`]; for the sparse
+/// solver of a large one, whose low eigenvalues are accurate relative to themselves,
+/// [`RIGID_MARGIN`] times the largest computed rigid-body eigenvalue. Never at or below 0.
 pub fn check_elastic(
     matrices: &Matrices,
     modal: &ModalSolution,
     rigid: usize,
 ) -> Result<(), Mechanism> {
+    let zero = if matrices.size() <= crate::modal::DENSE_MAX_DOFS {
+        matrices.zero_eigenvalue_level()
+    } else {
+        RIGID_MARGIN
+            * modal.values()[..rigid.min(modal.len())]
+                .iter()
+                .fold(0.0, |a: f64, l| a.max(l.abs()))
+    };
     match modal.values().get(rigid) {
-        Some(&lambda) if lambda <= matrices.zero_eigenvalue_level() => Err(Mechanism {
+        Some(&lambda) if lambda <= zero => Err(Mechanism {
             mode: 1,
             frequency_hz: modal.frequency_hz(rigid),
         }),

@@ -118,12 +118,22 @@ pub struct StudyContext {
 }
 
 impl StudyContext {
-    /// Solves the nominal and the truth model.
+    /// Solves the nominal and the truth model for the pairs the grid uses: the truth up to
+    /// the highest mode, the nominal up to the largest basis n as well (all pairs, by the
+    /// dense solve, for a small model; the lowest ones by the sparse solver for a large one).
     pub fn new(study: &Study) -> Result<Self, ModalError> {
+        let rigid = study.model.rigid;
+        let highest = study.modes.iter().copied().max().unwrap_or(1) + rigid;
+        let largest_n = study
+            .grids
+            .iter()
+            .flat_map(|g| g.n.iter().copied())
+            .max()
+            .unwrap_or(highest);
         let truth = study.model.with_delta(&study.delta);
         Ok(Self {
-            nominal: ModalSolution::solve(&study.model.assemble())?,
-            truth: ModalSolution::solve(&truth.assemble())?,
+            nominal: ModalSolution::lowest_of(&study.model.assemble(), largest_n.max(highest))?,
+            truth: ModalSolution::lowest_of(&truth.assemble(), highest)?,
             params: study.model.identified(),
             rigid: study.model.rigid,
         })
