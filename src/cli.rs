@@ -67,6 +67,8 @@ pub enum Measure {
     Theta,
     /// Every DOF.
     All,
+    /// The sensors the model declares (`[[sensor]]`).
+    Sensors,
 }
 
 /// `jointid simulate`.
@@ -135,7 +137,7 @@ pub struct IdentifyArgs {
     /// Model file (TOML).
     #[arg(long)]
     pub model: PathBuf,
-    /// Measured modes (CSV: mode,frequency_hz,node,dof,value).
+    /// Measured modes (CSV: mode,frequency_hz, then node,dof or x,dof or label, then value).
     #[arg(long)]
     pub measured: PathBuf,
     /// Basis size n: calculated eigenpairs, rigid-body modes included.
@@ -150,6 +152,10 @@ pub struct IdentifyArgs {
     /// Modes to identify (default: every measured mode), e.g. 1,2,3.
     #[arg(long, value_delimiter = ',')]
     pub modes: Option<Vec<usize>>,
+    /// Parameters to identify, e.g. k2 (the others held at their values), or `auto`: on each
+    /// mode, the parameters the mode determines (default: every identified parameter).
+    #[arg(long, value_delimiter = ',')]
+    pub params: Option<Vec<String>>,
     /// Write CSV here instead of printing a table.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -202,4 +208,26 @@ pub struct DiagnoseArgs {
     /// Weighting of the per-mode corrections.
     #[arg(long, value_parser = parse_weighting, default_value = "inverse")]
     pub weighting: Weighting,
+    /// Half-width of the frequency window in which a measured mode looks for its model mode,
+    /// relative to its frequency (0 < w <= 10).
+    #[arg(long, default_value_t = jointid::diagnose::pairing::DEFAULT_WINDOW)]
+    pub pairing_window: f64,
+    /// Pairs given by number, `r:t` (measured mode r with the model's deformable mode t),
+    /// comma-separated; the other modes pair by MAC within the window.
+    #[arg(long, value_delimiter = ',', value_parser = parse_pair)]
+    pub pair: Vec<(usize, usize)>,
+}
+
+fn parse_pair(s: &str) -> Result<(usize, usize), String> {
+    let (r, t) = s
+        .split_once(':')
+        .ok_or_else(|| format!("`{s}` is not r:t, e.g. 3:4 (measured mode 3 with model mode 4)"))?;
+    let number = |text: &str| {
+        text.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| (1..=100_000).contains(&n))
+            .ok_or_else(|| format!("`{text}` in `{s}` is not a mode number from 1 to 100000"))
+    };
+    Ok((number(r)?, number(t)?))
 }

@@ -12,12 +12,12 @@ use serde::de::DeserializeOwned;
 #[derive(Debug, thiserror::Error)]
 pub enum InputError {
     /// The file cannot be read.
-    #[error("{file}: cannot read the file: {source}")]
+    #[error("{file}: cannot read the file: {cause}")]
     Read {
         /// The file.
         file: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The file is not valid TOML, or does not have the expected keys and types.
     #[error("{file}{line}: {path}{message}", line = line_suffix(*.line), path = path_prefix(.path))]
@@ -59,9 +59,9 @@ fn path_prefix(path: &str) -> String {
 
 /// Reads a whole file, mapping the I/O error to [`InputError::Read`].
 pub fn read_file(path: &Path) -> Result<String, InputError> {
-    std::fs::read_to_string(path).map_err(|source| InputError::Read {
+    std::fs::read_to_string(path).map_err(|cause| InputError::Read {
         file: path.to_path_buf(),
-        source,
+        cause,
     })
 }
 

@@ -15,7 +15,8 @@
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
 //! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
-//! with effects and errors, for tests, studies and rehearsals of a test campaign).
+//! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
+//! (universal files: measured FRFs and geometry in, mode shapes out).
 
 pub mod diagnose;
 pub mod identify;
@@ -27,4 +28,6 @@ pub mod output;
 pub mod report;
 pub mod simulate;
 pub mod stats;
+pub mod structure;
 pub mod study;
+pub mod uff;

@@ -2,27 +2,35 @@
 //! identified model"), over chosen DOFs, in the measured-modes form, optionally with
 //! measurement errors.
 
+use std::sync::Arc;
+
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
 use crate::model::effects::{Configured, EffectContext, by_name, candidates, outside_library};
-use crate::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
+use crate::structure::{Observation, Structure};
 use crate::study::noise::{NoiseKind, TrialRng};
 
-/// Deformable modes `modes` (1 = first elastic) of `modal`, exact, over the DOFs `dofs`.
-/// The caller guarantees every mode exists (`mode + rigid-body modes <= N`).
-pub fn exact_modes(modal: &ModalSolution, modes: &[usize], dofs: &[usize]) -> MeasuredModes {
+/// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
+/// rigid-body modes, exact, read at `points`. The caller guarantees every mode exists
+/// (`mode + rigid <= modal.len()`).
+pub fn exact_modes(
+    modal: &ModalSolution,
+    rigid: usize,
+    modes: &[usize],
+    points: &[Observation],
+) -> MeasuredModes {
     let y = modal.vectors();
     MeasuredModes::new(
         modes
             .iter()
             .map(|&r| {
-                let s = r - 1 + RIGID_BODY_MODES;
-                MeasuredMode {
-                    mode: r,
-                    frequency_hz: modal.frequency_hz(s),
-                    dofs: dofs.to_vec(),
-                    values: dofs.iter().map(|&d| y[(d, s)]).collect(),
-                }
+                let s = r - 1 + rigid;
+                MeasuredMode::new(
+                    r,
+                    modal.frequency_hz(s),
+                    points.to_vec(),
+                    points.iter().map(|p| p.read_column(y, s)).collect(),
+                )
             })
             .collect(),
     )
@@ -46,11 +54,12 @@ pub struct Errors {
 /// and every frequency by (1 + eps).
 pub fn measured_modes(
     modal: &ModalSolution,
+    rigid: usize,
     modes: &[usize],
-    dofs: &[usize],
+    points: &[Observation],
     errors: Errors,
 ) -> MeasuredModes {
-    let exact = exact_modes(modal, modes, dofs);
+    let exact = exact_modes(modal, rigid, modes, points);
     MeasuredModes::new(
         exact
             .modes()
@@ -104,8 +113,16 @@ pub enum SimulateError {
         /// Why.
         reason: String,
     },
+    /// A requested mode beyond the model's deformable modes.
+    #[error("mode {mode} is invalid: the model has deformable modes 1 to {deformable}")]
+    NoSuchMode {
+        /// The highest mode asked for.
+        mode: usize,
+        /// Deformable modes of the model.
+        deformable: usize,
+    },
     /// The simulated model has no eigensolution.
-    #[error("the simulated model has no eigensolution: {0}")]
+    #[error("the simulated model has no eigensolution")]
     Modal(#[from] crate::modal::ModalError),
 }
 
@@ -119,28 +136,29 @@ pub fn effect_catalogue() -> Vec<(String, String)> {
         .collect()
 }
 
-/// Measured modes of `model` with `effects` (name, size) added, measured at `dofs`.
-/// Sensor masses sit at the nodes whose translation is measured.
+/// Measured modes of `structure` with `effects` (name, size) added, measured at `points`.
+/// Sensor masses sit at the measured translations.
 pub fn simulate(
-    model: &Model,
+    structure: &Structure,
     effects: &[(String, f64)],
     modes: &[usize],
-    dofs: &[usize],
+    points: &[Observation],
     errors: Errors,
 ) -> Result<MeasuredModes, SimulateError> {
-    let nominal = ModalSolution::solve(&model.assemble())?;
-    let mut sensor_nodes: Vec<usize> = dofs
-        .iter()
-        .map(|&d| dof_of_index(d))
-        .filter(|(_, dof)| *dof == Dof::W)
-        .map(|(n, _)| n)
-        .collect();
-    sensor_nodes.dedup();
-    let ctx = EffectContext {
-        model: model.clone(),
-        sensor_nodes,
-        first_elastic_hz: nominal.frequency_hz(RIGID_BODY_MODES),
-    };
+    let rigid = structure.rigid;
+    let highest = modes.iter().copied().max().unwrap_or(1) + rigid;
+    let nominal = structure.modes(highest)?;
+    if highest > nominal.len() {
+        return Err(SimulateError::NoSuchMode {
+            mode: highest - rigid,
+            deformable: nominal.len() - rigid,
+        });
+    }
+    let ctx = Arc::new(EffectContext::new(
+        structure.clone(),
+        points,
+        nominal.frequency_hz(rigid),
+    ));
     let mut rising = 0.0;
     let mut applied = Vec::new();
     for (name, size) in effects {
@@ -157,8 +175,15 @@ pub fn simulate(
                 .join(", "),
         })?;
         let theta = effect.theta_of_size(&ctx, *size);
+        if theta.is_empty() {
+            return Err(SimulateError::Inadmissible {
+                name: name.clone(),
+                size: *size,
+                reason: "this structure has no site for it".into(),
+            });
+        }
         effect
-            .admissible(model, &theta)
+            .admissible(&ctx, structure, &theta)
             .map_err(|reason| SimulateError::Inadmissible {
                 name: name.clone(),
                 size: *size,
@@ -176,19 +201,18 @@ pub fn simulate(
                 reason: format!("mode {r} would have a joint stiffness factor {factor} <= 0"),
             });
         }
-        let delta: Vec<f64> = model
-            .joint_parameters()
-            .iter()
-            .map(|p| p.value * (factor - 1.0))
-            .collect();
+        let mut rising_structure = structure.clone();
+        for p in &mut rising_structure.parameters {
+            p.value *= factor;
+        }
         let truth = Configured {
             ctx: ctx.clone(),
-            model: model.with_joint_delta(&delta),
+            structure: rising_structure,
             effects: applied.clone(),
         };
-        let modal = ModalSolution::solve(&truth.assemble())?;
+        let modal = ModalSolution::lowest_of(&truth.assemble(), highest)?;
         out.extend(
-            measured_modes(&modal, &[r], dofs, errors)
+            measured_modes(&modal, rigid, &[r], points, errors)
                 .modes()
                 .iter()
                 .cloned(),
@@ -206,15 +230,18 @@ mod tests {
     fn noise_free_measurement_is_the_scaled_exact_mode_and_noise_is_seeded() {
         let model = paper_model(1e7, 1e4);
         let modal = ModalSolution::solve(&model.assemble()).unwrap();
-        let dofs: Vec<usize> = (0..38).step_by(2).collect();
+        let dofs: Vec<Observation> = (0..38)
+            .step_by(2)
+            .map(|d| Observation::dof(&model.dofs, d))
+            .collect();
         let clean = Errors {
             shape: 0.0,
             frequency: 0.0,
             kind: NoiseKind::Gaussian,
             seed: 1,
         };
-        let m = measured_modes(&modal, &[1, 3], &dofs, clean);
-        let exact = exact_modes(&modal, &[1, 3], &dofs);
+        let m = measured_modes(&modal, 2, &[1, 3], &dofs, clean);
+        let exact = exact_modes(&modal, 2, &[1, 3], &dofs);
         for (a, b) in m.modes().iter().zip(exact.modes()) {
             assert_eq!(a.frequency_hz, b.frequency_hz);
             assert_eq!(a.values.iter().cloned().fold(f64::MIN, f64::max), 1.0);
@@ -229,6 +256,7 @@ mod tests {
         let noisy = |seed| {
             measured_modes(
                 &modal,
+                2,
                 &[1, 3],
                 &dofs,
                 Errors {

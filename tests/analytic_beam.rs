@@ -13,7 +13,8 @@ mod common;
 
 use common::{paper_model, steel_bar};
 use jointid::modal::ModalSolution;
-use jointid::model::{Joint, Model};
+use jointid::model::{Chain, Joint};
+use jointid::structure::Structure;
 
 const BETA_L: [f64; 4] = [4.7300407, 7.8532046, 10.9956078, 14.1371655];
 
@@ -24,13 +25,13 @@ fn analytic_hz(length: f64, i: usize) -> f64 {
         / (2.0 * std::f64::consts::PI)
 }
 
-fn elastic_hz(model: &Model, count: usize) -> Vec<f64> {
+fn elastic_hz(model: &Structure, count: usize) -> Vec<f64> {
     let sol = ModalSolution::solve(&model.assemble()).unwrap();
     (2..2 + count).map(|i| sol.frequency_hz(i)).collect()
 }
 
 fn max_relative_error(elements: usize) -> f64 {
-    let model = Model::new(vec![steel_bar(0.5, elements)], vec![]);
+    let model = Chain::free(vec![steel_bar(0.5, elements)], vec![]).build();
     let fe = elastic_hz(&model, 4);
     (0..4)
         .map(|i| (fe[i] - analytic_hz(0.5, i)).abs() / analytic_hz(0.5, i))
@@ -68,18 +69,19 @@ fn fine_meshes_keep_their_accuracy() {
 
 #[test]
 fn very_stiff_joint_gives_the_monoblock_beam() {
-    let monoblock = Model::new(vec![steel_bar(0.5, 20)], vec![]);
+    let monoblock = Chain::free(vec![steel_bar(0.5, 20)], vec![]).build();
     let reference = elastic_hz(&monoblock, 4);
     let mut errors = Vec::new();
     for scale in [1e2, 1e3, 1e4] {
         // Multiples of the element stiffnesses 12 EI / l^3 and 4 EI / l of the 0.025 m elements.
         let b = steel_bar(0.25, 10);
         let l = b.element_length();
-        let joint = Joint {
-            k1: scale * 12.0 * b.bending_stiffness() / l.powi(3),
-            k2: scale * 4.0 * b.bending_stiffness() / l,
-        };
-        let chain = Model::new(vec![steel_bar(0.25, 10), steel_bar(0.25, 10)], vec![joint]);
+        let joint = Joint::identified(
+            scale * 12.0 * b.bending_stiffness() / l.powi(3),
+            scale * 4.0 * b.bending_stiffness() / l,
+        );
+        let chain =
+            Chain::free(vec![steel_bar(0.25, 10), steel_bar(0.25, 10)], vec![joint]).build();
         let f = elastic_hz(&chain, 4);
         errors.push(
             (0..4)
@@ -106,7 +108,7 @@ fn vanishing_joint_gives_the_two_separate_free_beams() {
     );
     let mut separate: Vec<f64> = [steel_bar(0.2, 7), steel_bar(0.3, 10)]
         .into_iter()
-        .flat_map(|b| elastic_hz(&Model::new(vec![b], vec![]), 4))
+        .flat_map(|b| elastic_hz(&Chain::free(vec![b], vec![]).build(), 4))
         .collect();
     separate.sort_by(f64::total_cmp);
     for (i, f) in separate.iter().take(6).enumerate() {

@@ -9,6 +9,7 @@ use std::process::Command;
 use common::{all_dofs, paper_model};
 use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;
+use jointid::structure::Observation;
 
 struct Scratch(PathBuf);
 
@@ -37,15 +38,16 @@ impl Drop for Scratch {
 
 const MODEL: &str = include_str!("../models/paper-case-1.toml");
 
-fn simulated_csv(dofs: &[usize]) -> String {
+fn simulated_csv(dofs: &[Observation]) -> String {
     let truth = paper_model(1.2e7, 1.2e4);
     let modes = exact_modes(
         &ModalSolution::solve(&truth.assemble()).unwrap(),
+        2,
         &[1, 2, 3, 4],
         dofs,
     );
     let mut buf = Vec::new();
-    modes.write_csv(&mut buf).unwrap();
+    modes.write_csv(&mut buf, &truth).unwrap();
     String::from_utf8(buf).unwrap()
 }
 
@@ -92,7 +94,7 @@ fn identifies_noise_free_modes_into_a_csv() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
-        "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition"
+        "mode,param,initial,correction,corrected,relative_correction,frequency_measured_hz,frequency_model_hz,condition,resolution,identified"
     );
     assert_eq!(lines.len(), 5);
     for (line, (mode, param, delta)) in lines[1..].iter().zip([
@@ -108,6 +110,9 @@ fn identifies_noise_free_modes_into_a_csv() {
         assert!((correction - delta).abs() < 1e-8 * delta, "{line}");
         let relative: f64 = f[5].parse().unwrap();
         assert!((relative - 0.2).abs() < 1e-8, "{line}");
+        let resolution: f64 = f[9].parse().unwrap();
+        assert!(resolution > 0.5 && resolution <= 1.0, "{line}");
+        assert_eq!(f[10], "yes");
     }
     // Without --out: a readable table on stdout.
     let run = identify(
@@ -182,7 +187,7 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         MODEL,
         &format!("{header}1,150,0,w,1\n1,150,0,w,1\n"),
         &std_args,
-        "d.csv:3: mode 1, node 0, dof w is given twice (first on line 2)",
+        "d.csv:3: mode 1, point 0:w is given twice (first on line 2)",
     );
     assert_fails(
         "frequencies",
@@ -268,6 +273,6 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         "",
         &good,
         &std_args,
-        "m.toml:1: missing field `beam`",
+        "m.toml: beam = 0 beam(s) is invalid: a chain has 1 to 9 [[beam]] tables",
     );
 }

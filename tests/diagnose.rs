@@ -7,7 +7,9 @@
 mod common;
 
 use common::{jointid, paper_model, scratch};
-use jointid::diagnose::{DiagnoseSettings, FIT_ALPHA, Noise, Report, Verdict, diagnose};
+use jointid::diagnose::{
+    DiagnoseSettings, FIT_ALPHA, Noise, PairingRule, Report, Verdict, diagnose,
+};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
 use jointid::model::effects::{EffectContext, by_name};
@@ -21,7 +23,7 @@ const NOISE: Noise = Noise {
 
 fn test_data(effects: &[(&str, f64)], seed: u64) -> MeasuredModes {
     let model = paper_model(1e7, 1e4);
-    let translations: Vec<usize> = (0..model.dof_count()).step_by(2).collect();
+    let translations = common::translations(&model);
     let effects: Vec<(String, f64)> = effects.iter().map(|(n, s)| (n.to_string(), *s)).collect();
     let errors = Errors {
         shape: NOISE.shape,
@@ -38,6 +40,7 @@ fn run(data: &MeasuredModes) -> Report {
         data,
         DiagnoseSettings {
             noise: NOISE,
+            pairing: PairingRule::default(),
             per_mode: None,
         },
     )
@@ -47,13 +50,10 @@ fn run(data: &MeasuredModes) -> Report {
 #[test]
 fn each_hidden_candidate_is_found_sized_and_brings_the_error_to_noise() {
     let model = paper_model(1e7, 1e4);
-    let ctx = EffectContext {
-        sensor_nodes: (0..19).collect(),
-        first_elastic_hz: ModalSolution::solve(&model.assemble())
-            .unwrap()
-            .frequency_hz(2),
-        model,
-    };
+    let first = ModalSolution::solve(&model.assemble())
+        .unwrap()
+        .frequency_hz(2);
+    let ctx = EffectContext::new(model.clone(), &common::translations(&model), first);
     for (name, size) in [
         ("joint_coupling", 0.3),
         ("joint_mass", 0.02),
@@ -280,7 +280,10 @@ fn bad_diagnose_and_simulate_inputs_are_explained() {
     ]);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr.contains("pairs with no model mode"), "{stderr}");
+    assert!(
+        stderr.contains("measured mode 1 (150.0000 Hz) has no credible partner"),
+        "{stderr}"
+    );
     let run = jointid(&[
         "diagnose",
         "--model",

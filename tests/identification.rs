@@ -5,27 +5,28 @@ mod common;
 use common::{all_dofs, paper_model, translations};
 use jointid::identify::{Identifier, Projector, Settings, Weighting};
 use jointid::modal::ModalSolution;
-use jointid::model::Model;
 use jointid::simulate::exact_modes;
+use jointid::structure::{Observation, Structure, observe};
 
-fn identifier(model: &Model, n: usize, m: usize, weighting: Weighting) -> Identifier {
+fn identifier(model: &Structure, n: usize, m: usize, weighting: Weighting) -> Identifier {
     let modal = ModalSolution::solve(&model.assemble()).unwrap();
-    Identifier::for_joints(model, &modal, Settings { n, m, weighting }).unwrap()
+    Identifier::for_structure(model, &modal, Settings { n, m, weighting }).unwrap()
 }
 
 /// Worst relative error of the identified corrections against `delta` over `modes`.
 fn worst_error(
-    nominal: &Model,
+    nominal: &Structure,
     delta: [f64; 2],
-    dofs: &[usize],
+    dofs: &[Observation],
     n: usize,
     m: usize,
     w: Weighting,
     modes: &[usize],
 ) -> f64 {
-    let truth = nominal.with_joint_delta(&delta);
+    let truth = nominal.with_delta(&delta);
     let measured = exact_modes(
         &ModalSolution::solve(&truth.assemble()).unwrap(),
+        2,
         modes,
         dofs,
     );
@@ -99,9 +100,10 @@ fn sensitivity_columns_match_central_differences_of_the_projected_equations() {
     // checked against a central difference through the full assembly of K.
     let nominal = paper_model(1.0e7, 1.0e4);
     let id = identifier(&nominal, 12, 6, Weighting::Equal);
-    let truth = nominal.with_joint_delta(&[2.0e6, 2.0e3]);
+    let truth = nominal.with_delta(&[2.0e6, 2.0e3]);
     let measured = exact_modes(
         &ModalSolution::solve(&truth.assemble()).unwrap(),
+        2,
         &[1, 2, 3, 4],
         &translations(&nominal),
     );
@@ -109,7 +111,7 @@ fn sensitivity_columns_match_central_differences_of_the_projected_equations() {
     for mode in measured.modes() {
         let s_r = id.basis_index(mode.mode).unwrap();
         let mut g = vec![0.0; 12];
-        Projector::new(y, &mode.dofs)
+        Projector::new(&observe(y, &mode.points))
             .unwrap()
             .project(&mode.values, &mut g);
         let system = id.mode_system(s_r);
@@ -124,7 +126,7 @@ fn sensitivity_columns_match_central_differences_of_the_projected_equations() {
             let projected = |sign: f64| {
                 let mut delta = [0.0; 2];
                 delta[i] = sign * h * p.value;
-                let k = nominal.with_joint_delta(&delta).assemble().k;
+                let k = nominal.with_delta(&delta).assemble().k.to_dense();
                 let kyg: Vec<f64> = (0..k.nrows())
                     .map(|a| (0..k.ncols()).map(|c| k[(a, c)] * yg[c]).sum())
                     .collect();
@@ -156,9 +158,10 @@ fn noisy_modes_are_identified_but_not_exactly() {
     // A guard against a method that returns the introduced values whatever the data: a 1%
     // distortion of one shape element moves the corrections.
     let nominal = paper_model(1.0e7, 1.0e4);
-    let truth = nominal.with_joint_delta(&[2.0e6, 2.0e3]);
+    let truth = nominal.with_delta(&[2.0e6, 2.0e3]);
     let measured = exact_modes(
         &ModalSolution::solve(&truth.assemble()).unwrap(),
+        2,
         &[2],
         &all_dofs(&nominal),
     );

@@ -8,7 +8,7 @@ use std::process::Command;
 
 use jointid::identify::{Identifier, Settings};
 use jointid::measured::MeasuredMode;
-use jointid::model::Model;
+use jointid::structure::Observation;
 use jointid::study::noise::TrialRng;
 use jointid::study::predicted::noise_free_jacobian;
 use jointid::study::{CellPlan, Study, StudyRun};
@@ -20,8 +20,15 @@ fn study(grid: &str, trials: usize, noise: &str) -> Study {
     let text = format!(
         "name = \"t\"\nmodel = \"{MODEL_PATH}\"\n[truth]\ndelta = {{ k1 = 2.0e6, k2 = 2.0e3 }}\n{grid}\n[monte_carlo]\ntrials = {trials}\nseed = 11\nnoise = \"{noise}\"\n[output]\ncsv = \"t.csv\"\n"
     );
-    let model = Model::from_toml(MODEL, Path::new(MODEL_PATH)).unwrap();
+    let model = jointid::model::from_toml(MODEL, Path::new(MODEL_PATH)).unwrap();
     Study::from_toml_with_model(&text, Path::new("t.toml"), model, Path::new(MODEL_PATH)).unwrap()
+}
+
+/// The identified DOFs of a cell as measured points.
+fn points(run: &StudyRun, dofs: &[usize]) -> Vec<Observation> {
+    dofs.iter()
+        .map(|&d| Observation::dof(&run.study.model.dofs, d))
+        .collect()
 }
 
 #[test]
@@ -32,7 +39,7 @@ fn every_lane_of_the_engine_is_the_one_trial_identification_bitwise() {
         let cell = &run.cells[0];
         let (_, samples) = run.run_cell(cell, &|_| {});
         let plan = CellPlan::new(&run.study, &run.context, cell).unwrap();
-        let identifier = Identifier::for_joints(
+        let identifier = Identifier::for_structure(
             &run.study.model,
             &run.context.nominal,
             Settings {
@@ -52,12 +59,12 @@ fn every_lane_of_the_engine_is_the_one_trial_identification_bitwise() {
                     .collect();
                 let f = 1.0 + rng.frequency_error(run.study.noise, cell.frequency_noise);
                 let lambda = mode.truth_lambda * f * f;
-                let measured = MeasuredMode {
-                    mode: mode.mode,
-                    frequency_hz: lambda.sqrt() / (2.0 * std::f64::consts::PI),
-                    dofs: plan.identified.clone(),
+                let measured = MeasuredMode::new(
+                    mode.mode,
+                    lambda.sqrt() / (2.0 * std::f64::consts::PI),
+                    points(&run, &plan.identified),
                     values,
-                };
+                );
                 // The frequency round trip through Hz costs an ulp of lambda: compare to 1e-9.
                 let z = identifier.identify(&measured).unwrap().relative.unwrap();
                 for (i, p) in plan.values.iter().enumerate() {
@@ -102,7 +109,7 @@ fn first_order_jacobian_matches_central_differences() {
     let grid = "[grid]\nmodes = [1, 3]\nn = [10]\nm = [6]\nnf = [5]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.001]";
     let run = StudyRun::new(study(grid, 1, "uniform")).unwrap();
     let plan = CellPlan::new(&run.study, &run.context, &run.cells[0]).unwrap();
-    let identifier = Identifier::for_joints(
+    let identifier = Identifier::for_structure(
         &run.study.model,
         &run.context.nominal,
         Settings {
@@ -115,12 +122,12 @@ fn first_order_jacobian_matches_central_differences() {
     for mode in &plan.modes {
         let jac = noise_free_jacobian(&plan, mode).unwrap();
         let z_of = |shape: Vec<f64>, lambda: f64| {
-            let measured = MeasuredMode {
-                mode: mode.mode,
-                frequency_hz: lambda.sqrt() / (2.0 * std::f64::consts::PI),
-                dofs: plan.identified.clone(),
-                values: shape,
-            };
+            let measured = MeasuredMode::new(
+                mode.mode,
+                lambda.sqrt() / (2.0 * std::f64::consts::PI),
+                points(&run, &plan.identified),
+                shape,
+            );
             identifier.identify(&measured).unwrap().relative.unwrap()
         };
         for j in [0, 5, 17, plan.identified.len() - 1] {

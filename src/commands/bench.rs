@@ -10,7 +10,6 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 
 use crate::cli::BenchArgs;
-use jointid::model::Model;
 use jointid::study::{CellPlan, Study, StudyContext, simulate_cell};
 
 const MODEL: &str = include_str!("../../models/paper-case-1.toml");
@@ -37,7 +36,7 @@ noise = "uniform"
 csv = "bench.csv"
 "#
     );
-    let model = Model::from_toml(MODEL, Path::new("models/paper-case-1.toml"))?;
+    let model = jointid::model::from_toml(MODEL, Path::new("models/paper-case-1.toml"))?;
     Ok(Study::from_toml_with_model(
         &text,
         Path::new("bench.toml"),

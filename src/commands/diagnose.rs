@@ -3,10 +3,9 @@
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
-use jointid::diagnose::{DiagnoseSettings, Noise, diagnose};
+use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
-use jointid::model::Model;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::{diagnose as out, write_atomically};
 
@@ -23,8 +22,8 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let model = Model::from_path(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, model.node_count())?;
+    let model = jointid::model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let per_mode = match (args.n, args.m) {
         (None, None) => None,
         (Some(n), Some(m)) => Some(Settings {
@@ -34,10 +33,23 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         }),
         _ => bail!("--n and --m go together (or leave both out for the defaults)"),
     };
+    if !(args.pairing_window.is_finite()
+        && args.pairing_window > 0.0
+        && args.pairing_window <= 10.0)
+    {
+        bail!(
+            "--pairing-window {} is invalid: it is a relative half-width above 0 and at most 10",
+            args.pairing_window
+        );
+    }
     let settings = DiagnoseSettings {
         noise: Noise {
             frequency: args.frequency_noise,
             shape: args.shape_noise,
+        },
+        pairing: PairingRule {
+            window: args.pairing_window,
+            given: args.pair.clone(),
         },
         per_mode,
     };
@@ -50,7 +62,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: cannot write", path.display()))?;
     }
     if let Some(dir) = &args.plots {
-        let figures = diagnose_figures(&report, &measured, &model)?;
+        let figures = diagnose_figures(&report, &measured)?;
         let title = format!(
             "Diagnosis of {}: verdict {}",
             args.measured.display(),

@@ -5,15 +5,14 @@ use std::io::Write;
 use anyhow::{Context, bail};
 
 use crate::cli::IdentifyArgs;
-use jointid::identify::{Identifier, Settings};
+use jointid::identify::{Identifier, Selection, Settings};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
-use jointid::model::Model;
 use jointid::output::{identify as out, write_atomically};
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
-    let model = Model::from_path(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, model.node_count())?;
+    let model = jointid::model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let modal = ModalSolution::solve(&model.assemble())
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     let settings = Settings {
@@ -21,7 +20,32 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         m: args.m,
         weighting: args.weighting,
     };
-    let identifier = Identifier::for_joints(&model, &modal, settings)?;
+    let all = model.identified();
+    let (params, selection) = match args.params.as_deref() {
+        None => (all, Selection::All),
+        Some([auto]) if auto == "auto" => (all, Selection::Auto),
+        Some(names) => {
+            let mut chosen = Vec::with_capacity(names.len());
+            for name in names {
+                let Some(p) = all.iter().find(|p| &p.name == name) else {
+                    let known: Vec<&str> = all.iter().map(|p| p.name.as_str()).collect();
+                    bail!(
+                        "--params {name} is invalid: the model identifies {} (or give `auto`)",
+                        known.join(", ")
+                    );
+                };
+                if chosen
+                    .iter()
+                    .any(|c: &jointid::structure::Parameter| &c.name == name)
+                {
+                    bail!("--params lists {name} twice");
+                }
+                chosen.push(p.clone());
+            }
+            (chosen, Selection::All)
+        }
+    };
+    let identifier = Identifier::new(&modal, params, model.rigid, settings)?;
     let modes: Vec<usize> = match &args.modes {
         Some(list) => list.clone(),
         None => measured.modes().iter().map(|m| m.mode).collect(),
@@ -42,20 +66,15 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         };
         outcomes.push(
             identifier
-                .identify(mode)
+                .identify_selected(mode, identifier.basis_index(mode.mode)?, selection)
                 .with_context(|| format!("{}", args.measured.display()))?,
         );
     }
-    for o in &outcomes {
-        if let Err(rd) = &o.relative {
-            eprintln!(
-                "warning: mode {}: S_r has rank {} < q = {}: its corrections are left empty; retain more equations (--m) or measure more DOFs",
-                o.mode,
-                rd.rank,
-                identifier.parameters().len()
-            );
-        }
-    }
+    out::write_notes(
+        &mut std::io::stderr().lock(),
+        &outcomes,
+        identifier.parameters(),
+    )?;
     let rows = out::rows(&outcomes, identifier.parameters());
     match &args.out {
         Some(path) => write_atomically(path, |w| out::write_csv(w, &rows))

@@ -3,14 +3,14 @@
 use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
-use jointid::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
 use jointid::output::write_atomically;
 use jointid::simulate::{Errors, simulate};
+use jointid::structure::Observation;
 use jointid::study::NoiseKind;
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
-    let model = Model::from_path(&args.model)?;
-    let deformable = model.dof_count() - RIGID_BODY_MODES;
+    let model = jointid::model::from_path(&args.model)?;
+    let deformable = model.dof_count() - model.rigid;
     if args.modes == 0 || args.modes > deformable {
         bail!(
             "--modes {} is invalid: the model has deformable modes 1 to {deformable}",
@@ -29,13 +29,24 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         .noise
         .parse()
         .map_err(|e: String| anyhow::anyhow!("--noise {} is invalid: {e}", args.noise))?;
-    let dofs: Vec<usize> = (0..model.dof_count())
-        .filter(|&d| match args.measure {
-            Measure::W => dof_of_index(d).1 == Dof::W,
-            Measure::Theta => dof_of_index(d).1 == Dof::Theta,
-            Measure::All => true,
-        })
-        .collect();
+    let points: Vec<Observation> = match args.measure {
+        Measure::Sensors if model.sensors.is_empty() => bail!(
+            "--measure sensors: {} declares no [[sensor]]",
+            args.model.display()
+        ),
+        Measure::Sensors => model.sensors.clone(),
+        _ => (0..model.dof_count())
+            .filter(|&d| {
+                let rotation = model.dofs.get(d).direction.is_rotation();
+                match args.measure {
+                    Measure::W => !rotation,
+                    Measure::Theta => rotation,
+                    _ => true,
+                }
+            })
+            .map(|d| Observation::dof(&model.dofs, d))
+            .collect(),
+    };
     let modes: Vec<usize> = (1..=args.modes).collect();
     let errors = Errors {
         shape: args.shape_noise,
@@ -43,9 +54,9 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         kind,
         seed: args.seed,
     };
-    let measured = simulate(&model, &args.effects, &modes, &dofs, errors)?;
+    let measured = simulate(&model, &args.effects, &modes, &points, errors)?;
     write_atomically(&args.out, |w| {
-        measured.write_csv(w).map_err(std::io::Error::other)
+        measured.write_csv(w, &model).map_err(std::io::Error::other)
     })
     .with_context(|| format!("{}: cannot write", args.out.display()))
 }

@@ -22,12 +22,12 @@ use std::sync::Arc;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
-use super::pairing::{Pairing, Unpaired, pair};
+use super::pairing::{Pairing, PairingRule, Unpaired, pair};
 use super::sensitivity::eigen_derivative;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
-use crate::model::{Parameter, RIGID_BODY_MODES};
+use crate::structure::Parameter;
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
 pub const SHAPE_FLOOR: f64 = 0.02;
@@ -43,6 +43,19 @@ pub struct Noise {
     pub shape: f64,
 }
 
+/// Largest change of a fitted model parameter from its nominal value, as a factor either way
+/// (10^3): a fit that leaves this range has diverged or describes another structure.
+pub const RANGE_FACTOR: f64 = 1e3;
+
+/// What a calibration needs besides the model and the data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Calibration {
+    /// The stated measurement noise.
+    pub noise: Noise,
+    /// How measured modes pair with model modes.
+    pub pairing: PairingRule,
+}
+
 /// Why a fit failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FitError {
@@ -50,7 +63,7 @@ pub enum FitError {
     #[error(transparent)]
     Unpaired(#[from] Unpaired),
     /// A fitted model has no eigensolution.
-    #[error("the fitted model has no eigensolution: {0}")]
+    #[error("the fitted model has no eigensolution")]
     Modal(#[from] ModalError),
     /// More unknowns than data.
     #[error(
@@ -61,6 +74,20 @@ pub enum FitError {
         data: usize,
         /// Unknowns (joint and effect parameters, one scale per mode).
         parameters: usize,
+    },
+    /// A fitted parameter left its physical range.
+    #[error("the fit{with} took {name} to {value:.4e} {unit}, beyond a factor {RANGE_FACTOR:e} from its nominal {nominal:.4e}: refused (the data and the model disagree on more than this parameter; check the pairing, units and set-up)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
+    OutOfRange {
+        /// Effect fitted, if any.
+        effect: String,
+        /// The parameter.
+        name: String,
+        /// Its fitted value.
+        value: f64,
+        /// Its unit.
+        unit: &'static str,
+        /// Its nominal value.
+        nominal: f64,
     },
     /// Levenberg-Marquardt did not converge.
     #[error("the fit{with} did not converge in {iterations} iterations (chi^2 {chi2:.4e}): the data may be inconsistent with the model (check mode numbering, units and the stated noise)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
@@ -109,9 +136,10 @@ pub struct Fitted {
 }
 
 struct Problem<'a> {
-    ctx: &'a EffectContext,
+    ctx: &'a Arc<EffectContext>,
     measured: &'a MeasuredModes,
     noise: Noise,
+    pairing: &'a PairingRule,
     effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
     joint_p0: Vec<f64>,
     /// Per measured mode, sigma of each shape component.
@@ -148,6 +176,7 @@ impl Problem<'_> {
             .zip(x)
             .map(|(p, xi)| p * xi.exp() - p)
             .collect();
+        let structure = self.ctx.structure.with_delta(&delta);
         let scales = self.scales();
         let mut at = j;
         let effects = self
@@ -163,16 +192,30 @@ impl Problem<'_> {
             .collect();
         Configured {
             ctx: self.ctx.clone(),
-            model: self.ctx.model.with_joint_delta(&delta),
+            structure,
             effects,
         }
     }
 
-    fn admissible(&self, configured: &Configured) -> bool {
-        configured
-            .effects
-            .iter()
-            .all(|(e, t)| e.admissible(&configured.model, t).is_ok())
+    fn rigid(&self) -> usize {
+        self.ctx.structure.rigid
+    }
+
+    /// Refuses a model parameter beyond [`RANGE_FACTOR`] of its nominal value.
+    fn in_range(&self, x: &[f64], effect: &str) -> Result<(), FitError> {
+        let params = self.ctx.structure.identified();
+        for ((p, &p0), &xi) in params.iter().zip(&self.joint_p0).zip(x) {
+            if xi.is_nan() || xi.abs() > RANGE_FACTOR.ln() {
+                return Err(FitError::OutOfRange {
+                    effect: effect.to_string(),
+                    name: p.name.clone(),
+                    value: p0 * xi.exp(),
+                    unit: p.unit,
+                    nominal: p0,
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
@@ -188,8 +231,8 @@ impl Problem<'_> {
                 (modal.frequency_hz(s) - m.frequency_hz) / (self.noise.frequency * m.frequency_hz),
             );
             let sign = model_sign(&modal, s, m);
-            for ((&d, &v), &sigma) in m.dofs.iter().zip(&m.values).zip(&self.sigma[r]) {
-                residual.push((x[scale_at + r] * sign * y[(d, s)] - v) / sigma);
+            for ((p, &v), &sigma) in m.points.iter().zip(&m.values).zip(&self.sigma[r]) {
+                residual.push((x[scale_at + r] * sign * p.read_column(y, s) - v) / sigma);
             }
         }
         Ok(Evaluation {
@@ -203,8 +246,8 @@ impl Problem<'_> {
     fn jacobian(&self, x: &[f64], eval: &Evaluation, pairing: &Pairing) -> Mat<f64> {
         let params: Vec<(Parameter, f64)> = eval
             .configured
-            .model
-            .joint_parameters()
+            .structure
+            .identified()
             .into_iter()
             .map(|p| {
                 let v = p.value;
@@ -234,14 +277,15 @@ impl Problem<'_> {
                         * std::f64::consts::PI
                         * f.max(f64::MIN_POSITIVE));
                 jac[(row, col)] = chain * df / (self.noise.frequency * m.frequency_hz);
-                for (k, (&d, &sigma)) in m.dofs.iter().zip(&self.sigma[r]).enumerate() {
-                    jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * dy[d] / sigma;
+                for (k, (p, &sigma)) in m.points.iter().zip(&self.sigma[r]).enumerate() {
+                    jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * p.read(&dy) / sigma;
                 }
             }
-            for (k, (&d, &sigma)) in m.dofs.iter().zip(&self.sigma[r]).enumerate() {
-                jac[(row + 1 + k, scale_at + r)] = sign * eval.modal.vectors()[(d, s)] / sigma;
+            for (k, (p, &sigma)) in m.points.iter().zip(&self.sigma[r]).enumerate() {
+                jac[(row + 1 + k, scale_at + r)] =
+                    sign * p.read_column(eval.modal.vectors(), s) / sigma;
             }
-            row += 1 + m.dofs.len();
+            row += 1 + m.points.len();
         }
         jac
     }
@@ -265,10 +309,10 @@ impl Problem<'_> {
 /// +1 or -1: the sign that makes model mode `s` agree with the measured shape.
 fn model_sign(modal: &ModalSolution, s: usize, m: &crate::measured::MeasuredMode) -> f64 {
     let dot: f64 = m
-        .dofs
+        .points
         .iter()
         .zip(&m.values)
-        .map(|(&d, v)| modal.vectors()[(d, s)] * v)
+        .map(|(p, v)| p.read_column(modal.vectors(), s) * v)
         .sum();
     if dot < 0.0 { -1.0 } else { 1.0 }
 }
@@ -280,41 +324,38 @@ fn chi2(r: &[f64]) -> f64 {
 /// The model as given (`ctx.model`, no effect), only the shape scales c_r fitted: the
 /// starting point, described in the same terms as a fit.
 pub fn as_given(
-    ctx: &EffectContext,
+    ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, noise, &[], false)
+    run(ctx, measured, calibration, &[], false)
 }
 
 /// Fits the joints of `ctx.model` (and the parameters of `effects`, starting at zero) to the
 /// measured modes.
 pub fn fit(
-    ctx: &EffectContext,
+    ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, noise, effects, true)
+    run(ctx, measured, calibration, effects, true)
 }
 
 fn run(
-    ctx: &EffectContext,
+    ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
-    noise: Noise,
+    calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
     iterate: bool,
 ) -> Result<Fitted, FitError> {
-    let joint_p0: Vec<f64> = ctx
-        .model
-        .joint_parameters()
-        .iter()
-        .map(|p| p.value)
-        .collect();
+    let noise = calibration.noise;
+    let joint_p0: Vec<f64> = ctx.structure.identified().iter().map(|p| p.value).collect();
     let problem = Problem {
         ctx,
         measured,
         noise,
+        pairing: &calibration.pairing,
         effects: effects
             .iter()
             .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
@@ -333,7 +374,7 @@ fn run(
         joint_p0,
     };
     let unknowns = problem.joint_count() + problem.effect_count() + measured.modes().len();
-    let data: usize = measured.modes().iter().map(|m| 1 + m.dofs.len()).sum();
+    let data: usize = measured.modes().iter().map(|m| 1 + m.points.len()).sum();
     if data <= unknowns {
         return Err(FitError::TooFewData {
             data,
@@ -348,7 +389,7 @@ fn run(
     let mut x = vec![0.0; unknowns];
     let start = problem.configured(&x);
     let start_modal = ModalSolution::solve(&start.assemble())?;
-    let mut pairing = pair(&start_modal, measured, RIGID_BODY_MODES)?;
+    let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
     initial_scales(&problem, &start_modal, &pairing, &mut x);
     if !iterate {
         let eval = problem.evaluate(&x, &pairing)?;
@@ -373,8 +414,9 @@ fn run(
         total_iterations += iterations;
         let eval = problem.evaluate(&x, &pairing)?;
         last_chi2 = chi2(&eval.residual);
-        let repaired = pair(&eval.modal, measured, RIGID_BODY_MODES)?;
+        let repaired = pair(&eval.modal, measured, problem.rigid(), problem.pairing)?;
         if repaired.model_index == pairing.model_index {
+            problem.in_range(&x, &name)?;
             return Ok(finish(
                 &problem,
                 x,
@@ -401,8 +443,8 @@ fn initial_scales(problem: &Problem, modal: &ModalSolution, pairing: &Pairing, x
         let s = pairing.model_index[r];
         let sign = model_sign(modal, s, m);
         let (mut num, mut den) = (0.0, 0.0);
-        for ((&d, &v), &sigma) in m.dofs.iter().zip(&m.values).zip(&problem.sigma[r]) {
-            let yhat = sign * modal.vectors()[(d, s)];
+        for ((p, &v), &sigma) in m.points.iter().zip(&m.values).zip(&problem.sigma[r]) {
+            let yhat = sign * p.read_column(modal.vectors(), s);
             num += yhat * v / (sigma * sigma);
             den += yhat * yhat / (sigma * sigma);
         }
@@ -477,7 +519,7 @@ fn levenberg_marquardt(
             for &i in &bounded {
                 trial[i] = trial[i].max(0.0);
             }
-            if !problem.admissible(&problem.configured(&trial)) {
+            if !problem.configured(&trial).admissible() {
                 mu *= 10.0;
                 continue;
             }
@@ -518,8 +560,8 @@ fn finish(
         .unwrap_or_else(|_| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
     let mut estimates: Vec<Estimate> = eval
         .configured
-        .model
-        .joint_parameters()
+        .structure
+        .identified()
         .iter()
         .enumerate()
         .map(|(i, p)| Estimate {
@@ -559,6 +601,7 @@ mod tests {
     use crate::model::effects::by_name;
     use crate::model::fixtures::paper_model;
     use crate::simulate::{Errors, simulate};
+    use crate::structure::Observation;
     use crate::study::NoiseKind;
 
     /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
@@ -566,7 +609,10 @@ mod tests {
     #[test]
     fn residual_jacobian_matches_central_differences() {
         let model = paper_model(1e7, 1e4);
-        let dofs: Vec<usize> = (0..38).step_by(2).collect();
+        let dofs: Vec<Observation> = (0..38)
+            .step_by(2)
+            .map(|d| Observation::dof(&model.dofs, d))
+            .collect();
         let errors = Errors {
             shape: 0.02,
             frequency: 0.001,
@@ -582,20 +628,22 @@ mod tests {
         )
         .unwrap();
         let nominal = ModalSolution::solve(&model.assemble()).unwrap();
-        let ctx = EffectContext {
-            model: model.clone(),
-            sensor_nodes: (0..19).collect(),
-            first_elastic_hz: nominal.frequency_hz(2),
-        };
+        let ctx = Arc::new(EffectContext::new(
+            model.clone(),
+            &dofs,
+            nominal.frequency_hz(2),
+        ));
         let noise = Noise {
             frequency: 0.001,
             shape: 0.02,
         };
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
+        let rule = PairingRule::default();
         let problem = Problem {
             ctx: &ctx,
             measured: &measured,
             noise,
+            pairing: &rule,
             effects: effects.iter().map(|e| (e.clone(), vec![0.0])).collect(),
             joint_p0: vec![1e7, 1e4],
             sigma: measured
@@ -610,7 +658,7 @@ mod tests {
                 .collect(),
         };
         let x = vec![0.1, -0.2, 2.0, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
-        let pairing = pair(&nominal, &measured, RIGID_BODY_MODES).unwrap();
+        let pairing = pair(&nominal, &measured, 2, &rule).unwrap();
         let eval = problem.evaluate(&x, &pairing).unwrap();
         let jac = problem.jacobian(&x, &eval, &pairing);
         // Eigenvalues are accurate to about eps * lambda_max (2e-3 here) in absolute terms: the

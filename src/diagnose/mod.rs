@@ -25,15 +25,16 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-pub use fit::{Estimate, FitError, Fitted, Noise};
+pub use fit::{Calibration, Estimate, FitError, Fitted, Noise};
+pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
 
 use crate::identify::{Settings, Weighting};
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Effect, EffectContext, candidates};
-use crate::model::{Dof, Model, RIGID_BODY_MODES, dof_of_index};
 use crate::stats::chi2_sf;
+use crate::structure::Structure;
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -44,11 +45,21 @@ pub const FIT_ALPHA: f64 = 0.001;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DiagnoseError {
     /// The nominal model has no eigensolution.
-    #[error("the model has no eigensolution: {0}")]
+    #[error("the model has no eigensolution")]
     Modal(#[from] ModalError),
     /// The joint-only calibration failed.
-    #[error("calibration of the joint: {0}")]
+    #[error("calibration of the joint")]
     Fit(#[from] FitError),
+    /// The calibration ended with a larger error than the model as given.
+    #[error(
+        "the calibration of the joint ended with chi^2 {after:.4e} above the model as given ({before:.4e}): refused (the pairing of modes changed on the way; check it with --pair)"
+    )]
+    ErrorGrew {
+        /// chi^2 of the model as given.
+        before: f64,
+        /// chi^2 after the calibration.
+        after: f64,
+    },
     /// Fewer modes than joint parameters.
     #[error(
         "{modes} measured mode(s) cannot calibrate {parameters} joint parameters: measure at least {parameters} modes"
@@ -62,10 +73,12 @@ pub enum DiagnoseError {
 }
 
 /// Settings of a diagnosis.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DiagnoseSettings {
     /// The stated measurement noise.
     pub noise: Noise,
+    /// How measured modes pair with model modes.
+    pub pairing: PairingRule,
     /// The paper's per-mode identification (None: n = the fewest identified DOFs of a mode,
     /// at most N; m = min(n - 2, 6); inverse weighting).
     pub per_mode: Option<Settings>,
@@ -73,11 +86,12 @@ pub struct DiagnoseSettings {
 
 /// Diagnoses `measured` against `model`.
 pub fn diagnose(
-    model: &Model,
+    model: &Structure,
     measured: &MeasuredModes,
     settings: DiagnoseSettings,
 ) -> Result<Report, DiagnoseError> {
-    let joint_parameters = model.joint_parameters().len();
+    let rigid = model.rigid;
+    let joint_parameters = model.identified().len();
     if measured.modes().len() < joint_parameters {
         return Err(DiagnoseError::TooFewModes {
             modes: measured.modes().len(),
@@ -85,32 +99,33 @@ pub fn diagnose(
         });
     }
     let nominal = ModalSolution::solve(&model.assemble())?;
-    let mut sensor_nodes: Vec<usize> = measured
-        .modes()
-        .iter()
-        .flat_map(|m| m.dofs.iter().map(|&d| dof_of_index(d)))
-        .filter(|(_, dof)| *dof == Dof::W)
-        .map(|(node, _)| node)
-        .collect();
-    sensor_nodes.sort_unstable();
-    sensor_nodes.dedup();
-    let ctx = EffectContext {
-        model: model.clone(),
-        sensor_nodes,
-        first_elastic_hz: nominal.frequency_hz(RIGID_BODY_MODES),
-    };
+    let ctx = Arc::new(EffectContext::new(
+        model.clone(),
+        &measured.points(),
+        nominal.frequency_hz(rigid),
+    ));
     let noise = settings.noise;
-    let initial = fit::as_given(&ctx, measured, noise)?;
-    let base = fit::fit(&ctx, measured, noise, &[])?;
+    let calibration = Calibration {
+        noise,
+        pairing: settings.pairing.clone(),
+    };
+    let initial = fit::as_given(&ctx, measured, &calibration)?;
+    let base = fit::fit(&ctx, measured, &calibration, &[])?;
+    if base.chi2 > initial.chi2 * (1.0 + 1e-9) {
+        return Err(DiagnoseError::ErrorGrew {
+            before: initial.chi2,
+            after: base.chi2,
+        });
+    }
     let library: Vec<Arc<dyn Effect>> = candidates()
         .into_iter()
-        .filter(|c| applicable(c.as_ref(), &ctx))
+        .filter(|c| c.applies(&ctx))
         .collect();
     let tried = library.len() as f64;
     let fits: Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> = library
         .into_par_iter()
         .map(|c| {
-            let result = fit::fit(&ctx, measured, noise, std::slice::from_ref(&c));
+            let result = fit::fit(&ctx, measured, &calibration, std::slice::from_ref(&c));
             (c, result)
         })
         .collect();
@@ -194,8 +209,8 @@ pub fn diagnose(
         .model_index
         .iter()
         .zip(measured.modes())
-        .filter(|(s, m)| **s != m.mode - 1 + RIGID_BODY_MODES)
-        .map(|(s, m)| format!("measured mode {} pairs with model mode {} (MAC): a swapped or missing mode; it is compared with that model mode", m.mode, s + 1 - RIGID_BODY_MODES))
+        .filter(|(s, m)| **s != m.mode - 1 + rigid)
+        .map(|(s, m)| format!("measured mode {} pairs with model mode {} (MAC): a swapped or missing mode; it is compared with that model mode", m.mode, s + 1 - rigid))
         .collect();
     Ok(Report {
         verdict,
@@ -221,26 +236,18 @@ pub fn diagnose(
     })
 }
 
-/// Whether an effect can act on this data (a sensor mass needs measured translations).
-fn applicable(effect: &dyn Effect, ctx: &EffectContext) -> bool {
-    let theta: Vec<f64> = effect.parameters(ctx).iter().map(|p| p.scale).collect();
-    effect
-        .derivatives(ctx, &theta)
-        .iter()
-        .any(|(k, m)| !k.is_zero() || !m.is_zero())
-}
-
-fn default_per_mode(model: &Model, measured: &MeasuredModes) -> Settings {
+fn default_per_mode(model: &Structure, measured: &MeasuredModes) -> Settings {
     let fewest = measured
         .modes()
         .iter()
-        .map(|m| m.dofs.len())
+        .map(|m| m.points.len())
         .min()
         .unwrap_or(0);
-    let n = fewest.min(model.dof_count()).max(RIGID_BODY_MODES + 2);
+    let rigid = model.rigid;
+    let n = fewest.min(model.dof_count()).max(rigid + 2);
     Settings {
         n,
-        m: (n - RIGID_BODY_MODES).min(6),
+        m: (n - rigid).min(6),
         weighting: Weighting::Inverse,
     }
 }

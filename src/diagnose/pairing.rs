@@ -1,11 +1,41 @@
-//! Pairing measured modes with model modes by the modal assurance criterion,
-//! MAC(a, b) = (a . b)^2 / ((a . a)(b . b)), over the measured DOFs.
+//! Pairing measured modes with model modes: by the modal assurance criterion
+//! MAC(a, b) = (a . b)^2 / ((a . a)(b . b)) over the measured points, among the model modes
+//! whose frequency lies within a window around the measured frequency, or by numbers the user
+//! gives.
+//!
+//! With three or four sensors a MAC alone cannot tell modes apart: some high model mode always
+//! resembles any short vector. The frequency window keeps the candidates to those a calibration
+//! can reach; a measured mode with no candidate that resembles it is an error naming it, never
+//! a silent pairing with whatever mode is left.
 
 use crate::measured::MeasuredModes;
 use crate::modal::ModalSolution;
 
 /// Smallest MAC accepted for a pair.
 pub const MIN_MAC: f64 = 0.5;
+
+/// Default half-width of the frequency window, relative to the measured frequency.
+pub const DEFAULT_WINDOW: f64 = 0.5;
+
+/// How measured modes are paired with model modes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairingRule {
+    /// Half-width of the frequency window: a model mode is a candidate for measured mode r
+    /// when |f_model - f_r| <= window f_r.
+    pub window: f64,
+    /// Pairs given by the user: (measured mode r, model deformable mode t), 1-based. A mode
+    /// listed here is paired with that model mode whatever its frequency and MAC.
+    pub given: Vec<(usize, usize)>,
+}
+
+impl Default for PairingRule {
+    fn default() -> Self {
+        Self {
+            window: DEFAULT_WINDOW,
+            given: Vec::new(),
+        }
+    }
+}
 
 /// MAC of two vectors (0 when either is zero).
 pub fn mac(a: &[f64], b: &[f64]) -> f64 {
@@ -29,74 +59,164 @@ pub struct Pairing {
     pub mac: Vec<f64>,
 }
 
-/// A measured mode no model mode resembles.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "measured mode {mode} pairs with no model mode: its best MAC is {best_mac:.3} (model mode {best_mode}, below {MIN_MAC}); check the mode's shape rows and numbering, or leave it out"
-)]
-pub struct Unpaired {
-    /// Measured mode r.
+/// A model mode near a measured one, for the message of an unpaired mode.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Near {
+    /// The model's deformable mode number (1-based).
     pub mode: usize,
-    /// Best MAC found.
-    pub best_mac: f64,
-    /// The model's deformable mode number with that MAC.
-    pub best_mode: usize,
+    /// Its frequency, Hz.
+    pub frequency_hz: f64,
+    /// Its MAC with the measured mode.
+    pub mac: f64,
 }
 
-/// Pairs greedily by decreasing MAC among the deformable model modes (index >= `rigid`), each
-/// model mode used once.
+/// Why a measured mode has no partner.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Unpaired {
+    /// No model mode in the window resembles it.
+    #[error(
+        "measured mode {mode} ({frequency_hz:.4} Hz) has no credible partner: no model mode within +-{pct}% of its frequency has a MAC >= {MIN_MAC} ({near}); widen the window (--pairing-window), pair it by number (--pair {mode}:t), or leave the mode out",
+        pct = 100.0 * window,
+        near = describe(nearest)
+    )]
+    NoPartner {
+        /// Measured mode r.
+        mode: usize,
+        /// Its frequency.
+        frequency_hz: f64,
+        /// The window used.
+        window: f64,
+        /// The model modes nearest in frequency.
+        nearest: Vec<Near>,
+    },
+    /// A given pair names a mode that does not exist.
+    #[error("--pair {mode}:{model_mode}: {reason}")]
+    BadGiven {
+        /// Measured mode r.
+        mode: usize,
+        /// Model mode t.
+        model_mode: usize,
+        /// Why.
+        reason: String,
+    },
+}
+
+fn describe(nearest: &[Near]) -> String {
+    if nearest.is_empty() {
+        return "the model has no deformable mode".into();
+    }
+    let list: Vec<String> = nearest
+        .iter()
+        .map(|n| {
+            format!(
+                "model mode {} at {:.4} Hz, MAC {:.3}",
+                n.mode, n.frequency_hz, n.mac
+            )
+        })
+        .collect();
+    format!("nearest: {}", list.join("; "))
+}
+
+/// Pairs every measured mode: the given pairs first, then the rest greedily by decreasing MAC
+/// among the deformable model modes (index >= `rigid`) within the window, each model mode used
+/// once. `modal` holds every model mode the window can reach.
 pub fn pair(
     modal: &ModalSolution,
     measured: &MeasuredModes,
     rigid: usize,
+    rule: &PairingRule,
 ) -> Result<Pairing, Unpaired> {
     let y = modal.vectors();
-    let macs: Vec<Vec<f64>> = measured
-        .modes()
-        .iter()
-        .map(|m| {
-            (rigid..modal.len())
-                .map(|t| {
-                    mac(
-                        &m.values,
-                        &m.dofs.iter().map(|&d| y[(d, t)]).collect::<Vec<_>>(),
-                    )
-                })
-                .collect()
-        })
-        .collect();
-    let mut candidates: Vec<(usize, usize)> = (0..macs.len())
-        .flat_map(|r| (0..macs[r].len()).map(move |t| (r, t)))
-        .collect();
-    candidates.sort_by(|a, b| macs[b.0][b.1].total_cmp(&macs[a.0][a.1]).then(a.cmp(b)));
-    let mut model_index = vec![usize::MAX; macs.len()];
+    let count = measured.modes().len();
+    let mac_with = |r: usize, t: usize| {
+        let m = &measured.modes()[r];
+        let model: Vec<f64> = m.points.iter().map(|p| p.read_column(y, t)).collect();
+        mac(&m.values, &model)
+    };
+    let mut model_index = vec![usize::MAX; count];
     let mut used = vec![false; modal.len()];
-    for (r, t) in candidates {
-        if model_index[r] == usize::MAX && !used[t] && macs[r][t] >= MIN_MAC {
-            model_index[r] = t + rigid;
+    for &(mode, t) in &rule.given {
+        let bad = |reason: String| Unpaired::BadGiven {
+            mode,
+            model_mode: t,
+            reason,
+        };
+        let r = measured
+            .modes()
+            .iter()
+            .position(|m| m.mode == mode)
+            .ok_or_else(|| bad(format!("the data have no mode {mode}")))?;
+        let index = (t + rigid)
+            .checked_sub(1)
+            .filter(|&i| t >= 1 && i < modal.len())
+            .ok_or_else(|| {
+                bad(format!(
+                    "the model's deformable modes computed are 1 to {}",
+                    modal.len() - rigid
+                ))
+            })?;
+        if used[index] || model_index[r] != usize::MAX {
+            return Err(bad("each measured and model mode may be paired once".into()));
+        }
+        model_index[r] = index;
+        used[index] = true;
+    }
+    let mut candidates: Vec<(f64, usize, usize)> = Vec::new();
+    for (r, m) in measured.modes().iter().enumerate() {
+        if model_index[r] != usize::MAX {
+            continue;
+        }
+        for t in rigid..modal.len() {
+            let f = modal.frequency_hz(t);
+            if (f - m.frequency_hz).abs() <= rule.window * m.frequency_hz {
+                let value = mac_with(r, t);
+                if value >= MIN_MAC {
+                    candidates.push((value, r, t));
+                }
+            }
+        }
+    }
+    candidates.sort_by(|a, b| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+    for (_, r, t) in candidates {
+        if model_index[r] == usize::MAX && !used[t] {
+            model_index[r] = t;
             used[t] = true;
         }
     }
-    for (r, &index) in model_index.iter().enumerate() {
-        if index == usize::MAX {
-            let (best, &best_mac) = macs[r]
-                .iter()
-                .enumerate()
-                .max_by(|a, b| a.1.total_cmp(b.1))
-                .expect("a model has deformable modes");
-            return Err(Unpaired {
-                mode: measured.modes()[r].mode,
-                best_mac,
-                best_mode: best + 1,
-            });
-        }
+    if let Some(r) = model_index.iter().position(|&i| i == usize::MAX) {
+        let m = &measured.modes()[r];
+        let mut nearest: Vec<Near> = (rigid..modal.len())
+            .map(|t| Near {
+                mode: t + 1 - rigid,
+                frequency_hz: modal.frequency_hz(t),
+                mac: mac_with(r, t),
+            })
+            .collect();
+        nearest.sort_by(|a, b| {
+            (a.frequency_hz - m.frequency_hz)
+                .abs()
+                .total_cmp(&(b.frequency_hz - m.frequency_hz).abs())
+        });
+        nearest.truncate(3);
+        return Err(Unpaired::NoPartner {
+            mode: m.mode,
+            frequency_hz: m.frequency_hz,
+            window: rule.window,
+            nearest,
+        });
     }
-    let mac = model_index
-        .iter()
-        .zip(&macs)
-        .map(|(&i, m)| m[i - rigid])
-        .collect();
+    let mac = (0..count).map(|r| mac_with(r, model_index[r])).collect();
     Ok(Pairing { model_index, mac })
+}
+
+/// The highest frequency the window can reach from the measured modes, Hz: the model must be
+/// solved up to it.
+pub fn reach_hz(measured: &MeasuredModes, rule: &PairingRule) -> f64 {
+    measured
+        .modes()
+        .iter()
+        .map(|m| m.frequency_hz * (1.0 + rule.window))
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]
@@ -105,37 +225,130 @@ mod tests {
     use crate::measured::MeasuredModes;
     use crate::model::fixtures::paper_model;
     use crate::simulate::exact_modes;
+    use crate::structure::Observation;
 
-    #[test]
-    fn exact_modes_pair_with_themselves_and_a_swap_is_found() {
-        let modal = ModalSolution::solve(&paper_model(1e7, 1e4).assemble()).unwrap();
-        let dofs: Vec<usize> = (0..38).step_by(2).collect();
-        let exact = exact_modes(&modal, &[1, 2, 3, 4], &dofs);
-        let p = pair(&modal, &exact, 2).unwrap();
-        assert_eq!(p.model_index, vec![2, 3, 4, 5]);
-        assert!(p.mac.iter().all(|&m| (m - 1.0).abs() < 1e-12));
-        // Mislabel modes 2 and 3 (a swap in the test report): pairing follows the shapes.
-        let mut modes = exact.modes().to_vec();
-        modes[1].mode = 3;
-        modes[2].mode = 2;
-        let swapped = pair(&modal, &MeasuredModes::new(modes), 2).unwrap();
-        assert_eq!(swapped.model_index, vec![2, 4, 3, 5]);
+    fn points(model: &crate::structure::Structure, dofs: &[usize]) -> Vec<Observation> {
+        dofs.iter()
+            .map(|&d| Observation::dof(&model.dofs, d))
+            .collect()
     }
 
     #[test]
-    fn a_shape_like_no_mode_is_unpaired() {
-        let modal = ModalSolution::solve(&paper_model(1e7, 1e4).assemble()).unwrap();
-        // A pseudo-random pattern over all 38 DOFs resembles no mode (with few DOFs, some high
-        // mode always does).
-        let all: Vec<usize> = (0..38).collect();
-        let mut modes = exact_modes(&modal, &[1], &all).modes().to_vec();
+    fn exact_modes_pair_with_themselves_and_a_swap_is_found() {
+        let model = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let dofs: Vec<usize> = (0..38).step_by(2).collect();
+        let exact = exact_modes(&modal, 2, &[1, 2, 3, 4], &points(&model, &dofs));
+        let rule = PairingRule::default();
+        let p = pair(&modal, &exact, 2, &rule).unwrap();
+        assert_eq!(p.model_index, vec![2, 3, 4, 5]);
+        assert!(p.mac.iter().all(|&m| (m - 1.0).abs() < 1e-12));
+        // Two modes whose frequencies were swapped in the test report: with a window wide
+        // enough to reach both, the shapes decide.
+        let mut modes = exact.modes().to_vec();
+        let (f1, f2) = (modes[1].frequency_hz, modes[2].frequency_hz);
+        modes[1].frequency_hz = f2;
+        modes[2].frequency_hz = f1;
+        let wide = PairingRule {
+            window: 3.0,
+            ..rule.clone()
+        };
+        let swapped = pair(&modal, &MeasuredModes::new(modes.clone()), 2, &wide).unwrap();
+        assert_eq!(swapped.model_index, vec![2, 3, 4, 5]);
+        // Given pairs override.
+        let given = PairingRule {
+            given: vec![(2, 3), (3, 2)],
+            ..wide
+        };
+        let forced = pair(&modal, &MeasuredModes::new(modes), 2, &given).unwrap();
+        assert_eq!(forced.model_index, vec![2, 4, 3, 5]);
+    }
+
+    #[test]
+    fn three_sensors_cannot_pair_a_mode_with_a_high_model_mode() {
+        // A fine mesh and three sensors: many high model modes resemble any three-component
+        // vector; the window keeps the pairing to the right mode.
+        let mut chain = crate::model::fixtures::paper_chain(1e7, 1e4);
+        for beam in &mut chain.beams {
+            beam.elements = (beam.length / 0.005).round() as usize;
+        }
+        let model = chain.build();
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let sensors: Vec<Observation> = [0.02, 0.27, 0.48]
+            .iter()
+            .map(|&x| model.dofs.at_x(x, crate::structure::Direction::W).unwrap())
+            .collect();
+        // The test's structure: the joint 30% stiffer than the model's, shapes with 2% errors.
+        let truth = model.with_delta(&[3e6, 3e3]);
+        let errors = crate::simulate::Errors {
+            shape: 0.02,
+            frequency: 0.0,
+            kind: crate::study::NoiseKind::Gaussian,
+            seed: 5,
+        };
+        let exact = crate::simulate::measured_modes(
+            &ModalSolution::solve(&truth.assemble()).unwrap(),
+            2,
+            &[1, 2, 3, 4, 5, 6],
+            &sensors,
+            errors,
+        );
+        // Modes 3 to 6 each have some other model mode with a MAC above 0.99 on three sensors.
+        let lookalikes = (0..6)
+            .filter(|&r| {
+                let m = &exact.modes()[r];
+                (2..modal.len()).filter(|&t| t != r + 2).any(|t| {
+                    let model: Vec<f64> = m
+                        .points
+                        .iter()
+                        .map(|p| p.read_column(modal.vectors(), t))
+                        .collect();
+                    mac(&m.values, &model) > 0.99
+                })
+            })
+            .count();
+        assert!(lookalikes >= 3, "{lookalikes}");
+        // By MAC alone (no window) some mode pairs wrongly; within the window none does.
+        let anywhere = PairingRule {
+            window: f64::INFINITY,
+            ..PairingRule::default()
+        };
+        let by_mac = pair(&modal, &exact, 2, &anywhere).unwrap();
+        assert_ne!(by_mac.model_index, vec![2, 3, 4, 5, 6, 7]);
+        let p = pair(&modal, &exact, 2, &PairingRule::default()).unwrap();
+        assert_eq!(p.model_index, vec![2, 3, 4, 5, 6, 7]);
+    }
+
+    #[test]
+    fn a_mode_with_no_partner_in_the_window_is_named() {
+        let model = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let dofs: Vec<usize> = (0..38).collect();
+        let mut modes = exact_modes(&modal, 2, &[1], &points(&model, &dofs))
+            .modes()
+            .to_vec();
+        // A shape like no mode.
         modes[0].values = (0..38).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
-        let err = pair(&modal, &MeasuredModes::new(modes), 2).unwrap_err();
-        assert_eq!(err.mode, 1);
-        assert!(err.best_mac < MIN_MAC);
+        let err = pair(
+            &modal,
+            &MeasuredModes::new(modes),
+            2,
+            &PairingRule::default(),
+        )
+        .unwrap_err();
+        let text = err.to_string();
         assert!(
-            err.to_string()
-                .starts_with("measured mode 1 pairs with no model mode")
+            text.starts_with("measured mode 1 (150.0539 Hz) has no credible partner: no model mode within +-50% of its frequency has a MAC >= 0.5 (nearest: model mode 1 at 150.0539 Hz, MAC "),
+            "{text}"
+        );
+        let bad = PairingRule {
+            given: vec![(1, 99)],
+            ..PairingRule::default()
+        };
+        let exact = exact_modes(&modal, 2, &[1], &points(&model, &dofs));
+        assert_eq!(
+            pair(&modal, &exact, 2, &bad).unwrap_err().to_string(),
+            "--pair 1:99: the model's deformable modes computed are 1 to 36"
         );
     }
 

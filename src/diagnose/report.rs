@@ -8,8 +8,8 @@ use super::pairing::mac;
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings};
 use crate::measured::MeasuredModes;
-use crate::model::RIGID_BODY_MODES;
 use crate::stats::chi2_sf;
+use crate::structure::observe;
 
 /// The verdict of a diagnosis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -82,7 +82,7 @@ impl ErrorSummary {
             .enumerate()
             .map(|(r, m)| {
                 let s = fitted.pairing.model_index[r];
-                let model: Vec<f64> = m.dofs.iter().map(|&d| y[(d, s)]).collect();
+                let model: Vec<f64> = m.points.iter().map(|p| p.read_column(y, s)).collect();
                 let sign = if model.iter().zip(&m.values).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
                     -1.0
                 } else {
@@ -97,7 +97,7 @@ impl ErrorSummary {
                 let f = fitted.modal.frequency_hz(s);
                 ModeError {
                     mode: m.mode,
-                    model_mode: s + 1 - RIGID_BODY_MODES,
+                    model_mode: s + 1 - fitted.configured.structure.rigid,
                     frequency_measured_hz: m.frequency_hz,
                     frequency_model_hz: f,
                     frequency_error_pct: 100.0 * (f - m.frequency_hz) / m.frequency_hz,
@@ -171,9 +171,10 @@ pub fn per_mode_corrections(
     noise: Noise,
     settings: Settings,
 ) -> Vec<ModeCorrection> {
-    let params = fitted.configured.model.joint_parameters();
+    let structure = &fitted.configured.structure;
+    let params = structure.identified();
     let values: Vec<f64> = params.iter().map(|p| p.value).collect();
-    let Ok(identifier) = Identifier::new(&fitted.modal, params.clone(), RIGID_BODY_MODES, settings)
+    let Ok(identifier) = Identifier::new(&fitted.modal, params.clone(), structure.rigid, settings)
     else {
         return Vec::new();
     };
@@ -181,7 +182,7 @@ pub fn per_mode_corrections(
     for (r, m) in measured.modes().iter().enumerate() {
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
-        let std = Projector::new(identifier.basis(), &m.dofs)
+        let std = Projector::new(&observe(identifier.basis(), &m.points))
             .ok()
             .and_then(|projector| {
                 let jac = jacobian(

@@ -9,7 +9,7 @@
 //! for M-normalised vectors and a simple eigenvalue lambda_s.
 
 use crate::modal::ModalSolution;
-use crate::model::SparseSym;
+use crate::structure::SparseSym;
 
 /// d lambda_s and d y_s for the derivative matrices `dk`, `dm` of one parameter.
 pub fn eigen_derivative(
@@ -52,11 +52,11 @@ mod tests {
     fn eigen_derivatives_match_central_differences() {
         let model = paper_model(1e7, 1e4);
         let nominal = ModalSolution::solve(&model.assemble()).unwrap();
-        let ctx = EffectContext {
-            model: model.clone(),
-            sensor_nodes: vec![],
-            first_elastic_hz: nominal.frequency_hz(2),
-        };
+        let ctx = std::sync::Arc::new(EffectContext::new(
+            model.clone(),
+            &[],
+            nominal.frequency_hz(2),
+        ));
         let joint_mass = candidates()
             .into_iter()
             .find(|e| e.name() == "joint_mass")
@@ -64,7 +64,7 @@ mod tests {
         let at = |k2: f64, m: f64| {
             let configured = Configured {
                 ctx: ctx.clone(),
-                model: paper_model(1e7, k2),
+                structure: paper_model(1e7, k2),
                 effects: vec![(joint_mass.clone(), vec![m])],
             };
             ModalSolution::solve(&configured.assemble()).unwrap()
@@ -73,10 +73,10 @@ mod tests {
         let base = at(k2, m);
         let configured = Configured {
             ctx: ctx.clone(),
-            model: paper_model(1e7, k2),
+            structure: paper_model(1e7, k2),
             effects: vec![(joint_mass.clone(), vec![m])],
         };
-        let k2_param = &configured.model.joint_parameters()[1];
+        let k2_param = &configured.structure.identified()[1];
         let mass_param = &configured.effect_parameters()[0];
         for (param, (plus, minus), h) in [
             (

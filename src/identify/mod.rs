@@ -11,6 +11,7 @@
 //! 4. Z_r: weighted least squares (13) by QR ([`wls`]); the correction of parameter i is
 //!    Delta p_i = p_i Z_r(i) (eq. (8)).
 
+pub mod identifiability;
 pub mod projection;
 pub mod propagation;
 pub mod system;
@@ -19,6 +20,7 @@ pub mod wls;
 
 use faer::Mat;
 
+pub use identifiability::{MIN_RESOLUTION, Selection};
 pub use projection::{ProjectionError, Projector};
 pub use system::{LANES, Lanes, ModeSystem};
 pub use weighting::{RetainedRows, Weighting};
@@ -26,7 +28,7 @@ pub use wls::RankDeficient;
 
 use crate::measured::MeasuredMode;
 use crate::modal::{ModalSolution, lambda_to_hz};
-use crate::model::{Model, Parameter, RIGID_BODY_MODES};
+use crate::structure::{Parameter, Structure, observe};
 
 /// The method's settings: basis size n, retained equations m, weighting W.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,12 +91,12 @@ pub enum IdentifyError {
         n: usize,
     },
     /// The measured shape cannot be projected on the sub-basis.
-    #[error("mode {mode}: {source}")]
+    #[error("mode {mode}: {cause}")]
     Projection {
         /// Mode r.
         mode: usize,
         /// Why.
-        source: ProjectionError,
+        cause: ProjectionError,
     },
 }
 
@@ -124,19 +126,25 @@ pub struct ModeOutcome {
     pub g: Vec<f64>,
     /// Condition number of W S_r (infinite when rank deficient).
     pub condition: f64,
-    /// Z_r = Delta p_i / p_i, or the rank of a rank-deficient S_r.
+    /// Z_r = Delta p_i / p_i (0 for a parameter held on this mode), or the rank of a
+    /// rank-deficient S_r.
     pub relative: Result<Vec<f64>, RankDeficient>,
+    /// The resolution of every parameter on this mode, all parameters together
+    /// ([`identifiability::resolution`]).
+    pub resolution: Vec<f64>,
+    /// Whether each parameter was identified on this mode (false: held at its value).
+    pub solved: Vec<bool>,
 }
 
 impl Identifier {
-    /// The joint identification of the paper: parameters k1, k2 of every joint of `model`,
-    /// sub-basis from its modal solution.
-    pub fn for_joints(
-        model: &Model,
+    /// The identification of the paper on a structure: its identified parameters (k1, k2 of
+    /// every joint of a chain, less those held fixed), sub-basis from its modal solution.
+    pub fn for_structure(
+        structure: &Structure,
         modal: &ModalSolution,
         settings: Settings,
     ) -> Result<Self, IdentifyError> {
-        Self::new(modal, model.joint_parameters(), RIGID_BODY_MODES, settings)
+        Self::new(modal, structure.identified(), structure.rigid, settings)
     }
 
     /// General form: any parameters with their derivatives, `rigid` rigid-body modes first.
@@ -194,18 +202,17 @@ impl Identifier {
         self.settings
     }
 
-    /// Basis index s_r (0-based) of deformable mode r, checked to lie in the sub-basis.
+    /// Basis index s_r (0-based) of deformable mode r >= 1, checked to lie in the sub-basis.
     pub fn basis_index(&self, mode: usize) -> Result<usize, IdentifyError> {
-        let s = mode - 1 + self.rigid;
-        if s >= self.settings.n {
-            return Err(IdentifyError::ModeBeyondBasis {
+        match (mode - 1).checked_add(self.rigid) {
+            Some(s) if s < self.settings.n => Ok(s),
+            _ => Err(IdentifyError::ModeBeyondBasis {
                 mode,
-                index: s + 1,
+                index: (mode - 1).saturating_add(self.rigid).saturating_add(1),
                 rigid: self.rigid,
                 n: self.settings.n,
-            });
+            }),
         }
-        Ok(s)
     }
 
     /// The retained, weighted system of the mode paired with basis index `s_r`.
@@ -227,6 +234,16 @@ impl Identifier {
         measured: &MeasuredMode,
         s_r: usize,
     ) -> Result<ModeOutcome, IdentifyError> {
+        self.identify_selected(measured, s_r, Selection::All)
+    }
+
+    /// As [`Identifier::identify_paired`], identifying the parameters `selection` keeps.
+    pub fn identify_selected(
+        &self,
+        measured: &MeasuredMode,
+        s_r: usize,
+        selection: Selection,
+    ) -> Result<ModeOutcome, IdentifyError> {
         let mode = measured.mode;
         if s_r >= self.settings.n {
             return Err(IdentifyError::ModeBeyondBasis {
@@ -236,8 +253,8 @@ impl Identifier {
                 n: self.settings.n,
             });
         }
-        let projector = Projector::new(&self.y, &measured.dofs)
-            .map_err(|source| IdentifyError::Projection { mode, source })?;
+        let projector = Projector::new(&observe(&self.y, &measured.points))
+            .map_err(|cause| IdentifyError::Projection { mode, cause })?;
         let mut g = vec![0.0; self.settings.n];
         projector.project(&measured.values, &mut g);
         let system = self.mode_system(s_r);
@@ -245,9 +262,31 @@ impl Identifier {
         let mut ws = vec![0.0; m * q];
         let mut wb = vec![0.0; m];
         system.assemble(&g, measured.lambda(), &mut ws, &mut wb);
-        let condition = condition_number(&ws, m, q);
-        let mut z = vec![0.0; q];
-        let relative = wls::solve_in_place(&mut ws, &mut wb, m, q, &mut z).map(|()| z);
+        let all: Vec<usize> = (0..q).collect();
+        let resolution = identifiability::resolution(&ws, m, &all);
+        let kept = identifiability::choose(&ws, m, q, selection);
+        let mut solved = vec![false; q];
+        kept.iter().for_each(|&i| solved[i] = true);
+        let mut sub: Vec<f64> = kept
+            .iter()
+            .flat_map(|&i| ws[i * m..(i + 1) * m].iter().copied())
+            .collect();
+        let k = kept.len();
+        let condition = if k == 0 {
+            f64::INFINITY
+        } else {
+            condition_number(&sub, m, k)
+        };
+        let mut zk = vec![0.0; k];
+        let relative = if k == 0 {
+            Err(RankDeficient { rank: 0 })
+        } else {
+            wls::solve_in_place(&mut sub, &mut wb, m, k, &mut zk).map(|()| {
+                let mut z = vec![0.0; q];
+                kept.iter().zip(&zk).for_each(|(&i, &v)| z[i] = v);
+                z
+            })
+        };
         Ok(ModeOutcome {
             mode,
             basis_index: s_r,
@@ -260,6 +299,8 @@ impl Identifier {
                 f64::INFINITY
             },
             relative,
+            resolution,
+            solved,
         })
     }
 }

@@ -47,16 +47,15 @@ pub struct Projector {
 }
 
 impl Projector {
-    /// Builds Y~^+ for the rows `dofs` of the sub-basis `y` (N x n).
-    pub fn new(y: &Mat<f64>, dofs: &[usize]) -> Result<Self, ProjectionError> {
-        let n = y.ncols();
-        if dofs.len() < n {
+    /// Builds Y~^+ for the sub-basis read at the identified points, Y~ = C Y (points x n).
+    pub fn new(yt: &Mat<f64>) -> Result<Self, ProjectionError> {
+        let (points, n) = (yt.nrows(), yt.ncols());
+        if points < n {
             return Err(ProjectionError::Underdetermined {
-                identified: dofs.len(),
+                identified: points,
                 n,
             });
         }
-        let yt = Mat::from_fn(dofs.len(), n, |i, j| y[(dofs[i], j)]);
         let svd = yt
             .thin_svd()
             .map_err(|_| ProjectionError::RankDeficient { n, rank: 0 })?;
@@ -68,7 +67,7 @@ impl Projector {
         }
         let (u, v) = (svd.U(), svd.V());
         // P = V S^-1 U^T, stored column by column.
-        let pinv = (0..dofs.len())
+        let pinv = (0..points)
             .flat_map(|j| (0..n).map(move |i| (i, j)))
             .map(|(i, j)| (0..n).map(|k| v[(i, k)] * u[(j, k)] / s[k]).sum())
             .collect();
@@ -131,7 +130,10 @@ mod tests {
             .iter()
             .map(|&d| (0..3).map(|j| y[(d, j)] * g_true[j]).sum())
             .collect();
-        let p = Projector::new(&y, &dofs).unwrap();
+        let rows = |dofs: &[usize], y: &Mat<f64>| {
+            Mat::from_fn(dofs.len(), y.ncols(), |i, j| y[(dofs[i], j)])
+        };
+        let p = Projector::new(&rows(&dofs, &y)).unwrap();
         let mut g = [0.0; 3];
         p.project(&shape, &mut g);
         for (a, b) in g.iter().zip(g_true) {
@@ -143,7 +145,7 @@ mod tests {
     fn too_few_dofs_or_dependent_columns_are_errors() {
         let y = Mat::from_fn(6, 3, |i, j| ((i + 1) as f64).powi(j as i32));
         assert_eq!(
-            Projector::new(&y, &[0, 1]).unwrap_err(),
+            Projector::new(&y.subrows(0, 2).to_owned()).unwrap_err(),
             ProjectionError::Underdetermined {
                 identified: 2,
                 n: 3
@@ -151,7 +153,7 @@ mod tests {
         );
         let dependent = Mat::from_fn(6, 2, |i, _| i as f64 + 1.0);
         assert_eq!(
-            Projector::new(&dependent, &[0, 1, 2]).unwrap_err(),
+            Projector::new(&dependent.subrows(0, 3).to_owned()).unwrap_err(),
             ProjectionError::RankDeficient { n: 2, rank: 1 }
         );
     }

@@ -17,7 +17,7 @@
 use faer::Mat;
 
 use super::weighting::RetainedRows;
-use crate::model::Parameter;
+use crate::structure::Parameter;
 
 /// The retained, weighted sensitivity equations of one mode, ready for any g_r.
 #[derive(Debug, Clone)]
@@ -39,7 +39,7 @@ impl ModeSystem {
     /// `lambdas` (length n) and the retained `rows`.
     pub fn new(y: &Mat<f64>, lambdas: &[f64], params: &[Parameter], rows: RetainedRows) -> Self {
         let n = y.ncols();
-        let blocks = |pick: &dyn Fn(&Parameter) -> &crate::model::SparseSym| {
+        let blocks = |pick: &dyn Fn(&Parameter) -> &crate::structure::SparseSym| {
             let mut out = Vec::with_capacity(params.len() * rows.rows.len() * n);
             for p in params {
                 let projected = pick(p).project(y);
@@ -171,7 +171,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use crate::identify::{RetainedRows, Weighting};
-    use crate::model::{Parameter, SparseSym};
+    use crate::structure::{Parameter, Role, SparseSym};
 
     #[test]
     fn lanes_give_bitwise_the_single_assembly_with_and_without_mass() {
@@ -189,6 +189,7 @@ mod tests {
                 value: 3.0,
                 stiffness: SparseSym::spring(0, 2, 1.0),
                 mass: SparseSym::zero(),
+                role: Role::Identified,
             },
             Parameter {
                 name: "b".into(),
@@ -196,6 +197,7 @@ mod tests {
                 value: 0.5,
                 stiffness: SparseSym::spring(3, 4, 1.0),
                 mass: with_mass,
+                role: Role::Identified,
             },
         ];
         for params in [params[..1].to_vec(), params] {

@@ -13,7 +13,7 @@
 
 use faer::{Mat, Side};
 
-use crate::model::Matrices;
+use crate::structure::Matrices;
 
 /// Why the eigenproblem could not be solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -37,20 +37,29 @@ pub struct ModalSolution {
 }
 
 impl ModalSolution {
-    /// Solves K y = lambda M y for all pairs.
+    /// The lowest `count` eigenpairs (or more): every pair by the dense solution.
+    pub fn lowest_of(mats: &Matrices, count: usize) -> Result<ModalSolution, ModalError> {
+        let _ = count;
+        Self::solve(mats)
+    }
+
+    /// Solves K y = lambda M y for all pairs (dense).
     pub fn solve(mats: &Matrices) -> Result<ModalSolution, ModalError> {
-        let n = mats.k.nrows();
-        let finite = |a: &Mat<f64>| (0..n).all(|j| (0..n).all(|i| a[(i, j)].is_finite()));
-        if !finite(&mats.k) || !finite(&mats.m) {
+        if !mats.k.is_finite() || !mats.m.is_finite() {
             return Err(ModalError::NonFinite);
         }
-        let llt = mats
-            .m
+        Self::solve_dense(&mats.k.to_dense(), &mats.m.to_dense())
+    }
+
+    /// Solves K y = lambda M y for all pairs of dense, finite K and M.
+    pub fn solve_dense(k: &Mat<f64>, m: &Mat<f64>) -> Result<ModalSolution, ModalError> {
+        let n = k.nrows();
+        let llt = m
             .llt(Side::Lower)
             .map_err(|_| ModalError::MassNotPositiveDefinite)?;
         let l = llt.L();
         // A = L^-1 K L^-T, using K = K^T: X = L^-1 K, A = L^-1 X^T.
-        let mut x = mats.k.clone();
+        let mut x = k.clone();
         l.solve_lower_triangular_in_place(x.as_mut());
         let mut a = x.transpose().to_owned();
         l.solve_lower_triangular_in_place(a.as_mut());
@@ -73,9 +82,14 @@ impl ModalSolution {
         Ok(ModalSolution { values, vectors })
     }
 
-    /// Number of eigenpairs (N).
+    /// Number of computed eigenpairs (N for the dense solution).
     pub fn len(&self) -> usize {
         self.values.len()
+    }
+
+    /// Number of DOFs N (the length of every vector).
+    pub fn dof_count(&self) -> usize {
+        self.vectors.nrows()
     }
 
     /// Whether there is no pair (never, for a valid model).
@@ -137,12 +151,13 @@ mod tests {
 
     #[test]
     fn contract_orthonormality_residual_order_and_sign() {
-        let mats = paper_model(1e7, 1e4).assemble();
-        let sol = ModalSolution::solve(&mats).unwrap();
+        let sparse = paper_model(1e7, 1e4).assemble();
+        let sol = ModalSolution::solve(&sparse).unwrap();
+        let (k, m) = (sparse.k.to_dense(), sparse.m.to_dense());
         let n = sol.len();
         let y = sol.vectors();
-        let ytmy = y.transpose() * &mats.m * y;
-        let ytky = y.transpose() * &mats.k * y;
+        let ytmy = y.transpose() * &m * y;
+        let ytky = y.transpose() * &k * y;
         let lmax = sol.values()[n - 1];
         let tol = 100.0 * n as f64 * f64::EPSILON;
         for i in 0..n {
@@ -158,10 +173,8 @@ mod tests {
             }
         }
         // ||K y - lambda M y|| relative to ||K|| ||y||.
-        let r = &mats.k * y
-            - &mats.m
-                * y
-                * faer::Mat::from_fn(n, n, |i, j| if i == j { sol.values()[i] } else { 0.0 });
+        let r = &k * y
+            - &m * y * faer::Mat::from_fn(n, n, |i, j| if i == j { sol.values()[i] } else { 0.0 });
         assert!(r.norm_max() < tol * lmax * y.norm_max());
         assert!(sol.values().windows(2).all(|w| w[0] <= w[1]));
         for j in 0..n {
@@ -189,14 +202,15 @@ mod tests {
 
     #[test]
     fn mass_matrix_is_positive_definite_and_a_massless_dof_is_an_error() {
-        let mut mats = paper_model(1e7, 1e4).assemble();
-        assert!(mats.m.llt(Side::Lower).is_ok());
-        for j in 0..mats.m.ncols() {
-            mats.m[(3, j)] = 0.0;
-            mats.m[(j, 3)] = 0.0;
+        let sparse = paper_model(1e7, 1e4).assemble();
+        let (k, mut m) = (sparse.k.to_dense(), sparse.m.to_dense());
+        assert!(m.llt(Side::Lower).is_ok());
+        for j in 0..m.ncols() {
+            m[(3, j)] = 0.0;
+            m[(j, 3)] = 0.0;
         }
         assert_eq!(
-            ModalSolution::solve(&mats).unwrap_err(),
+            ModalSolution::solve_dense(&k, &m).unwrap_err(),
             ModalError::MassNotPositiveDefinite
         );
     }

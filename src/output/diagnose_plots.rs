@@ -11,8 +11,8 @@ use super::study_report::{Figure, unit_of};
 use crate::diagnose::report::ModeCorrection;
 use crate::diagnose::{ALPHA, Report};
 use crate::measured::MeasuredModes;
-use crate::model::{Dof, Model, dof_of_index};
 use crate::stats::chi2_isf;
+use crate::structure::Direction;
 
 fn corrections_series(name: &str, list: &[ModeCorrection], param: &str) -> Series {
     let points: Vec<(&ModeCorrection, f64)> = list
@@ -32,9 +32,7 @@ fn corrections_series(name: &str, list: &[ModeCorrection], param: &str) -> Serie
 pub fn diagnose_figures(
     report: &Report,
     measured: &MeasuredModes,
-    model: &Model,
 ) -> Result<Vec<Figure>, PlotError> {
-    let x = model.node_positions();
     let mut out = Vec::new();
     for ((m, before), after) in measured
         .modes()
@@ -43,18 +41,24 @@ pub fn diagnose_figures(
         .zip(&report.after.modes)
     {
         // Translations when measured, else rotations.
-        let kind = if m.dofs.iter().any(|&d| dof_of_index(d).1 == Dof::W) {
-            Dof::W
+        let kind = if m.points.iter().any(|p| !p.direction.is_rotation()) {
+            m.points
+                .iter()
+                .find(|p| !p.direction.is_rotation())
+                .map_or(Direction::W, |p| p.direction)
         } else {
-            Dof::Theta
+            m.points.first().map_or(Direction::Theta, |p| p.direction)
         };
         let pick = |values: &[f64]| -> Vec<(f64, f64)> {
-            m.dofs
+            let mut points: Vec<(f64, f64)> = m
+                .points
                 .iter()
                 .zip(values)
-                .filter(|(d, _)| dof_of_index(**d).1 == kind)
-                .map(|(&d, &v)| (x[dof_of_index(d).0], v))
-                .collect()
+                .filter(|(p, _)| p.direction == kind)
+                .map(|(p, &v)| (p.x, v))
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            points
         };
         let series = [
             Series {
@@ -76,11 +80,7 @@ pub fn diagnose_figures(
                 line: false,
             },
         ];
-        let unit = if kind == Dof::W {
-            "w (scaled to the measured shape)"
-        } else {
-            "theta (scaled to the measured shape)"
-        };
+        let unit = format!("{kind} (scaled to the measured shape)");
         let title = format!(
             "mode {}: measured {:.2} Hz, model {:.2} Hz before, {:.2} Hz after",
             m.mode, m.frequency_hz, before.frequency_model_hz, after.frequency_model_hz
@@ -91,7 +91,7 @@ pub fn diagnose_figures(
                 &title,
                 &LineAxes {
                     x_desc: "position along the chain x (m)".into(),
-                    y_desc: unit.into(),
+                    y_desc: unit.clone(),
                     log_x: false,
                     log_y: false,
                     reference: None,

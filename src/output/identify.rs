@@ -1,18 +1,20 @@
 //! The result of `jointid identify`: one row per (mode, parameter).
 //!
 //! CSV columns: `mode,param,initial,correction,corrected,relative_correction,
-//! frequency_measured_hz,frequency_model_hz,condition`. Numbers are written in the shortest
-//! form that reads back to the same f64. A mode whose S_r is rank deficient has empty
-//! `correction`, `corrected` and `relative_correction` and `condition = inf`.
+//! frequency_measured_hz,frequency_model_hz,condition,resolution,identified`. Numbers are
+//! written in the shortest form that reads back to the same f64. A mode whose S_r is rank
+//! deficient has empty `correction`, `corrected` and `relative_correction` and
+//! `condition = inf`; a parameter held on a mode (`--params auto`) has `identified = held`, a
+//! zero correction, and the condition of the parameters the mode identified.
 
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
-use crate::identify::ModeOutcome;
-use crate::model::Parameter;
+use crate::identify::{MIN_RESOLUTION, ModeOutcome};
+use crate::structure::Parameter;
 
 /// The CSV header.
-pub const HEADER: [&str; 9] = [
+pub const HEADER: [&str; 11] = [
     "mode",
     "param",
     "initial",
@@ -22,6 +24,8 @@ pub const HEADER: [&str; 9] = [
     "frequency_measured_hz",
     "frequency_model_hz",
     "condition",
+    "resolution",
+    "identified",
 ];
 
 /// One output row.
@@ -39,8 +43,12 @@ pub struct IdentifyRow {
     pub frequency_measured_hz: f64,
     /// Paired nominal frequency, Hz.
     pub frequency_model_hz: f64,
-    /// cond(W S_r).
+    /// cond(W S_r) of the identified parameters.
     pub condition: f64,
+    /// Resolution of the parameter on this mode (1: seen apart from the others, 0: not).
+    pub resolution: f64,
+    /// Whether it was identified on this mode (false: held at its value).
+    pub identified: bool,
 }
 
 impl IdentifyRow {
@@ -68,6 +76,8 @@ pub fn rows(outcomes: &[ModeOutcome], params: &[Parameter]) -> Vec<IdentifyRow> 
                 frequency_measured_hz: o.frequency_measured_hz,
                 frequency_model_hz: o.frequency_model_hz,
                 condition: o.condition,
+                resolution: o.resolution[i],
+                identified: o.solved[i],
             })
         })
         .collect()
@@ -92,6 +102,8 @@ pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
             r.frequency_measured_hz.to_string(),
             r.frequency_model_hz.to_string(),
             r.condition.to_string(),
+            r.resolution.to_string(),
+            if r.identified { "yes" } else { "held" }.to_string(),
         ])?;
     }
     w.flush()
@@ -109,6 +121,7 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
         "f meas (Hz)",
         "f model (Hz)",
         "cond(WS)",
+        "resolution",
     ];
     let na = || "rank-deficient".to_string();
     let cells: Vec<Vec<String>> = rows
@@ -118,14 +131,65 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
                 r.mode.to_string(),
                 r.param.clone(),
                 sci(r.initial),
-                r.correction().map(sci).unwrap_or_else(na),
+                match (r.identified, r.correction()) {
+                    (false, _) => "held".to_string(),
+                    (true, c) => c.map(sci).unwrap_or_else(na),
+                },
                 r.corrected().map(sci).unwrap_or_else(na),
                 r.relative.map(|z| format!("{z:+.4}")).unwrap_or_else(na),
                 format!("{:.3}", r.frequency_measured_hz),
                 format!("{:.3}", r.frequency_model_hz),
                 format!("{:.3e}", r.condition),
+                format!("{:.1e}", r.resolution),
             ]
         })
         .collect();
     write_table(out, &header, &cells)
+}
+
+/// Writes what each mode could not identify, one sentence per mode with its cause and remedy.
+pub fn write_notes(
+    out: &mut dyn Write,
+    outcomes: &[ModeOutcome],
+    params: &[Parameter],
+) -> io::Result<()> {
+    for o in outcomes {
+        let unresolved: Vec<String> = params
+            .iter()
+            .zip(&o.resolution)
+            .filter(|(_, r)| **r < MIN_RESOLUTION)
+            .map(|(p, r)| format!("{} (resolution {r:.1e})", p.name))
+            .collect();
+        let held: Vec<&str> = params
+            .iter()
+            .zip(&o.solved)
+            .filter(|(_, s)| !**s)
+            .map(|(p, _)| p.name.as_str())
+            .collect();
+        match (&o.relative, held.is_empty()) {
+            (Err(rd), _) => writeln!(
+                out,
+                "warning: mode {}: S_r has rank {} < q = {}, its corrections are left empty: this mode does not tell apart {}; identify the parameters it determines with --params auto, or retain more equations (--m) or measure more points",
+                o.mode,
+                rd.rank,
+                params.len(),
+                if unresolved.is_empty() {
+                    "its parameters".to_string()
+                } else {
+                    unresolved.join(", ")
+                },
+            )?,
+            (Ok(_), false) => writeln!(
+                out,
+                "note: mode {}: {} held at {} value: this mode does not determine {} ({})",
+                o.mode,
+                held.join(", "),
+                if held.len() == 1 { "its" } else { "their" },
+                if held.len() == 1 { "it" } else { "them" },
+                unresolved.join(", "),
+            )?,
+            (Ok(_), true) => {}
+        }
+    }
+    Ok(())
 }

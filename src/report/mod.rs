@@ -32,12 +32,12 @@ pub const REQUIRED: [&str; 19] = [
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {
     /// Cannot read.
-    #[error("{file}: cannot read: {source}")]
+    #[error("{file}: cannot read: {cause}")]
     Read {
         /// The file.
         file: PathBuf,
         /// Why.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// Not a jointid study output.
     #[error("{file} is not a jointid study output: missing column(s) {missing}")]
@@ -134,9 +134,9 @@ pub struct StudyResults {
 impl StudyResults {
     /// Reads a study CSV.
     pub fn from_path(path: &Path) -> Result<Self, ReportError> {
-        let file = std::fs::File::open(path).map_err(|source| ReportError::Read {
+        let file = std::fs::File::open(path).map_err(|cause| ReportError::Read {
             file: path.into(),
-            source,
+            cause,
         })?;
         Self::from_reader(file, path)
     }

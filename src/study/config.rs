@@ -40,7 +40,7 @@ use serde::de::{MapAccess, SeqAccess, Visitor};
 use super::noise::NoiseKind;
 use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, parse_toml, read_file};
-use crate::model::{Dof, Model, dof_index};
+use crate::structure::{Direction, DofMap, Structure};
 
 /// Largest number of trials per cell: a cell keeps every trial's corrections in memory
 /// (trials x modes x q x 8 bytes: 640 MB at this limit with 4 modes and one joint).
@@ -240,7 +240,7 @@ pub struct Study {
     /// The nominal model's file, resolved.
     pub model_file: PathBuf,
     /// The nominal (initial) model.
-    pub model: Model,
+    pub model: Structure,
     /// The introduced modification of every joint parameter, in parameter order.
     pub delta: Vec<f64>,
     /// The deformable modes identified in every cell (the same in every grid).
@@ -269,7 +269,14 @@ impl Study {
     pub fn from_toml(text: &str, file: &Path) -> Result<Study, InputError> {
         let raw: RawStudy = parse_toml(text, file)?;
         let model_file = file.parent().unwrap_or(Path::new("")).join(&raw.model);
-        let model = Model::from_path(&model_file)?;
+        if raw.model.trim().is_empty() {
+            return Err(FieldCheck { file }.invalid(
+                "model",
+                "\"\"",
+                "it must name the model file, relative to the study file",
+            ));
+        }
+        let model = crate::model::from_path(&model_file)?;
         Study::validate(raw, file, model, &model_file)
     }
 
@@ -277,7 +284,7 @@ impl Study {
     pub fn from_toml_with_model(
         text: &str,
         file: &Path,
-        model: Model,
+        model: Structure,
         model_file: &Path,
     ) -> Result<Study, InputError> {
         Study::validate(parse_toml(text, file)?, file, model, model_file)
@@ -286,12 +293,12 @@ impl Study {
     fn validate(
         raw: RawStudy,
         file: &Path,
-        model: Model,
+        model: Structure,
         model_file: &Path,
     ) -> Result<Study, InputError> {
         let check = FieldCheck { file };
         let base = file.parent().unwrap_or(Path::new(""));
-        let params = model.joint_parameters();
+        let params = model.identified();
         let names: Vec<&str> = params.iter().map(|p| p.name.as_str()).collect();
         for (key, value) in &raw.truth.delta {
             if !names.contains(&key.as_str()) {
@@ -459,9 +466,14 @@ fn weightings(
         .collect()
 }
 
-fn grid(raw: &RawGrid, path: &str, check: &FieldCheck, model: &Model) -> Result<Grid, InputError> {
+fn grid(
+    raw: &RawGrid,
+    path: &str,
+    check: &FieldCheck,
+    model: &Structure,
+) -> Result<Grid, InputError> {
     let dofs = model.dof_count() as i64;
-    let nodes = model.node_count();
+    let deformable = dofs - model.rigid as i64;
     let nf = {
         non_empty(&raw.nf, &format!("{path}.nf"), check)?;
         raw.nf
@@ -473,11 +485,13 @@ fn grid(raw: &RawGrid, path: &str, check: &FieldCheck, model: &Model) -> Result<
                     let mut out = Vec::with_capacity(list.len());
                     for (j, item) in list.iter().enumerate() {
                         let at = format!("{path}.nf[{i}][{j}]");
-                        let parsed = item.split_once(':').and_then(|(node, dof)| Some((node.trim().parse::<usize>().ok()?, Dof::parse(dof.trim())?)));
-                        let Some((node, dof)) = parsed.filter(|(node, _)| *node < nodes) else {
-                            return Err(check.invalid(at, format!("\"{item}\""), format!("an unidentified DOF is \"node:dof\" with node 0 to {} and dof w or theta", nodes - 1)));
+                        let Some(d) = dof_of_label(&model.dofs, item) else {
+                            let allowed = match model.dofs.dofs().iter().filter_map(|d| d.node).max() {
+                                Some(last) => format!("an unidentified DOF is \"node:dof\" with node 0 to {last} and dof w or theta, not held by a support"),
+                                None => "an unidentified DOF is a DOF label of the model".to_string(),
+                            };
+                            return Err(check.invalid(at, format!("\"{item}\""), allowed));
                         };
-                        let d = dof_index(node, dof);
                         if out.contains(&d) {
                             return Err(check.invalid(at, format!("\"{item}\""), "each DOF may be listed once"));
                         }
@@ -492,9 +506,9 @@ fn grid(raw: &RawGrid, path: &str, check: &FieldCheck, model: &Model) -> Result<
     let at = |field: &str| format!("{path}.{field}");
     Ok(Grid {
         path: path.to_string(),
-        modes: ints(&raw.modes, &at("modes"), 1, dofs - 2, check)?,
-        n: ints(&raw.n, &at("n"), 3, dofs, check)?,
-        m: ints(&raw.m, &at("m"), 1, dofs - 2, check)?,
+        modes: ints(&raw.modes, &at("modes"), 1, deformable, check)?,
+        n: ints(&raw.n, &at("n"), model.rigid as i64 + 1, dofs, check)?,
+        m: ints(&raw.m, &at("m"), 1, deformable, check)?,
         nf,
         weighting: weightings(&raw.weighting, &at("weighting"), check)?,
         shape_noise: levels(&raw.shape_noise, &at("shape_noise"), "relative", check)?,
@@ -504,6 +518,16 @@ fn grid(raw: &RawGrid, path: &str, check: &FieldCheck, model: &Model) -> Result<
             "relative standard deviation",
             check,
         )?,
+    })
+}
+
+/// The DOF a label names: the label itself, or `node:dof` written with spaces.
+fn dof_of_label(dofs: &DofMap, item: &str) -> Option<usize> {
+    dofs.index(item.trim()).or_else(|| {
+        let (node, dof) = item.split_once(':')?;
+        let node: usize = node.trim().parse().ok()?;
+        let dof = Direction::parse(dof.trim())?;
+        dofs.index(&DofMap::node_label(node, dof))
     })
 }
 

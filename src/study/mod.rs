@@ -39,12 +39,12 @@ pub enum StudyError {
     #[error(transparent)]
     Input(#[from] crate::input::InputError),
     /// A model has no eigensolution.
-    #[error("{file}: {source}")]
+    #[error("{file}: {cause}")]
     Modal {
         /// The model file.
         file: std::path::PathBuf,
         /// Why.
-        source: crate::modal::ModalError,
+        cause: crate::modal::ModalError,
     },
     /// Some cells of the grid cannot be computed.
     #[error("{file}: {count} impossible cell(s) in the grid, nothing was computed:\n{list}", count = problems.len(), list = problems.join("\n"))]
@@ -69,9 +69,9 @@ pub struct StudyRun {
 impl StudyRun {
     /// Solves the models and validates every cell before anything is computed.
     pub fn new(study: Study) -> Result<Self, StudyError> {
-        let context = StudyContext::new(&study).map_err(|source| StudyError::Modal {
+        let context = StudyContext::new(&study).map_err(|cause| StudyError::Modal {
             file: study.model_file.clone(),
-            source,
+            cause,
         })?;
         let cells = study.cells();
         let problems: Vec<String> = cells

@@ -6,7 +6,7 @@
 
 use crate::identify::{Identifier, IdentifyError, ModeSystem, Projector, Settings, Weighting};
 use crate::modal::{ModalError, ModalSolution};
-use crate::model::{Parameter, RIGID_BODY_MODES, dof_of_index};
+use crate::structure::Parameter;
 
 use super::config::{NfSpec, Study};
 use super::unidentified;
@@ -27,6 +27,8 @@ pub struct Cell {
     pub nf_index: usize,
     /// Unidentified DOFs (ascending).
     pub unidentified: Vec<usize>,
+    /// Their labels (`node:dof` on a chain).
+    pub unidentified_labels: Vec<String>,
     /// Weighting.
     pub weighting: Weighting,
     /// Shape noise level.
@@ -41,16 +43,9 @@ impl Cell {
         self.unidentified.len()
     }
 
-    /// The unidentified DOFs as `node:dof` words separated by spaces.
+    /// The unidentified DOFs as their labels (`node:dof` on a chain) separated by spaces.
     pub fn unidentified_names(&self) -> String {
-        self.unidentified
-            .iter()
-            .map(|&d| {
-                let (node, dof) = dof_of_index(d);
-                format!("{node}:{dof}")
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
+        self.unidentified_labels.join(" ")
     }
 
     /// `n = 10, m = 5, nf = 5, weighting = inverse, shape_noise = 0.04, frequency_noise = 0`.
@@ -70,16 +65,19 @@ impl Cell {
 impl Study {
     /// Every cell of the study, in order (see [`Cell::index`]).
     pub fn cells(&self) -> Vec<Cell> {
-        let nodes = self.model.node_count();
         let mut cells = Vec::new();
         for g in &self.grids {
             for (ni, &n) in g.n.iter().enumerate() {
                 for (mi, &m) in g.m.iter().enumerate() {
                     for (fi, nf) in g.nf.iter().enumerate() {
                         let unidentified = match nf {
-                            NfSpec::Count(c) => unidentified::by_rule(nodes, *c),
+                            NfSpec::Count(c) => unidentified::by_rule(&self.model.dofs, *c),
                             NfSpec::Explicit(list) => list.clone(),
                         };
+                        let labels: Vec<String> = unidentified
+                            .iter()
+                            .map(|&d| self.model.dofs.get(d).label.clone())
+                            .collect();
                         for &weighting in &g.weighting {
                             for &shape_noise in &g.shape_noise {
                                 for &frequency_noise in &g.frequency_noise {
@@ -90,6 +88,7 @@ impl Study {
                                         m: (m, mi),
                                         nf_index: fi,
                                         unidentified: unidentified.clone(),
+                                        unidentified_labels: labels.clone(),
                                         weighting,
                                         shape_noise,
                                         frequency_noise,
@@ -114,16 +113,19 @@ pub struct StudyContext {
     pub truth: ModalSolution,
     /// The identified parameters at their nominal values.
     pub params: Vec<Parameter>,
+    /// Rigid-body modes of the model.
+    pub rigid: usize,
 }
 
 impl StudyContext {
     /// Solves the nominal and the truth model.
     pub fn new(study: &Study) -> Result<Self, ModalError> {
-        let truth = study.model.with_joint_delta(&study.delta);
+        let truth = study.model.with_delta(&study.delta);
         Ok(Self {
             nominal: ModalSolution::solve(&study.model.assemble())?,
             truth: ModalSolution::solve(&truth.assemble())?,
-            params: study.model.joint_parameters(),
+            params: study.model.identified(),
+            rigid: study.model.rigid,
         })
     }
 }
@@ -165,15 +167,17 @@ impl CellPlan {
         let at = |field: &str, index: usize, value: usize, e: &dyn std::fmt::Display| {
             format!("{}.{field}[{index}] = {value}: {e}", cell.grid)
         };
-        let identifier =
-            Identifier::new(&ctx.nominal, ctx.params.clone(), RIGID_BODY_MODES, settings).map_err(
-                |e| match e {
-                    IdentifyError::BasisSize { .. } => at("n", cell.n.1, cell.n.0, &e),
-                    _ => at("m", cell.m.1, cell.m.0, &e),
-                },
-            )?;
+        let identifier = Identifier::new(&ctx.nominal, ctx.params.clone(), ctx.rigid, settings)
+            .map_err(|e| match e {
+                IdentifyError::BasisSize { .. } => at("n", cell.n.1, cell.n.0, &e),
+                _ => at("m", cell.m.1, cell.m.0, &e),
+            })?;
         let identified = unidentified::complement(study.model.dof_count(), &cell.unidentified);
-        let projector = Projector::new(identifier.basis(), &identified).map_err(|e| {
+        let basis = identifier.basis();
+        let observed = faer::Mat::from_fn(identified.len(), basis.ncols(), |i, j| {
+            basis[(identified[i], j)]
+        });
+        let projector = Projector::new(&observed).map_err(|e| {
             format!(
                 "{grid}.nf[{}] (NF = {}) with {grid}.n[{}] = {}: {e}",
                 cell.nf_index,

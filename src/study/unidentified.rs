@@ -1,33 +1,34 @@
 //! Which DOFs are left unidentified in a cell (the paper's NF).
 //!
 //! The rule, deterministic and documented: rotations first, then translations. k DOFs of one
-//! kind are spread evenly over the chain's `nodes` nodes (all beams, in node order): node
-//! floor(i (nodes - 1) / (k - 1)) for i = 0..k-1, both ends included; a single one sits at
-//! node floor((nodes - 1) / 2). With 19 nodes, NF = 5 leaves the rotations of nodes 0, 4, 9,
-//! 13 and 18 unidentified; NF = 23 all 19 rotations and the translations of nodes 0, 6, 12
-//! and 18.
+//! kind are spread evenly over the P DOFs of that kind, in DOF order (for a chain: node order):
+//! the DOF at position floor(i (P - 1) / (k - 1)) for i = 0..k-1, both ends included; a single
+//! one sits at position floor((P - 1) / 2). On the paper's free-free chain of 19 nodes, NF = 5
+//! leaves the rotations of nodes 0, 4, 9, 13 and 18 unidentified; NF = 23 all 19 rotations and
+//! the translations of nodes 0, 6, 12 and 18.
 
-use crate::model::{Dof, dof_index};
+use crate::structure::DofMap;
 
 /// The unidentified DOFs (ascending global indices) for `nf` under the rule above.
-/// The caller guarantees `nf <= 2 * nodes`.
-pub fn by_rule(nodes: usize, nf: usize) -> Vec<usize> {
-    let rotations = nf.min(nodes);
-    let translations = nf - rotations;
-    let mut dofs: Vec<usize> = spread(nodes, rotations)
-        .map(|node| dof_index(node, Dof::Theta))
-        .chain(spread(nodes, translations).map(|node| dof_index(node, Dof::W)))
+/// The caller guarantees `nf <= N`.
+pub fn by_rule(dofs: &DofMap, nf: usize) -> Vec<usize> {
+    let (rotations, translations): (Vec<usize>, Vec<usize>) =
+        (0..dofs.len()).partition(|&d| dofs.get(d).direction.is_rotation());
+    let from_rotations = nf.min(rotations.len());
+    let mut out: Vec<usize> = spread(rotations.len(), from_rotations)
+        .map(|i| rotations[i])
+        .chain(spread(translations.len(), nf - from_rotations).map(|i| translations[i]))
         .collect();
-    dofs.sort_unstable();
-    dofs
+    out.sort_unstable();
+    out
 }
 
-fn spread(nodes: usize, k: usize) -> impl Iterator<Item = usize> {
+fn spread(count: usize, k: usize) -> impl Iterator<Item = usize> {
     (0..k).map(move |i| {
         if k == 1 {
-            (nodes - 1) / 2
+            (count - 1) / 2
         } else {
-            i * (nodes - 1) / (k - 1)
+            i * (count - 1) / (k - 1)
         }
     })
 }
@@ -42,13 +43,15 @@ pub fn complement(dof_count: usize, unidentified: &[usize]) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::fixtures::paper_model;
 
     #[test]
     fn paper_counts_follow_the_documented_rule() {
-        assert_eq!(by_rule(19, 0), Vec::<usize>::new());
+        let dofs = paper_model(1e7, 1e4).dofs;
+        assert_eq!(by_rule(&dofs, 0), Vec::<usize>::new());
         // Rotations of nodes 0, 4, 9, 13, 18 (as in the numpy baseline's NF 5 cell).
-        assert_eq!(by_rule(19, 5), vec![1, 9, 19, 27, 37]);
-        let nf23 = by_rule(19, 23);
+        assert_eq!(by_rule(&dofs, 5), vec![1, 9, 19, 27, 37]);
+        let nf23 = by_rule(&dofs, 23);
         assert_eq!(nf23.len(), 23);
         assert!((0..19).all(|node| nf23.contains(&(2 * node + 1))));
         assert_eq!(
@@ -58,8 +61,8 @@ mod tests {
                 .collect::<Vec<_>>(),
             vec![0, 12, 24, 36]
         );
-        assert_eq!(by_rule(19, 1), vec![19]);
-        assert_eq!(by_rule(3, 6), vec![0, 1, 2, 3, 4, 5]);
+        assert_eq!(by_rule(&dofs, 1), vec![19]);
+        assert_eq!(by_rule(&dofs, 38), (0..38).collect::<Vec<_>>());
         assert_eq!(complement(6, &[1, 4]), vec![0, 2, 3, 5]);
     }
 }

@@ -1,19 +1,24 @@
 //! Models shared by the integration tests.
 #![allow(dead_code)]
 
-use jointid::model::Model;
+use jointid::structure::{Observation, Structure};
 
 #[allow(unused_imports)]
-pub use jointid::model::fixtures::{paper_model, steel_bar};
+pub use jointid::model::fixtures::{paper_chain, paper_model, steel_bar};
 
-/// Every DOF of a model.
-pub fn all_dofs(model: &Model) -> Vec<usize> {
-    (0..model.dof_count()).collect()
+/// Every DOF of a model, as measured points.
+pub fn all_dofs(model: &Structure) -> Vec<Observation> {
+    (0..model.dof_count())
+        .map(|d| Observation::dof(&model.dofs, d))
+        .collect()
 }
 
 /// The translations only (rotations unmeasured).
-pub fn translations(model: &Model) -> Vec<usize> {
-    (0..model.dof_count()).step_by(2).collect()
+pub fn translations(model: &Structure) -> Vec<Observation> {
+    all_dofs(model)
+        .into_iter()
+        .filter(|p| !p.direction.is_rotation())
+        .collect()
 }
 
 /// A fresh scratch directory for one test.

@@ -3,25 +3,38 @@
 //! candidate models it; simulated data with it must come out `unexplained`.
 
 use super::{Effect, EffectContext, EffectParameter, linear_contribution};
-use crate::model::{Dof, Model, SparseSym, dof_index};
+use crate::model::chain::beam::element_stiffness;
+use crate::structure::{ElementSite, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct ElementDamage;
 
+/// The element at the middle of the last beam.
+fn damaged(ctx: &EffectContext) -> Option<&ElementSite> {
+    let sites = &ctx.structure.sites;
+    let last: Vec<&ElementSite> = sites
+        .elements
+        .iter()
+        .filter(|e| e.beam + 1 == sites.beams)
+        .collect();
+    last.get(last.len() / 2).copied()
+}
+
 /// -k_e of the damaged element.
-fn pattern(model: &Model) -> SparseSym {
-    let b = model.beams().len() - 1;
-    let beam = &model.beams()[b];
-    let base = dof_index(model.first_node(b) + beam.elements / 2, Dof::W);
+fn pattern(element: &ElementSite) -> SparseSym {
     let mut s = SparseSym::zero();
-    s.add_block(base, &beam.element_stiffness(), -1.0);
+    let ke = element_stiffness(&element.section, element.length());
+    s.add_element(&element.line.dofs, &ke, -1.0);
     s
 }
 
 /// dK/dfraction.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    vec![(pattern(&ctx.model), SparseSym::zero())]
+    damaged(ctx)
+        .map(|e| (pattern(e), SparseSym::zero()))
+        .into_iter()
+        .collect()
 }
 
 impl Effect for ElementDamage {
@@ -33,7 +46,10 @@ impl Effect for ElementDamage {
         "loss of bending stiffness of the middle element of the last beam (outside the candidate library); size = lost fraction of EI"
     }
 
-    fn parameters(&self, _ctx: &EffectContext) -> Vec<EffectParameter> {
+    fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
+        if damaged(ctx).is_none() {
+            return Vec::new();
+        }
         vec![EffectParameter {
             name: "element_damage.fraction".into(),
             unit: "-",

@@ -3,38 +3,39 @@
 //! 1/2 [k1 dw^2 + 2 k12 dw dtheta + k2 dtheta^2] with dw = w_a - w_b, dtheta = theta_a - theta_b,
 //! positive semidefinite while k12^2 <= k1 k2.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
-use crate::model::{Dof, Model, SparseSym, dof_index};
+use super::{
+    Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,
+};
+use crate::structure::{JointSite, SparseSym, Structure};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct JointCoupling;
 
-fn pattern(model: &Model, joint: usize) -> SparseSym {
-    let (a, b) = model.joint_nodes(joint);
-    let (wa, ta, wb, tb) = (
-        dof_index(a, Dof::W),
-        dof_index(a, Dof::Theta),
-        dof_index(b, Dof::W),
-        dof_index(b, Dof::Theta),
-    );
+/// dK/dk12 of a joint.
+fn pattern(site: &JointSite) -> SparseSym {
+    let ([wa, wb], [ta, tb]) = (site.w, site.theta);
     let mut s = SparseSym::zero();
-    s.add(wa, ta, 1.0);
-    s.add(wa, tb, -1.0);
-    s.add(wb, ta, -1.0);
-    s.add(wb, tb, 1.0);
+    add_pair(&mut s, wa, ta, 1.0);
+    add_pair(&mut s, wa, tb, -1.0);
+    add_pair(&mut s, wb, ta, -1.0);
+    add_pair(&mut s, wb, tb, 1.0);
     s
 }
 
-fn geometric_mean(model: &Model, joint: usize) -> f64 {
-    let j = model.joints()[joint];
-    (j.k1 * j.k2).sqrt()
+/// sqrt(k1 k2) of joint `joint` in `structure`.
+fn geometric_mean(structure: &Structure, joint: usize) -> f64 {
+    let [k1, k2] = structure.sites.joints[joint].parameters;
+    (structure.parameters[k1].value * structure.parameters[k2].value).sqrt()
 }
 
 /// dK/dk12 of every joint.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    (0..ctx.model.joints().len())
-        .map(|j| (pattern(&ctx.model, j), SparseSym::zero()))
+    ctx.structure
+        .sites
+        .joints
+        .iter()
+        .map(|site| (pattern(site), SparseSym::zero()))
         .collect()
 }
 
@@ -48,12 +49,12 @@ impl Effect for JointCoupling {
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
-        let joints = ctx.model.joints().len();
+        let joints = ctx.structure.sites.joints.len();
         (0..joints)
             .map(|j| EffectParameter {
                 name: per_joint_name(self.name(), j, joints, "k12"),
                 unit: "N/rad",
-                scale: geometric_mean(&ctx.model, j),
+                scale: geometric_mean(&ctx.structure, j),
                 non_negative: false,
             })
             .collect()
@@ -68,8 +69,8 @@ impl Effect for JointCoupling {
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        (0..ctx.model.joints().len())
-            .map(|j| size * geometric_mean(&ctx.model, j))
+        (0..ctx.structure.sites.joints.len())
+            .map(|j| size * geometric_mean(&ctx.structure, j))
             .collect()
     }
 
@@ -77,14 +78,19 @@ impl Effect for JointCoupling {
         theta
             .iter()
             .enumerate()
-            .map(|(j, t)| t / geometric_mean(&ctx.model, j))
+            .map(|(j, t)| t / geometric_mean(&ctx.structure, j))
             .sum::<f64>()
             / theta.len() as f64
     }
 
-    fn admissible(&self, model: &Model, theta: &[f64]) -> Result<(), String> {
+    fn admissible(
+        &self,
+        _ctx: &EffectContext,
+        current: &Structure,
+        theta: &[f64],
+    ) -> Result<(), String> {
         for (j, t) in theta.iter().enumerate() {
-            let limit = geometric_mean(model, j);
+            let limit = geometric_mean(current, j);
             if t.abs() >= limit {
                 return Err(format!(
                     "|k12| = {:.4e} reaches sqrt(k1 k2) = {limit:.4e} of joint {}: the joint matrix would not be positive semidefinite",

@@ -2,32 +2,33 @@
 //! does not carry: mass m per joint, half lumped at each of its two nodes, with the rotary
 //! inertia (m/2) r^2 of a body of the adjacent beam's radius of gyration r^2 = I/A.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
-use crate::model::{Dof, Model, SparseSym, dof_index};
+use super::{
+    Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,
+};
+use crate::structure::{JointSite, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct JointMass;
 
-/// dM/dm of joint `joint`.
-fn pattern(model: &Model, joint: usize) -> SparseSym {
-    let (a, b) = model.joint_nodes(joint);
+/// dM/dm of a joint.
+fn pattern(site: &JointSite) -> SparseSym {
     let mut s = SparseSym::zero();
-    for (node, beam) in [(a, &model.beams()[joint]), (b, &model.beams()[joint + 1])] {
-        s.add(dof_index(node, Dof::W), dof_index(node, Dof::W), 0.5);
-        s.add(
-            dof_index(node, Dof::Theta),
-            dof_index(node, Dof::Theta),
-            0.5 * beam.second_moment / beam.area,
-        );
+    for side in 0..2 {
+        add_pair(&mut s, site.w[side], site.w[side], 0.5);
+        let gyration = site.sections[side].gyration_squared();
+        add_pair(&mut s, site.theta[side], site.theta[side], 0.5 * gyration);
     }
     s
 }
 
 /// dM/dm of every joint.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    (0..ctx.model.joints().len())
-        .map(|j| (SparseSym::zero(), pattern(&ctx.model, j)))
+    ctx.structure
+        .sites
+        .joints
+        .iter()
+        .map(|site| (SparseSym::zero(), pattern(site)))
         .collect()
 }
 
@@ -41,12 +42,12 @@ impl Effect for JointMass {
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
-        let joints = ctx.model.joints().len();
+        let joints = ctx.structure.sites.joints.len();
         (0..joints)
             .map(|j| EffectParameter {
                 name: per_joint_name(self.name(), j, joints, "m"),
                 unit: "kg",
-                scale: 0.01 * ctx.model.mass(),
+                scale: 0.01 * ctx.structure.sites.beam_mass,
                 non_negative: true,
             })
             .collect()
@@ -61,10 +62,10 @@ impl Effect for JointMass {
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        vec![size * ctx.model.mass(); ctx.model.joints().len()]
+        vec![size * ctx.structure.sites.beam_mass; ctx.structure.sites.joints.len()]
     }
 
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
-        theta.iter().sum::<f64>() / theta.len() as f64 / ctx.model.mass()
+        theta.iter().sum::<f64>() / theta.len() as f64 / ctx.structure.sites.beam_mass
     }
 }

@@ -1,11 +1,13 @@
-//! Physical effects the beam-and-joint model of eq. (1)-(17) may lack, each one or two
-//! parameters theta with their contribution to K and M and the derivatives dK/dtheta,
-//! dM/dtheta.
+//! Physical effects a model may lack, each one or a few parameters theta with their
+//! contribution to K and M and the derivatives dK/dtheta, dM/dtheta.
 //!
 //! The library is open: an effect is one small type implementing [`Effect`], listed once in
 //! [`candidates`] (the library `jointid diagnose` searches) or [`outside_library`] (effects
 //! `jointid simulate` can put into data to test the diagnosis, that the diagnosis does not
 //! know). Every effect is zero at theta = 0: the nominal model is nested in every candidate.
+//! Effects act on the sites of a structure ([`crate::structure::Sites`]: joints, beam
+//! elements, free ends) and on its measured points; an effect with no site to act on does not
+//! apply to that structure.
 
 mod element_damage;
 mod joint_coupling;
@@ -23,17 +25,32 @@ pub use suspension::Suspension;
 
 use std::sync::Arc;
 
-use super::{Matrices, Model, Parameter, SparseSym};
+use crate::structure::{Matrices, Observation, Parameter, Role, SparseSym, Structure};
 
 /// What an effect may depend on besides its parameters.
 #[derive(Debug, Clone)]
 pub struct EffectContext {
-    /// The nominal model (its joint stiffnesses included).
-    pub model: Model,
-    /// Nodes carrying a sensor (where a translation is measured).
-    pub sensor_nodes: Vec<usize>,
+    /// The nominal structure (its parameters at their nominal values).
+    pub structure: Structure,
+    /// The measured translations (where sensors sit).
+    pub sensors: Vec<Observation>,
     /// First elastic frequency of the nominal model, Hz (a scale for the suspension).
     pub first_elastic_hz: f64,
+}
+
+impl EffectContext {
+    /// The context of `structure` measured at `points` (only translations carry a sensor mass).
+    pub fn new(structure: Structure, points: &[Observation], first_elastic_hz: f64) -> Self {
+        Self {
+            sensors: points
+                .iter()
+                .filter(|p| !p.direction.is_rotation())
+                .cloned()
+                .collect(),
+            structure,
+            first_elastic_hz,
+        }
+    }
 }
 
 /// One parameter of an effect.
@@ -57,7 +74,7 @@ pub trait Effect: Send + Sync + std::fmt::Debug {
     /// What the effect is and what `size` means in `jointid simulate --effect name=size`.
     fn describe(&self) -> &'static str;
 
-    /// The parameters theta.
+    /// The parameters theta (none when the structure has no site for the effect).
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter>;
 
     /// K(theta) - K(0) and M(theta) - M(0).
@@ -73,9 +90,27 @@ pub trait Effect: Send + Sync + std::fmt::Debug {
     /// [`Effect::theta_of_size`]; several parameters are summarised by their mean size).
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64;
 
-    /// Whether theta keeps `model` (with its current joints) physical; the reason when not.
-    fn admissible(&self, _model: &Model, _theta: &[f64]) -> Result<(), String> {
+    /// Whether theta keeps `current` (the structure with its current parameter values)
+    /// physical; the reason when not.
+    fn admissible(
+        &self,
+        _ctx: &EffectContext,
+        _current: &Structure,
+        _theta: &[f64],
+    ) -> Result<(), String> {
         Ok(())
+    }
+
+    /// Whether the effect can act on this structure and data.
+    fn applies(&self, ctx: &EffectContext) -> bool {
+        let params = self.parameters(ctx);
+        if params.is_empty() {
+            return false;
+        }
+        let theta: Vec<f64> = params.iter().map(|p| p.scale).collect();
+        self.derivatives(ctx, &theta)
+            .iter()
+            .any(|(k, m)| !k.is_zero() || !m.is_zero())
     }
 }
 
@@ -103,27 +138,32 @@ pub fn by_name(name: &str) -> Option<Arc<dyn Effect>> {
         .find(|e| e.name() == name)
 }
 
-/// A model with effects at given parameter values.
+/// A structure with effects at given parameter values.
 #[derive(Debug, Clone)]
 pub struct Configured {
-    /// Context of the effects (nominal model, sensors).
-    pub ctx: EffectContext,
-    /// The model whose joints are used (calibrated values).
-    pub model: Model,
+    /// Context of the effects (nominal structure, sensors).
+    pub ctx: Arc<EffectContext>,
+    /// The structure whose parameters are used (calibrated values).
+    pub structure: Structure,
     /// The effects and their theta.
     pub effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
 }
 
 impl Configured {
-    /// K and M of the model plus every effect.
+    /// K and M of the structure plus every effect.
     pub fn assemble(&self) -> Matrices {
-        let mut mats = self.model.assemble();
-        for (effect, theta) in &self.effects {
-            let (dk, dm) = effect.contribution(&self.ctx, theta);
-            dk.add_to(&mut mats.k, 1.0);
-            dm.add_to(&mut mats.m, 1.0);
+        let mats = self.structure.assemble();
+        let contributions: Vec<(SparseSym, SparseSym)> = self
+            .effects
+            .iter()
+            .map(|(effect, theta)| effect.contribution(&self.ctx, theta))
+            .collect();
+        if contributions.is_empty() {
+            return mats;
         }
-        mats
+        let terms: Vec<(&SparseSym, &SparseSym, f64)> =
+            contributions.iter().map(|(k, m)| (k, m, 1.0)).collect();
+        mats.plus(&terms)
     }
 
     /// The effects' parameters with their derivatives at the current theta, in effect order.
@@ -142,10 +182,18 @@ impl Configured {
                     value,
                     stiffness: dk,
                     mass: dm,
+                    role: Role::Identified,
                 });
             }
         }
         out
+    }
+
+    /// Whether every effect keeps the structure physical.
+    pub fn admissible(&self) -> bool {
+        self.effects
+            .iter()
+            .all(|(e, t)| e.admissible(&self.ctx, &self.structure, t).is_ok())
     }
 }
 
@@ -174,6 +222,13 @@ pub(crate) fn per_joint_name(effect: &str, joint: usize, joints: usize, suffix: 
     }
 }
 
+/// Adds `value` at (a, b) and its mirror, skipping removed DOFs.
+pub(crate) fn add_pair(s: &mut SparseSym, a: Option<usize>, b: Option<usize>, value: f64) {
+    if let (Some(a), Some(b)) = (a, b) {
+        s.add(a, b, value);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -181,13 +236,12 @@ mod tests {
     use crate::model::fixtures::paper_model;
 
     pub(crate) fn context() -> EffectContext {
-        let model = paper_model(1e7, 1e4);
-        let modal = ModalSolution::solve(&model.assemble()).unwrap();
-        EffectContext {
-            sensor_nodes: (0..model.node_count()).collect(),
-            first_elastic_hz: modal.frequency_hz(2),
-            model,
-        }
+        let structure = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&structure.assemble()).unwrap();
+        let points: Vec<Observation> = (0..structure.dof_count())
+            .map(|d| Observation::dof(&structure.dofs, d))
+            .collect();
+        EffectContext::new(structure, &points, modal.frequency_hz(2))
     }
 
     /// Every effect's dK/dtheta and dM/dtheta against central differences of its

@@ -2,7 +2,7 @@
 //! translation is measured (the same sensor everywhere).
 
 use super::{Effect, EffectContext, EffectParameter, linear_contribution};
-use crate::model::{Dof, SparseSym, dof_index};
+use crate::structure::SparseSym;
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
@@ -10,8 +10,12 @@ pub struct SensorMass;
 
 fn pattern(ctx: &EffectContext) -> SparseSym {
     let mut s = SparseSym::zero();
-    for &node in &ctx.sensor_nodes {
-        s.add(dof_index(node, Dof::W), dof_index(node, Dof::W), 1.0);
+    for sensor in &ctx.sensors {
+        for &(a, ca) in &sensor.terms {
+            for &(b, cb) in &sensor.terms {
+                s.push(a, b, ca * cb);
+            }
+        }
     }
     s
 }
@@ -31,11 +35,11 @@ impl Effect for SensorMass {
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
-        let sensors = ctx.sensor_nodes.len().max(1) as f64;
+        let sensors = ctx.sensors.len().max(1) as f64;
         vec![EffectParameter {
             name: "sensor_mass.m".into(),
             unit: "kg",
-            scale: 0.01 * ctx.model.mass() / sensors,
+            scale: 0.01 * ctx.structure.sites.beam_mass / sensors,
             non_negative: true,
         }]
     }
@@ -49,10 +53,10 @@ impl Effect for SensorMass {
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        vec![size * ctx.model.mass() / ctx.sensor_nodes.len().max(1) as f64]
+        vec![size * ctx.structure.sites.beam_mass / ctx.sensors.len().max(1) as f64]
     }
 
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
-        theta[0] * ctx.sensor_nodes.len().max(1) as f64 / ctx.model.mass()
+        theta[0] * ctx.sensors.len().max(1) as f64 / ctx.structure.sites.beam_mass
     }
 }

@@ -15,8 +15,8 @@
 //! is left out.
 
 use super::{Effect, EffectContext, EffectParameter};
-use crate::model::beam::ElementMatrix;
-use crate::model::{Beam, Dof, Model, SparseSym, dof_index};
+use crate::model::chain::beam::{ElementMatrix, element_stiffness};
+use crate::structure::{ElementSite, Section, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
@@ -27,11 +27,10 @@ const KAPPA: f64 = 5.0 / 6.0;
 /// Poisson's ratio: G = E / (2 (1 + nu)).
 const POISSON: f64 = 0.3;
 
-/// phi of one element at theta = 1.
-fn phi_1(beam: &Beam) -> f64 {
-    let l = beam.element_length();
-    let g = beam.youngs_modulus / (2.0 * (1.0 + POISSON));
-    12.0 * beam.bending_stiffness() / (KAPPA * g * beam.area * l * l)
+/// phi of one element of length `l` at theta = 1.
+fn phi_1(section: &Section, l: f64) -> f64 {
+    let g = section.youngs_modulus / (2.0 * (1.0 + POISSON));
+    12.0 * section.bending_stiffness() / (KAPPA * g * section.area * l * l)
 }
 
 fn a1(l: f64) -> ElementMatrix {
@@ -44,16 +43,14 @@ fn a1(l: f64) -> ElementMatrix {
     ]
 }
 
-fn a0(beam: &Beam) -> ElementMatrix {
-    let l = beam.element_length();
-    let c = beam.bending_stiffness() / (l * l * l);
-    let k = beam.element_stiffness();
-    k.map(|row| row.map(|x| x / c))
+fn a0(section: &Section, l: f64) -> ElementMatrix {
+    let c = section.bending_stiffness() / (l * l * l);
+    element_stiffness(section, l).map(|row| row.map(|x| x / c))
 }
 
-fn rotary(beam: &Beam) -> ElementMatrix {
-    let l = beam.element_length();
-    let c = beam.density * beam.second_moment / (30.0 * l);
+fn rotary(element: &ElementSite) -> ElementMatrix {
+    let (section, l) = (&element.section, element.length());
+    let c = section.density * section.second_moment / (30.0 * l);
     [
         [36.0, 3.0 * l, -36.0, 3.0 * l],
         [3.0 * l, 4.0 * l * l, -3.0 * l, -l * l],
@@ -63,14 +60,11 @@ fn rotary(beam: &Beam) -> ElementMatrix {
     .map(|row| row.map(|x| c * x))
 }
 
-/// Adds `f(beam)` on every element of every beam.
-fn every_element(model: &Model, mut f: impl FnMut(&Beam) -> ElementMatrix) -> SparseSym {
+/// Adds `f(element)` on every beam element.
+fn every_element(ctx: &EffectContext, f: impl Fn(&ElementSite) -> ElementMatrix) -> SparseSym {
     let mut s = SparseSym::zero();
-    for (b, beam) in model.beams().iter().enumerate() {
-        let e_matrix = f(beam);
-        for e in 0..beam.elements {
-            s.add_block(dof_index(model.first_node(b) + e, Dof::W), &e_matrix, 1.0);
-        }
+    for element in &ctx.structure.sites.elements {
+        s.add_element(&element.line.dofs, &f(element), 1.0);
     }
     s
 }
@@ -84,7 +78,10 @@ impl Effect for Shear {
         "Timoshenko shear flexibility and rotary inertia of the beams; size = theta, 0 for Euler-Bernoulli, 1 for kappa = 5/6 and nu = 0.3"
     }
 
-    fn parameters(&self, _ctx: &EffectContext) -> Vec<EffectParameter> {
+    fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
+        if ctx.structure.sites.elements.is_empty() {
+            return Vec::new();
+        }
         vec![EffectParameter {
             name: "shear.scale".into(),
             unit: "-",
@@ -98,34 +95,34 @@ impl Effect for Shear {
         if t == 0.0 {
             return (SparseSym::zero(), SparseSym::zero());
         }
-        let k = every_element(&ctx.model, |beam| {
-            let l = beam.element_length();
-            let c = beam.bending_stiffness() / (l * l * l);
-            let phi = t * phi_1(beam);
-            let (base, extra) = (a0(beam), a1(l));
+        let k = every_element(ctx, |element| {
+            let (section, l) = (&element.section, element.length());
+            let c = section.bending_stiffness() / (l * l * l);
+            let phi = t * phi_1(section, l);
+            let (base, extra) = (a0(section, l), a1(l));
             // k(phi) - k(0) = c [(A0 + phi A1) / (1 + phi) - A0] = c phi (A1 - A0) / (1 + phi)
             std::array::from_fn(|i| {
                 std::array::from_fn(|j| c * phi * (extra[i][j] - base[i][j]) / (1.0 + phi))
             })
         });
         let mut m = SparseSym::zero();
-        m.extend_scaled(&every_element(&ctx.model, rotary), t);
+        m.extend_scaled(&every_element(ctx, rotary), t);
         (k, m)
     }
 
     fn derivatives(&self, ctx: &EffectContext, theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
         let t = theta[0];
-        let dk = every_element(&ctx.model, |beam| {
-            let l = beam.element_length();
-            let c = beam.bending_stiffness() / (l * l * l);
-            let p1 = phi_1(beam);
-            let (base, extra) = (a0(beam), a1(l));
+        let dk = every_element(ctx, |element| {
+            let (section, l) = (&element.section, element.length());
+            let c = section.bending_stiffness() / (l * l * l);
+            let p1 = phi_1(section, l);
+            let (base, extra) = (a0(section, l), a1(l));
             let d = (1.0 + t * p1) * (1.0 + t * p1);
             std::array::from_fn(|i| {
                 std::array::from_fn(|j| c * p1 * (extra[i][j] - base[i][j]) / d)
             })
         });
-        vec![(dk, every_element(&ctx.model, rotary))]
+        vec![(dk, every_element(ctx, rotary))]
     }
 
     fn theta_of_size(&self, _ctx: &EffectContext, size: f64) -> Vec<f64> {

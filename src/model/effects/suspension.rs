@@ -1,19 +1,19 @@
 //! `suspension`: a free-free test is never perfectly free. Grounded translational springs of
-//! stiffness k_s at the two free ends of the chain (first node of the first beam, last node of
-//! the last beam).
+//! stiffness k_s at the free ends of the chain. It applies to structures with rigid-body modes
+//! (a suspended test), whose free ends are known.
 
 use super::{Effect, EffectContext, EffectParameter, linear_contribution};
-use crate::model::{Dof, Model, SparseSym, dof_index};
+use crate::structure::SparseSym;
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct Suspension;
 
-fn pattern(model: &Model) -> SparseSym {
-    let last = model.last_node(model.beams().len() - 1);
+fn pattern(ctx: &EffectContext) -> SparseSym {
     let mut s = SparseSym::zero();
-    s.add(dof_index(0, Dof::W), dof_index(0, Dof::W), 1.0);
-    s.add(dof_index(last, Dof::W), dof_index(last, Dof::W), 1.0);
+    for end in &ctx.structure.sites.free_ends {
+        s.add(end.w, end.w, 1.0);
+    }
     s
 }
 
@@ -21,12 +21,12 @@ fn pattern(model: &Model) -> SparseSym {
 /// frequency.
 fn stiffness_of_bounce(ctx: &EffectContext, fraction: f64) -> f64 {
     let w = 2.0 * std::f64::consts::PI * fraction * ctx.first_elastic_hz;
-    w * w * ctx.model.mass() / 2.0
+    w * w * ctx.structure.sites.beam_mass / 2.0
 }
 
 /// dK/dk_s.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    vec![(pattern(&ctx.model), SparseSym::zero())]
+    vec![(pattern(ctx), SparseSym::zero())]
 }
 
 impl Effect for Suspension {
@@ -39,6 +39,9 @@ impl Effect for Suspension {
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
+        if ctx.structure.rigid == 0 || ctx.structure.sites.free_ends.is_empty() {
+            return Vec::new();
+        }
         vec![EffectParameter {
             name: "suspension.k".into(),
             unit: "N/m",

@@ -14,12 +14,28 @@
 /// A 4x4 element matrix, row-major.
 pub type ElementMatrix = [[f64; 4]; 4];
 
-/// A uniform beam of the chain, in SI units; validated by [`crate::model::config`].
+pub use crate::structure::Section;
+
+/// A length of a beam with another section (a stepped beam: a lap region, a reinforcement).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// Start, m from the beam's start.
+    pub from: f64,
+    /// End, m from the beam's start.
+    pub to: f64,
+    /// Its section.
+    pub section: Section,
+}
+
+/// A beam of the chain, in SI units; validated by [`super::config`]. Its section is uniform
+/// but for its [`Segment`]s.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Beam {
     /// Length, m.
     pub length: f64,
-    /// Number of finite elements, at least 1.
+    /// Number of finite elements when the beam has no segment, support, attachment or sensor
+    /// inside it; with such break points, every interval between them gets elements of about
+    /// `length / elements` (at least one).
     pub elements: usize,
     /// Young's modulus E, Pa.
     pub youngs_modulus: f64,
@@ -29,58 +45,102 @@ pub struct Beam {
     pub area: f64,
     /// Second moment of area I, m^4.
     pub second_moment: f64,
+    /// Stepped lengths, ascending, not overlapping.
+    pub segments: Vec<Segment>,
 }
 
 impl Beam {
-    /// Length of one element, m.
+    /// A uniform beam.
+    pub fn uniform(length: f64, elements: usize, section: Section) -> Self {
+        Self {
+            length,
+            elements,
+            youngs_modulus: section.youngs_modulus,
+            density: section.density,
+            area: section.area,
+            second_moment: section.second_moment,
+            segments: Vec::new(),
+        }
+    }
+
+    /// The beam's own section (outside its segments).
+    pub fn section(&self) -> Section {
+        Section {
+            youngs_modulus: self.youngs_modulus,
+            density: self.density,
+            area: self.area,
+            second_moment: self.second_moment,
+        }
+    }
+
+    /// The section at `s` m from the beam's start.
+    pub fn section_at(&self, s: f64) -> Section {
+        self.segments
+            .iter()
+            .find(|g| s >= g.from && s <= g.to)
+            .map_or_else(|| self.section(), |g| g.section)
+    }
+
+    /// Length of one element of the uniform mesh, m.
     pub fn element_length(&self) -> f64 {
         self.length / self.elements as f64
     }
 
-    /// Bending stiffness EI, N m^2.
+    /// Bending stiffness EI of the beam's own section, N m^2.
     pub fn bending_stiffness(&self) -> f64 {
         self.youngs_modulus * self.second_moment
     }
 
-    /// Mass per unit length rho A, kg/m.
+    /// Mass per unit length rho A of the beam's own section, kg/m.
     pub fn mass_per_length(&self) -> f64 {
         self.density * self.area
     }
 
-    /// Total mass, kg.
+    /// Total mass, segments included, kg.
     pub fn mass(&self) -> f64 {
-        self.mass_per_length() * self.length
+        let own = self.mass_per_length() * self.length;
+        self.segments.iter().fold(own, |m, g| {
+            m + (g.section.mass_per_length() - self.mass_per_length()) * (g.to - g.from)
+        })
     }
 
-    /// Element stiffness matrix (see the module docs).
+    /// Element stiffness matrix of the uniform mesh (see the module docs).
     pub fn element_stiffness(&self) -> ElementMatrix {
-        let l = self.element_length();
-        let c = self.bending_stiffness() / (l * l * l);
-        scale(
-            [
-                [12.0, 6.0 * l, -12.0, 6.0 * l],
-                [6.0 * l, 4.0 * l * l, -6.0 * l, 2.0 * l * l],
-                [-12.0, -6.0 * l, 12.0, -6.0 * l],
-                [6.0 * l, 2.0 * l * l, -6.0 * l, 4.0 * l * l],
-            ],
-            c,
-        )
+        element_stiffness(&self.section(), self.element_length())
     }
 
-    /// Element consistent mass matrix (see the module docs).
+    /// Element consistent mass matrix of the uniform mesh (see the module docs).
     pub fn element_mass(&self) -> ElementMatrix {
-        let l = self.element_length();
-        let c = self.mass_per_length() * l / 420.0;
-        scale(
-            [
-                [156.0, 22.0 * l, 54.0, -13.0 * l],
-                [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
-                [54.0, 13.0 * l, 156.0, -22.0 * l],
-                [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
-            ],
-            c,
-        )
+        element_mass(&self.section(), self.element_length())
     }
+}
+
+/// Stiffness matrix of an element of length `l` (see the module docs).
+pub fn element_stiffness(section: &Section, l: f64) -> ElementMatrix {
+    let c = section.bending_stiffness() / (l * l * l);
+    scale(
+        [
+            [12.0, 6.0 * l, -12.0, 6.0 * l],
+            [6.0 * l, 4.0 * l * l, -6.0 * l, 2.0 * l * l],
+            [-12.0, -6.0 * l, 12.0, -6.0 * l],
+            [6.0 * l, 2.0 * l * l, -6.0 * l, 4.0 * l * l],
+        ],
+        c,
+    )
+}
+
+/// Consistent mass matrix of an element of length `l` (see the module docs).
+pub fn element_mass(section: &Section, l: f64) -> ElementMatrix {
+    let c = section.mass_per_length() * l / 420.0;
+    scale(
+        [
+            [156.0, 22.0 * l, 54.0, -13.0 * l],
+            [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
+            [54.0, 13.0 * l, 156.0, -22.0 * l],
+            [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+        ],
+        c,
+    )
 }
 
 fn scale(mut a: ElementMatrix, c: f64) -> ElementMatrix {
@@ -105,6 +165,7 @@ mod tests {
             density: 210.0,
             area: 1.0,
             second_moment: 1.0,
+            segments: Vec::new(),
         }
     }
 

@@ -11,6 +11,8 @@
 /// Number of identified parameters per joint (q = 2 per joint in the paper).
 pub const PARAMETERS_PER_JOINT: usize = 2;
 
+use crate::structure::Role;
+
 /// Stiffness parameters of one joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Joint {
@@ -18,6 +20,19 @@ pub struct Joint {
     pub k1: f64,
     /// Rotational stiffness k2, N m/rad.
     pub k2: f64,
+    /// Whether k1, k2 are identified or held fixed.
+    pub roles: [Role; 2],
+}
+
+impl Joint {
+    /// A joint whose k1 and k2 are both identified.
+    pub fn identified(k1: f64, k2: f64) -> Self {
+        Self {
+            k1,
+            k2,
+            roles: [Role::Identified; 2],
+        }
+    }
 }
 
 /// Which stiffness of a joint a parameter is.

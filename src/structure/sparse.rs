@@ -25,6 +25,11 @@ impl SparseSym {
         }
     }
 
+    /// Appends the single entry `(i, j, value)` (the caller lists its mirror).
+    pub fn push(&mut self, i: usize, j: usize, value: f64) {
+        self.entries.push((i, j, value));
+    }
+
     /// The 2x2 "spring" pattern `value * [[1, -1], [-1, 1]]` between DOFs `a` and `b`.
     pub fn spring(a: usize, b: usize, value: f64) -> Self {
         let mut s = Self::zero();
@@ -37,10 +42,16 @@ impl SparseSym {
     /// Adds the symmetric 4x4 element block `block * scale` on DOFs `base..base + 4`
     /// (zero entries skipped).
     pub fn add_block(&mut self, base: usize, block: &[[f64; 4]; 4], scale: f64) {
+        self.add_element(&std::array::from_fn(|i| Some(base + i)), block, scale);
+    }
+
+    /// Adds the symmetric 4x4 element block `block * scale` on the DOFs `dofs` (a `None` DOF,
+    /// removed by a support, and zero entries skipped).
+    pub fn add_element(&mut self, dofs: &[Option<usize>; 4], block: &[[f64; 4]; 4], scale: f64) {
         for (i, row) in block.iter().enumerate() {
             for (j, &v) in row.iter().enumerate().take(i + 1) {
-                if v != 0.0 {
-                    self.add(base + i, base + j, scale * v);
+                if let (Some(a), Some(b), true) = (dofs[i], dofs[j], v != 0.0) {
+                    self.add(a, b, scale * v);
                 }
             }
         }

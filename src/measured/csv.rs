@@ -1,0 +1,612 @@
+//! The measured-modes CSV, one row per (mode, measured point):
+//!
+//! ```text
+//! mode,frequency_hz,node,dof,value        a DOF of a node (beam chains)
+//! 1,150.2,0,w,0.8812
+//! mode,frequency_hz,x,dof,value           a position along the chain, m (between nodes too)
+//! 1,18.8,0.176,w,0.31
+//! mode,frequency_hz,label,value           a DOF label or a declared sensor's label
+//! 1,150.2,7:w,0.8812
+//! ```
+//! `mode` is the deformable mode number r (1 = first elastic mode). A point absent for a mode
+//! is not identified (the paper's NF). Every row of a mode carries the same frequency. A row may
+//! leave the point and the value empty to give a frequency alone; a mode still needs at least
+//! one shape row. Optional columns after `value`: `damping_ratio` and `mpc` (modal phase
+//! collinearity), constant within a mode, as `jointid extract` writes them.
+
+use std::collections::BTreeMap;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use super::{MeasuredMode, MeasuredModes};
+use crate::structure::{Direction, Observation, Structure};
+
+/// A measured-modes file that cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum MeasuredError {
+    /// The file cannot be read.
+    #[error("{file}: cannot read the file: {cause}")]
+    Read {
+        /// The file.
+        file: PathBuf,
+        /// The cause.
+        cause: std::io::Error,
+    },
+    /// A line is invalid.
+    #[error("{file}:{line}: {message}")]
+    Line {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line number.
+        line: u64,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// The file holds no mode at all.
+    #[error("{file}: no measured mode (only a header, or an empty file)")]
+    Empty {
+        /// The file.
+        file: PathBuf,
+    },
+}
+
+/// How a file locates its measured points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// `node,dof`.
+    Node,
+    /// `x,dof`.
+    Position,
+    /// `label`.
+    Label,
+}
+
+impl Location {
+    fn columns(self) -> &'static [&'static str] {
+        match self {
+            Location::Node => &["node", "dof"],
+            Location::Position => &["x", "dof"],
+            Location::Label => &["label"],
+        }
+    }
+}
+
+/// Optional per-mode columns.
+const OPTIONAL: [&str; 2] = ["damping_ratio", "mpc"];
+
+struct Pending {
+    frequency_hz: f64,
+    first_line: u64,
+    damping_ratio: Option<f64>,
+    mpc: Option<f64>,
+    shape: BTreeMap<String, (Observation, f64, u64)>,
+}
+
+struct Header {
+    location: Location,
+    optional: Vec<(usize, &'static str)>,
+    value: usize,
+}
+
+fn header(fields: &[&str]) -> Result<Header, String> {
+    let allowed = "the header must be `mode,frequency_hz,` then `node,dof`, `x,dof` or `label`, then `value`, then optionally `damping_ratio` and/or `mpc`";
+    let location = match fields.get(2).copied() {
+        Some("node") => Location::Node,
+        Some("x") => Location::Position,
+        Some("label") => Location::Label,
+        _ => return Err(format!("{allowed}; found `{}`", fields.join(","))),
+    };
+    let value = 2 + location.columns().len();
+    let expected_start: Vec<&str> = ["mode", "frequency_hz"]
+        .iter()
+        .chain(location.columns())
+        .chain(&["value"])
+        .copied()
+        .collect();
+    if fields.len() < expected_start.len() || fields[..expected_start.len()] != expected_start[..] {
+        return Err(format!("{allowed}; found `{}`", fields.join(",")));
+    }
+    let mut optional = Vec::new();
+    for (i, f) in fields.iter().enumerate().skip(expected_start.len()) {
+        match OPTIONAL.iter().find(|o| *o == f) {
+            Some(o) if !optional.iter().any(|(_, seen)| seen == o) => optional.push((i, *o)),
+            _ => {
+                return Err(format!(
+                    "{allowed}; found `{}` (column `{f}`)",
+                    fields.join(",")
+                ));
+            }
+        }
+    }
+    Ok(Header {
+        location,
+        optional,
+        value,
+    })
+}
+
+impl MeasuredModes {
+    /// Reads and validates a file against `structure`.
+    pub fn from_path(path: &Path, structure: &Structure) -> Result<Self, MeasuredError> {
+        let file = std::fs::File::open(path).map_err(|cause| MeasuredError::Read {
+            file: path.to_path_buf(),
+            cause,
+        })?;
+        Self::from_reader(file, path, structure)
+    }
+
+    /// Reads and validates CSV from any reader; `file` names it in errors.
+    pub fn from_reader<R: Read>(
+        reader: R,
+        file: &Path,
+        structure: &Structure,
+    ) -> Result<Self, MeasuredError> {
+        let err = |line: u64, message: String| MeasuredError::Line {
+            file: file.to_path_buf(),
+            line,
+            message,
+        };
+        let mut csv = ::csv::ReaderBuilder::new()
+            .trim(::csv::Trim::All)
+            .comment(Some(b'#'))
+            .from_reader(reader);
+        let fields: Vec<String> = csv
+            .headers()
+            .map_err(|e| err(1, e.to_string()))?
+            .iter()
+            .map(String::from)
+            .collect();
+        let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
+        let header = header(&fields).map_err(|m| err(1, m))?;
+        let mut pending: BTreeMap<usize, Pending> = BTreeMap::new();
+        for record in csv.records() {
+            let record = record.map_err(|e| {
+                let line = e.position().map(|p| p.line()).unwrap_or(0);
+                err(line, e.to_string())
+            })?;
+            let line = record.position().map(|p| p.line()).unwrap_or(0);
+            let mode: usize = match record[0].parse::<usize>() {
+                Ok(r) if (1..=MAX_MODE).contains(&r) => r,
+                _ => {
+                    return Err(err(
+                        line,
+                        format!(
+                            "mode = `{}` is invalid: it must be an integer from 1 (the first elastic mode) to {MAX_MODE}",
+                            &record[0]
+                        ),
+                    ));
+                }
+            };
+            let frequency_hz = positive(&record[1], "frequency_hz", "Hz", MAX_FREQUENCY_HZ)
+                .map_err(|m| err(line, m))?;
+            let optional: Vec<(&str, Option<f64>)> = header
+                .optional
+                .iter()
+                .map(|&(i, name)| {
+                    let text = &record[i];
+                    if text.is_empty() {
+                        return Ok((name, None));
+                    }
+                    match text.parse::<f64>() {
+                        Ok(v) if v.is_finite() && (0.0..=1.0).contains(&v) => Ok((name, Some(v))),
+                        _ => Err(err(
+                            line,
+                            format!(
+                                "{name} = `{text}` is invalid: it must be a number from 0 to 1"
+                            ),
+                        )),
+                    }
+                })
+                .collect::<Result<_, _>>()?;
+            let entry = pending.entry(mode).or_insert_with(|| Pending {
+                frequency_hz,
+                first_line: line,
+                damping_ratio: None,
+                mpc: None,
+                shape: BTreeMap::new(),
+            });
+            if entry.frequency_hz != frequency_hz {
+                return Err(err(
+                    line,
+                    format!(
+                        "mode {mode} has frequency_hz = {frequency_hz} here but {} on line {}: all rows of a mode must carry the same frequency",
+                        entry.frequency_hz, entry.first_line
+                    ),
+                ));
+            }
+            for (name, value) in optional {
+                let slot = if name == "mpc" {
+                    &mut entry.mpc
+                } else {
+                    &mut entry.damping_ratio
+                };
+                match (*slot, value) {
+                    (Some(a), Some(b)) if a != b => {
+                        return Err(err(
+                            line,
+                            format!(
+                                "mode {mode} has {name} = {b} here but {a} above: it is one value per mode"
+                            ),
+                        ));
+                    }
+                    (None, Some(b)) => *slot = Some(b),
+                    _ => {}
+                }
+            }
+            let location: Vec<&str> = (2..header.value).map(|i| &record[i]).collect();
+            let value_text = &record[header.value];
+            if location.iter().all(|f| f.is_empty()) && value_text.is_empty() {
+                continue;
+            }
+            let point = locate(header.location, &location, structure).map_err(|m| err(line, m))?;
+            let value: f64 = match value_text.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                _ => {
+                    return Err(err(
+                        line,
+                        format!("value = `{value_text}` is invalid: it must be a finite number"),
+                    ));
+                }
+            };
+            let label = point.label.clone();
+            if let Some((_, _, first)) = entry.shape.insert(label.clone(), (point, value, line)) {
+                return Err(err(
+                    line,
+                    format!("mode {mode}, point {label} is given twice (first on line {first})"),
+                ));
+            }
+        }
+        if pending.is_empty() {
+            return Err(MeasuredError::Empty {
+                file: file.to_path_buf(),
+            });
+        }
+        let modes = pending
+            .into_iter()
+            .map(|(mode, p)| {
+                if p.shape.is_empty() {
+                    return Err(err(
+                        p.first_line,
+                        format!(
+                            "mode {mode} has no shape rows: at least one point and value is needed"
+                        ),
+                    ));
+                }
+                let (points, values) = p.shape.into_values().map(|(o, v, _)| (o, v)).unzip();
+                let mut m = MeasuredMode::new(mode, p.frequency_hz, points, values);
+                m.damping_ratio = p.damping_ratio;
+                m.mpc = p.mpc;
+                Ok(m)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self { modes })
+    }
+
+    /// Writes the modes in the file format above: by label where every point is a sensor the
+    /// model declares, by node where every point is a node's DOF, by position where every
+    /// point lies on a chain, by label otherwise.
+    pub fn write_csv<W: std::io::Write>(
+        &self,
+        out: W,
+        structure: &Structure,
+    ) -> Result<(), ::csv::Error> {
+        let points = self.points();
+        let node_of = |o: &Observation| o.single_dof().and_then(|d| structure.dofs.get(d).node);
+        let declared = |o: &Observation| structure.sensors.iter().any(|s| s == o);
+        let location = if !structure.sensors.is_empty() && points.iter().all(declared) {
+            Location::Label
+        } else if points.iter().all(|o| node_of(o).is_some()) {
+            Location::Node
+        } else if !structure.dofs.lines().is_empty()
+            && points
+                .iter()
+                .all(|o| matches!(o.direction, Direction::W | Direction::Theta))
+        {
+            Location::Position
+        } else {
+            Location::Label
+        };
+        let damping = self.modes.iter().any(|m| m.damping_ratio.is_some());
+        let mpc = self.modes.iter().any(|m| m.mpc.is_some());
+        let mut w = ::csv::Writer::from_writer(out);
+        let mut head: Vec<&str> = vec!["mode", "frequency_hz"];
+        head.extend(location.columns());
+        head.push("value");
+        if damping {
+            head.push("damping_ratio");
+        }
+        if mpc {
+            head.push("mpc");
+        }
+        w.write_record(&head)?;
+        let opt = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
+        for m in &self.modes {
+            for (o, &v) in m.points.iter().zip(&m.values) {
+                let mut row = vec![m.mode.to_string(), m.frequency_hz.to_string()];
+                match location {
+                    Location::Node => {
+                        row.push(node_of(o).map(|n| n.to_string()).unwrap_or_default());
+                        row.push(o.direction.name().to_string());
+                    }
+                    Location::Position => {
+                        row.push(o.x.to_string());
+                        row.push(o.direction.name().to_string());
+                    }
+                    Location::Label => row.push(o.label.clone()),
+                }
+                row.push(v.to_string());
+                if damping {
+                    row.push(opt(m.damping_ratio));
+                }
+                if mpc {
+                    row.push(opt(m.mpc));
+                }
+                w.write_record(&row)?;
+            }
+        }
+        w.flush()?;
+        Ok(())
+    }
+}
+
+/// Largest mode number a file may give.
+pub const MAX_MODE: usize = 100_000;
+/// Largest frequency a file may give, Hz (an acoustic or ultrasonic test stays far below).
+pub const MAX_FREQUENCY_HZ: f64 = 1e9;
+
+fn positive(text: &str, name: &str, unit: &str, max: f64) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= max => Ok(v),
+        _ => Err(format!(
+            "{name} = `{text}` is invalid: it must be a number > 0 and at most {max:e} ({unit})"
+        )),
+    }
+}
+
+/// The observation a row names.
+fn locate(
+    location: Location,
+    fields: &[&str],
+    structure: &Structure,
+) -> Result<Observation, String> {
+    let dofs = &structure.dofs;
+    let direction = |text: &str| {
+        Direction::parse(text).ok_or_else(|| {
+            format!("dof = `{text}` is invalid: it must be `w` or `theta` (or x, y, z, rx, ry, rz for an external model)")
+        })
+    };
+    match location {
+        Location::Node => {
+            let nodes = dofs
+                .dofs()
+                .iter()
+                .filter_map(|d| d.node)
+                .max()
+                .map_or(0, |n| n + 1);
+            let node: usize = fields[0].parse().ok().filter(|&n| n < nodes).ok_or_else(|| {
+                if nodes == 0 {
+                    format!("node = `{}` is invalid: this model has no numbered nodes; give points by label", fields[0])
+                } else {
+                    format!("node = `{}` is invalid: the model has nodes 0 to {}", fields[0], nodes - 1)
+                }
+            })?;
+            let d = direction(fields[1])?;
+            let label = crate::structure::DofMap::node_label(node, d);
+            match dofs.index(&label) {
+                Some(i) => Ok(Observation::dof(dofs, i)),
+                None => Err(match dofs.constrained_by(&label) {
+                    Some(by) => format!(
+                        "node {node}, dof {d} is held by {by}: it is always zero; leave the row out"
+                    ),
+                    None => format!("node {node} has no dof {d}"),
+                }),
+            }
+        }
+        Location::Position => {
+            let x: f64 = fields[0]
+                .parse()
+                .ok()
+                .filter(|x: &f64| x.is_finite())
+                .ok_or_else(|| {
+                    format!("x = `{}` is invalid: it must be a number (m)", fields[0])
+                })?;
+            dofs.at_x(x, direction(fields[1])?)
+                .map_err(|e| e.to_string())
+        }
+        Location::Label => {
+            let label = fields[0];
+            if let Some(i) = dofs.index(label) {
+                return Ok(Observation::dof(dofs, i));
+            }
+            if let Some(s) = structure.sensors.iter().find(|s| s.label == label) {
+                return Ok(s.clone());
+            }
+            Err(match dofs.constrained_by(label) {
+                Some(by) => format!(
+                    "label = `{label}` is held by {by}: it is always zero; leave the row out"
+                ),
+                None => format!(
+                    "label = `{label}` is invalid: it is neither a DOF of the model nor a declared sensor"
+                ),
+            })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::fixtures::paper_model;
+
+    fn read_with(text: &str, structure: &Structure) -> Result<MeasuredModes, String> {
+        MeasuredModes::from_reader(text.as_bytes(), Path::new("d.csv"), structure)
+            .map_err(|e| e.to_string())
+    }
+
+    fn read(text: &str) -> Result<MeasuredModes, String> {
+        read_with(text, &paper_model(1e7, 1e4))
+    }
+
+    fn dofs(m: &MeasuredMode) -> Vec<usize> {
+        m.points.iter().map(|p| p.single_dof().unwrap()).collect()
+    }
+
+    #[test]
+    fn reads_modes_sorted_with_their_dofs() {
+        let m = read("mode,frequency_hz,node,dof,value\n2,400,3,theta,1.5\n1,150.2,0,theta,-3.1\n1,150.2,0,w,0.88\n2,400,,,\n").unwrap();
+        assert_eq!(m.modes().len(), 2);
+        let first = &m.modes()[0];
+        assert_eq!((first.mode, first.frequency_hz), (1, 150.2));
+        assert_eq!(dofs(first), vec![0, 1]);
+        assert_eq!(first.values, vec![0.88, -3.1]);
+        assert_eq!(first.points[1].label, "0:theta");
+        assert_eq!(dofs(m.get(2).unwrap()), vec![7]);
+    }
+
+    #[test]
+    fn a_position_on_a_node_reads_that_node_and_between_nodes_interpolates() {
+        let by_node =
+            read("mode,frequency_hz,node,dof,value\n1,150,3,w,0.5\n1,150,3,theta,2\n").unwrap();
+        // Node 3 of the 0.2 m / 7-element first beam sits at x = 3 * 0.2 / 7.
+        let x = 3.0 * 0.2 / 7.0;
+        let by_x = read(&format!(
+            "mode,frequency_hz,x,dof,value\n1,150,{x},w,0.5\n1,150,{x},theta,2\n"
+        ))
+        .unwrap();
+        assert_eq!(by_node.modes()[0].points, by_x.modes()[0].points);
+        let between = read("mode,frequency_hz,x,dof,value\n1,150,0.1,w,0.5\n").unwrap();
+        let p = &between.modes()[0].points[0];
+        assert_eq!(p.label, "x=0.1:w");
+        assert_eq!(p.terms.len(), 4);
+        // Interpolation reproduces a rigid motion w = 1 + 2 x exactly.
+        let rigid: Vec<f64> = (0..38)
+            .map(|d| {
+                let node = d / 2;
+                let xn = if node < 8 {
+                    node as f64 * 0.2 / 7.0
+                } else {
+                    0.2 + (node - 8) as f64 * 0.03
+                };
+                if d % 2 == 0 { 1.0 + 2.0 * xn } else { 2.0 }
+            })
+            .collect();
+        assert!((p.read(&rigid) - 1.2).abs() < 1e-14);
+    }
+
+    #[test]
+    fn labels_and_optional_columns_are_read() {
+        let m = read("mode,frequency_hz,label,value,damping_ratio,mpc\n1,150,5:theta,1.5,0.01,0.99\n1,150,2:w,1,0.01,\n").unwrap();
+        let mode = &m.modes()[0];
+        assert_eq!(dofs(mode), vec![4, 11]);
+        assert_eq!((mode.damping_ratio, mode.mpc), (Some(0.01), Some(0.99)));
+        let e = read("mode,frequency_hz,label,value,damping_ratio\n1,150,5:theta,1.5,0.01\n1,150,2:w,1,0.02\n").unwrap_err();
+        assert_eq!(
+            e,
+            "d.csv:3: mode 1 has damping_ratio = 0.02 here but 0.01 above: it is one value per mode"
+        );
+        let e = read("mode,frequency_hz,label,value\n1,150,bolt,1.5\n").unwrap_err();
+        assert_eq!(
+            e,
+            "d.csv:2: label = `bolt` is invalid: it is neither a DOF of the model nor a declared sensor"
+        );
+    }
+
+    #[test]
+    fn each_bad_line_names_its_line_and_what_is_allowed() {
+        let h = "mode,frequency_hz,node,dof,value\n";
+        let cases = [
+            (
+                "1,150,0,phi,1.0\n",
+                "d.csv:2: dof = `phi` is invalid: it must be `w` or `theta` (or x, y, z, rx, ry, rz for an external model)",
+            ),
+            (
+                "1,150,19,w,1.0\n",
+                "d.csv:2: node = `19` is invalid: the model has nodes 0 to 18",
+            ),
+            (
+                "1,150,0,w,1.0\n1,150,0,w,2.0\n",
+                "d.csv:3: mode 1, point 0:w is given twice (first on line 2)",
+            ),
+            (
+                "1,150,0,w,1.0\n1,151,1,w,2.0\n",
+                "d.csv:3: mode 1 has frequency_hz = 151 here but 150 on line 2: all rows of a mode must carry the same frequency",
+            ),
+            (
+                "1,150,0,w,inf\n",
+                "d.csv:2: value = `inf` is invalid: it must be a finite number",
+            ),
+            (
+                "1,NaN,0,w,1\n",
+                "d.csv:2: frequency_hz = `NaN` is invalid: it must be a number > 0 and at most 1e9 (Hz)",
+            ),
+            (
+                "1,1e200,0,w,1\n",
+                "d.csv:2: frequency_hz = `1e200` is invalid: it must be a number > 0 and at most 1e9 (Hz)",
+            ),
+            (
+                "0,150,0,w,1\n",
+                "d.csv:2: mode = `0` is invalid: it must be an integer from 1 (the first elastic mode) to 100000",
+            ),
+            (
+                "18446744073709551615,150,0,w,1\n",
+                "d.csv:2: mode = `18446744073709551615` is invalid: it must be an integer from 1 (the first elastic mode) to 100000",
+            ),
+            (
+                "1,150,0,w,1\n2,300,,,\n",
+                "d.csv:3: mode 2 has no shape rows: at least one point and value is needed",
+            ),
+        ];
+        for (body, message) in cases {
+            assert_eq!(
+                read(&format!("{h}{body}")).unwrap_err(),
+                message,
+                "for {body:?}"
+            );
+        }
+        assert!(
+            read("mode,freq,node,dof,value\n")
+                .unwrap_err()
+                .starts_with("d.csv:1: the header must be")
+        );
+        assert!(
+            read("mode,frequency_hz,node,dof,value,colour\n")
+                .unwrap_err()
+                .ends_with("(column `colour`)")
+        );
+        assert_eq!(
+            read(h).unwrap_err(),
+            "d.csv: no measured mode (only a header, or an empty file)"
+        );
+        assert!(
+            read(&format!("{h}1,150,0,w\n"))
+                .unwrap_err()
+                .starts_with("d.csv:2: ")
+        );
+        assert_eq!(
+            read("mode,frequency_hz,x,dof,value\n1,150,0.6,w,1\n").unwrap_err(),
+            "d.csv:2: x = 0.6 m is outside the chain, which spans 0 to 0.5 m"
+        );
+    }
+
+    #[test]
+    fn write_then_read_round_trips_in_every_location_form() {
+        let model = paper_model(1e7, 1e4);
+        let on_nodes: Vec<Observation> = [0, 5, 36]
+            .iter()
+            .map(|&d| Observation::dof(&model.dofs, d))
+            .collect();
+        let between = vec![
+            model.dofs.at_x(0.1, Direction::W).unwrap(),
+            model.dofs.at_x(0.45, Direction::Theta).unwrap(),
+        ];
+        for points in [on_nodes, between] {
+            let mut mode = MeasuredMode::new(3, 812.25, points, vec![0.1, -1e-7, 3.0]);
+            mode.values.truncate(mode.points.len());
+            mode.damping_ratio = Some(0.0125);
+            let m = MeasuredModes::new(vec![mode]);
+            let mut buf = Vec::new();
+            m.write_csv(&mut buf, &model).unwrap();
+            assert_eq!(read(std::str::from_utf8(&buf).unwrap()).unwrap(), m);
+        }
+    }
+}

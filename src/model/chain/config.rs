@@ -1,0 +1,690 @@
+//! The chain's model file (TOML, SI units), parsed in two stages: raw serde structs that
+//! reject unknown keys, then a validated [`Chain`].
+//!
+//! ```toml
+//! [mesh]                     # optional
+//! element_length = 0.01      # m: beams without `elements` get elements of at most this
+//! nodes_at = [0.176]         # m: extra node positions
+//!
+//! [[beam]]
+//! length = 0.20              # m
+//! elements = 7               # or leave it out and set mesh.element_length
+//! youngs_modulus = 2.1e11    # Pa
+//! density = 7850.0           # kg/m^3
+//! area = 2.4e-3              # m^2
+//! second_moment = 3.2e-7     # m^4
+//! [[beam.segment]]           # a stepped length of this beam (m from its start)
+//! from = 0.16
+//! to = 0.20
+//! area = 4.8e-3              # and/or youngs_modulus, density, second_moment
+//!
+//! [[joint]]
+//! k1 = 1.0e7                 # N/m
+//! k2 = 1.0e4                 # N m/rad
+//! fixed = ["k1"]             # optional: held at its value, not identified
+//!
+//! [[support]]                # optional, any number; none: free-free
+//! x = 0.0                    # m along the chain
+//! kind = "clamped"           # clamped | pinned | guided | spring
+//! # translational = 1e5      # spring: N/m
+//! # rotational = 10.0        # spring: N m/rad
+//! # identify = ["rotational"] # spring: stiffnesses identified beside the joints
+//!
+//! [[mass]]                   # a point mass
+//! x = 0.085
+//! mass = 0.02                # kg
+//! rotary_inertia = 1e-6      # kg m^2, optional
+//! # spring = 5e4             # N/m: the mass hangs on a spring (its own DOF)
+//! # identify = true          # the mass is identified beside the joints
+//!
+//! [[sensor]]                 # a sensor position: a node goes there
+//! x = 0.5
+//! dof = "w"                  # w (default) or theta
+//! label = "acc1"             # optional
+//! mass = 0.003               # kg, optional: then part of the model
+//! ```
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::Chain;
+use super::beam::{Beam, Section, Segment};
+use super::joint::Joint;
+use super::setup::{PointMass, Sensor, Support, SupportKind};
+use crate::input::{FieldCheck, InputError};
+use crate::structure::{Direction, Role};
+
+/// Largest number of beams: the identification takes at most
+/// [`crate::identify::wls::MAX_Q`] parameters, two per joint.
+pub const MAX_BEAMS: usize = crate::identify::wls::MAX_Q / 2 + 1;
+
+/// Largest number of elements per beam: the modal solution is dense, O(N^3).
+pub const MAX_ELEMENTS_PER_BEAM: i64 = 2000;
+
+/// The chain's model file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawChain {
+    #[serde(default)]
+    kind: Option<String>,
+    #[serde(default)]
+    mesh: Option<RawMesh>,
+    #[serde(default)]
+    beam: Vec<RawBeam>,
+    #[serde(default)]
+    joint: Vec<RawJoint>,
+    #[serde(default)]
+    support: Vec<RawSupport>,
+    #[serde(default)]
+    mass: Vec<RawMass>,
+    #[serde(default)]
+    sensor: Vec<RawSensor>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMesh {
+    element_length: Option<f64>,
+    #[serde(default)]
+    nodes_at: Vec<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBeam {
+    length: f64,
+    elements: Option<i64>,
+    youngs_modulus: f64,
+    density: f64,
+    area: f64,
+    second_moment: f64,
+    #[serde(default)]
+    segment: Vec<RawSegment>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSegment {
+    from: f64,
+    to: f64,
+    youngs_modulus: Option<f64>,
+    density: Option<f64>,
+    area: Option<f64>,
+    second_moment: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawJoint {
+    k1: f64,
+    k2: f64,
+    #[serde(default)]
+    fixed: Vec<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSupport {
+    x: f64,
+    kind: String,
+    translational: Option<f64>,
+    rotational: Option<f64>,
+    #[serde(default)]
+    identify: Vec<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMass {
+    x: f64,
+    mass: f64,
+    rotary_inertia: Option<f64>,
+    spring: Option<f64>,
+    #[serde(default)]
+    identify: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSensor {
+    x: f64,
+    dof: Option<String>,
+    label: Option<String>,
+    mass: Option<f64>,
+}
+
+impl RawChain {
+    /// Validates the raw file into a chain; `file` names it in errors.
+    pub(crate) fn validate(self, file: &Path) -> Result<Chain, InputError> {
+        let check = FieldCheck { file };
+        if let Some(kind) = self.kind.as_deref().filter(|k| *k != "chain") {
+            return Err(check.invalid(
+                "kind",
+                format!("\"{kind}\""),
+                "a beam-chain model has kind = \"chain\" (or no kind)",
+            ));
+        }
+        if self.beam.is_empty() || self.beam.len() > MAX_BEAMS {
+            return Err(check.invalid(
+                "beam",
+                format!("{} beam(s)", self.beam.len()),
+                format!("a chain has 1 to {MAX_BEAMS} [[beam]] tables"),
+            ));
+        }
+        let element_length = self
+            .mesh
+            .as_ref()
+            .and_then(|m| m.element_length)
+            .map(|h| check.positive("mesh.element_length", h, "m"))
+            .transpose()?;
+        let beams = self
+            .beam
+            .iter()
+            .enumerate()
+            .map(|(i, b)| beam(b, i, element_length, &check))
+            .collect::<Result<Vec<_>, InputError>>()?;
+        if self.joint.len() + 1 != beams.len() {
+            return Err(check.invalid(
+                "joint",
+                format!("{} joint(s)", self.joint.len()),
+                format!(
+                    "a chain of {} beam(s) needs exactly {} [[joint]] table(s), joint i connecting beam i to beam i+1",
+                    beams.len(),
+                    beams.len() - 1
+                ),
+            ));
+        }
+        let joints = self
+            .joint
+            .iter()
+            .enumerate()
+            .map(|(i, j)| joint(j, i, &check))
+            .collect::<Result<Vec<_>, InputError>>()?;
+        let length: f64 = beams.iter().map(|b| b.length).sum();
+        let position = |path: String, x: f64| {
+            if x.is_finite() && (0.0..=length).contains(&x) {
+                Ok(x)
+            } else {
+                Err(check.invalid(
+                    path,
+                    x,
+                    format!("it must lie on the chain, from 0 to {length} m"),
+                ))
+            }
+        };
+        let mut supports: Vec<Support> = Vec::with_capacity(self.support.len());
+        for (i, s) in self.support.iter().enumerate() {
+            let p = |field: &str| format!("support[{i}].{field}");
+            let x = position(p("x"), s.x)?;
+            if let Some(other) = supports.iter().position(|o| o.x == x) {
+                return Err(check.invalid(
+                    p("x"),
+                    x,
+                    format!("support[{other}] is already there: one support per position"),
+                ));
+            }
+            let kind = match (s.kind.as_str(), s.translational, s.rotational) {
+                ("clamped", None, None) => SupportKind::Clamped,
+                ("pinned", None, None) => SupportKind::Pinned,
+                ("guided", None, None) => SupportKind::Guided,
+                ("spring", t, r) if t.is_some() || r.is_some() => SupportKind::Spring {
+                    translational: check.non_negative(
+                        p("translational"),
+                        t.unwrap_or(0.0),
+                        "N/m",
+                    )?,
+                    rotational: check.non_negative(p("rotational"), r.unwrap_or(0.0), "N m/rad")?,
+                },
+                ("spring", _, _) => {
+                    return Err(check.invalid(
+                        p("kind"),
+                        "\"spring\"",
+                        "a spring support needs translational (N/m) and/or rotational (N m/rad)",
+                    ));
+                }
+                ("clamped" | "pinned" | "guided", _, _) => {
+                    return Err(check.invalid(
+                        p("kind"),
+                        format!("\"{}\"", s.kind),
+                        "translational and rotational belong to kind = \"spring\" only",
+                    ));
+                }
+                (other, _, _) => {
+                    return Err(check.invalid(
+                        p("kind"),
+                        format!("\"{other}\""),
+                        "it must be \"clamped\", \"pinned\", \"guided\" or \"spring\"",
+                    ));
+                }
+            };
+            let mut identify = [false; 2];
+            for (k, name) in s.identify.iter().enumerate() {
+                let slot = match (name.as_str(), kind) {
+                    ("translational", SupportKind::Spring { translational, .. })
+                        if translational > 0.0 =>
+                    {
+                        0
+                    }
+                    ("rotational", SupportKind::Spring { rotational, .. }) if rotational > 0.0 => 1,
+                    _ => {
+                        return Err(check.invalid(
+                            p(&format!("identify[{k}]")),
+                            format!("\"{name}\""),
+                            "a spring support identifies its \"translational\" and/or \"rotational\" stiffness, when that stiffness is given and > 0",
+                        ));
+                    }
+                };
+                identify[slot] = true;
+            }
+            supports.push(Support { x, kind, identify });
+        }
+        let masses = self
+            .mass
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let p = |field: &str| format!("mass[{i}].{field}");
+                if m.spring.is_some() && m.rotary_inertia.is_some() {
+                    return Err(check.invalid(
+                        p("rotary_inertia"),
+                        m.rotary_inertia.unwrap_or(0.0),
+                        "a mass on a spring moves in translation only: leave rotary_inertia out",
+                    ));
+                }
+                Ok(PointMass {
+                    x: position(p("x"), m.x)?,
+                    mass: check.positive(p("mass"), m.mass, "kg")?,
+                    rotary_inertia: m
+                        .rotary_inertia
+                        .map(|j| check.non_negative(p("rotary_inertia"), j, "kg m^2"))
+                        .transpose()?
+                        .unwrap_or(0.0),
+                    spring: m
+                        .spring
+                        .map(|k| check.positive(p("spring"), k, "N/m"))
+                        .transpose()?,
+                    identify: m.identify,
+                })
+            })
+            .collect::<Result<Vec<_>, InputError>>()?;
+        let mut sensors: Vec<Sensor> = Vec::with_capacity(self.sensor.len());
+        for (i, s) in self.sensor.iter().enumerate() {
+            let p = |field: &str| format!("sensor[{i}].{field}");
+            let direction = match s.dof.as_deref() {
+                None | Some("w") => Direction::W,
+                Some("theta") => Direction::Theta,
+                Some(other) => {
+                    return Err(check.invalid(
+                        p("dof"),
+                        format!("\"{other}\""),
+                        "it must be \"w\" or \"theta\"",
+                    ));
+                }
+            };
+            if let Some(label) = &s.label {
+                if label.is_empty() || label.contains(',') || label.contains(':') {
+                    return Err(check.invalid(
+                        p("label"),
+                        format!("\"{label}\""),
+                        "a label is non-empty text without commas or colons",
+                    ));
+                }
+                if let Some(other) = sensors.iter().position(|o| o.label.as_ref() == Some(label)) {
+                    return Err(check.invalid(
+                        p("label"),
+                        format!("\"{label}\""),
+                        format!("sensor[{other}] has this label already"),
+                    ));
+                }
+            }
+            sensors.push(Sensor {
+                x: position(p("x"), s.x)?,
+                direction,
+                label: s.label.clone(),
+                mass: s
+                    .mass
+                    .map(|m| check.non_negative(p("mass"), m, "kg"))
+                    .transpose()?
+                    .unwrap_or(0.0),
+            });
+        }
+        let tol = 1e-9 * length;
+        for (i, sensor) in sensors.iter().enumerate() {
+            if let Some((k, support)) = supports
+                .iter()
+                .enumerate()
+                .find(|(_, s)| (s.x - sensor.x).abs() <= tol && s.kind.removes(sensor.direction))
+            {
+                return Err(check.invalid(
+                    format!("sensor[{i}].x"),
+                    sensor.x,
+                    format!(
+                        "support[{k}] ({}) holds {} there: a sensor reads a motion that exists",
+                        support.kind.name(),
+                        sensor.direction
+                    ),
+                ));
+            }
+        }
+        let identified = joints
+            .iter()
+            .flat_map(|j| j.roles)
+            .filter(|r| *r == Role::Identified)
+            .count()
+            + supports
+                .iter()
+                .flat_map(|s| s.identify)
+                .filter(|&b| b)
+                .count()
+            + masses.iter().filter(|m| m.identify).count();
+        if identified > crate::identify::wls::MAX_Q {
+            return Err(check.invalid(
+                "joint",
+                format!("{identified} identified parameters"),
+                format!(
+                    "at most {} parameters can be identified: hold some fixed (`fixed = [...]`)",
+                    crate::identify::wls::MAX_Q
+                ),
+            ));
+        }
+        let nodes_at = self
+            .mesh
+            .map(|m| m.nodes_at)
+            .unwrap_or_default()
+            .into_iter()
+            .enumerate()
+            .map(|(i, x)| position(format!("mesh.nodes_at[{i}]"), x))
+            .collect::<Result<Vec<_>, InputError>>()?;
+        Ok(Chain {
+            beams,
+            joints,
+            supports,
+            masses,
+            sensors,
+            nodes_at,
+        })
+    }
+}
+
+fn beam(
+    b: &RawBeam,
+    i: usize,
+    element_length: Option<f64>,
+    check: &FieldCheck,
+) -> Result<Beam, InputError> {
+    let p = |field: &str| format!("beam[{i}].{field}");
+    let length = check.positive(p("length"), b.length, "m")?;
+    let elements = match (b.elements, element_length) {
+        (Some(e), _) => check.int_range(p("elements"), e, 1, MAX_ELEMENTS_PER_BEAM)?,
+        (None, Some(h)) => {
+            let count = (length / h).ceil();
+            if count > MAX_ELEMENTS_PER_BEAM as f64 {
+                return Err(check.invalid(
+                    "mesh.element_length",
+                    h,
+                    format!(
+                        "beam[{i}] ({length} m) would need {count} elements, above {MAX_ELEMENTS_PER_BEAM}"
+                    ),
+                ));
+            }
+            count as usize
+        }
+        (None, None) => {
+            return Err(check.invalid(
+                p("elements"),
+                "missing",
+                "give the beam's number of elements, or [mesh].element_length",
+            ));
+        }
+    };
+    let own = Section {
+        youngs_modulus: check.positive(p("youngs_modulus"), b.youngs_modulus, "Pa")?,
+        density: check.positive(p("density"), b.density, "kg/m^3")?,
+        area: check.positive(p("area"), b.area, "m^2")?,
+        second_moment: check.positive(p("second_moment"), b.second_moment, "m^4")?,
+    };
+    let mut segments: Vec<Segment> = Vec::with_capacity(b.segment.len());
+    for (k, g) in b.segment.iter().enumerate() {
+        let q = |field: &str| format!("beam[{i}].segment[{k}].{field}");
+        let from = check.non_negative(q("from"), g.from, "m from the beam's start")?;
+        if !(g.to.is_finite() && g.to > from && g.to <= length) {
+            return Err(check.invalid(
+                q("to"),
+                g.to,
+                format!(
+                    "it must lie after from = {from} and at most at the beam's length {length} m"
+                ),
+            ));
+        }
+        if let Some(prev) = segments.iter().position(|s| from < s.to && g.to > s.from) {
+            return Err(check.invalid(
+                q("from"),
+                from,
+                format!("the segment overlaps beam[{i}].segment[{prev}]"),
+            ));
+        }
+        let or = |v: Option<f64>, field: &str, own: f64, unit: &str| {
+            v.map_or(Ok(own), |v| check.positive(q(field), v, unit))
+        };
+        segments.push(Segment {
+            from,
+            to: g.to,
+            section: Section {
+                youngs_modulus: or(g.youngs_modulus, "youngs_modulus", own.youngs_modulus, "Pa")?,
+                density: or(g.density, "density", own.density, "kg/m^3")?,
+                area: or(g.area, "area", own.area, "m^2")?,
+                second_moment: or(g.second_moment, "second_moment", own.second_moment, "m^4")?,
+            },
+        });
+    }
+    segments.sort_by(|a, b| a.from.total_cmp(&b.from));
+    let mut beam = Beam::uniform(length, elements, own);
+    beam.segments = segments;
+    Ok(beam)
+}
+
+fn joint(j: &RawJoint, i: usize, check: &FieldCheck) -> Result<Joint, InputError> {
+    let mut roles = [Role::Identified; 2];
+    for (k, name) in j.fixed.iter().enumerate() {
+        let slot = match name.as_str() {
+            "k1" => 0,
+            "k2" => 1,
+            other => {
+                return Err(check.invalid(
+                    format!("joint[{i}].fixed[{k}]"),
+                    format!("\"{other}\""),
+                    "a joint's parameters are \"k1\" and \"k2\"",
+                ));
+            }
+        };
+        roles[slot] = Role::Fixed;
+    }
+    Ok(Joint {
+        k1: check.positive(format!("joint[{i}].k1"), j.k1, "N/m")?,
+        k2: check.positive(format!("joint[{i}].k2"), j.k2, "N m/rad")?,
+        roles,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+[[beam]]
+length = 0.20
+elements = 7
+youngs_modulus = 2.1e11
+density = 7850.0
+area = 2.4e-3
+second_moment = 3.2e-7
+
+[[beam]]
+length = 0.30
+elements = 10
+youngs_modulus = 2.1e11
+density = 7850.0
+area = 2.4e-3
+second_moment = 3.2e-7
+
+[[joint]]
+k1 = 1.0e7
+k2 = 1.0e4
+"#;
+
+    fn chain(text: &str) -> Result<Chain, String> {
+        crate::model::chain_from_toml(text, Path::new("m.toml")).map_err(|e| e.to_string())
+    }
+
+    fn error_of(text: &str) -> String {
+        chain(text).unwrap_err()
+    }
+
+    #[test]
+    fn reads_the_paper_layout() {
+        let chain = chain(GOOD).unwrap();
+        assert_eq!(chain.beams.len(), 2);
+        assert_eq!(chain.build().dof_count(), 38);
+        assert_eq!(chain.joints[0], Joint::identified(1.0e7, 1.0e4));
+    }
+
+    #[test]
+    fn negative_length_names_file_path_value_and_range() {
+        let text = GOOD.replacen("length = 0.30", "length = -0.3", 1);
+        assert_eq!(
+            error_of(&text),
+            "m.toml: beam[1].length = -0.3 is invalid: it must be finite and > 0 (m)"
+        );
+    }
+
+    #[test]
+    fn non_finite_and_zero_values_are_rejected() {
+        let text = GOOD.replacen("density = 7850.0", "density = nan", 1);
+        assert!(error_of(&text).starts_with("m.toml: beam[0].density = NaN is invalid"));
+        let text = GOOD.replacen("k2 = 1.0e4", "k2 = 0.0", 1);
+        assert_eq!(
+            error_of(&text),
+            "m.toml: joint[0].k2 = 0 is invalid: it must be finite and > 0 (N m/rad)"
+        );
+        let text = GOOD.replacen("elements = 7", "elements = 0", 1);
+        assert_eq!(
+            error_of(&text),
+            "m.toml: beam[0].elements = 0 is invalid: it must be an integer from 1 to 2000"
+        );
+    }
+
+    #[test]
+    fn unknown_missing_and_mistyped_keys_name_the_path_and_line() {
+        let text = GOOD.replacen("area = 2.4e-3", "aera = 2.4e-3", 1);
+        let e = error_of(&text);
+        assert!(
+            e.starts_with("m.toml:7: beam[0].aera: unknown field `aera`, expected one of `length`"),
+            "{e}"
+        );
+        let text = GOOD.replacen("elements = 10", "elements = \"ten\"", 1);
+        let e = error_of(&text);
+        assert!(
+            e.starts_with(
+                "m.toml:12: beam[1].elements: invalid type: string \"ten\", expected i64"
+            ),
+            "{e}"
+        );
+        let text = GOOD.replacen("k1 = 1.0e7\n", "", 1);
+        let e = error_of(&text);
+        assert!(e.contains("joint[0]: missing field `k1`"), "{e}");
+    }
+
+    #[test]
+    fn joint_count_must_be_beams_minus_one() {
+        let text = GOOD.replacen("[[joint]]\nk1 = 1.0e7\nk2 = 1.0e4\n", "", 1);
+        let e = error_of(&text);
+        assert!(
+            e.starts_with(
+                "m.toml: joint = 0 joint(s) is invalid: a chain of 2 beam(s) needs exactly 1"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn set_up_tables_are_read_and_checked() {
+        let text = format!(
+            "{GOOD}\n[[support]]\nx = 0.0\nkind = \"clamped\"\n[[support]]\nx = 0.5\nkind = \"spring\"\ntranslational = 1e5\n[[mass]]\nx = 0.085\nmass = 0.02\nrotary_inertia = 1e-6\n[[sensor]]\nx = 0.176\nlabel = \"acc3\"\nmass = 0.003\n"
+        );
+        let c = chain(&text).unwrap();
+        assert_eq!(c.supports[0].kind, SupportKind::Clamped);
+        assert_eq!(
+            c.supports[1].kind,
+            SupportKind::Spring {
+                translational: 1e5,
+                rotational: 0.0
+            }
+        );
+        assert_eq!(c.masses[0].rotary_inertia, 1e-6);
+        assert_eq!(c.sensors[0].label.as_deref(), Some("acc3"));
+        let cases = [
+            (
+                "[[support]]\nx = 0.7\nkind = \"clamped\"\n",
+                "m.toml: support[0].x = 0.7 is invalid: it must lie on the chain, from 0 to 0.5 m",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"welded\"\n",
+                "m.toml: support[0].kind = \"welded\" is invalid: it must be \"clamped\", \"pinned\", \"guided\" or \"spring\"",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"spring\"\n",
+                "m.toml: support[0].kind = \"spring\" is invalid: a spring support needs translational (N/m) and/or rotational (N m/rad)",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"pinned\"\nrotational = 3.0\n",
+                "m.toml: support[0].kind = \"pinned\" is invalid: translational and rotational belong to kind = \"spring\" only",
+            ),
+            (
+                "[[mass]]\nx = 0.1\nmass = -0.01\n",
+                "m.toml: mass[0].mass = -0.01 is invalid: it must be finite and > 0 (kg)",
+            ),
+            (
+                "[[sensor]]\nx = 0.1\ndof = \"u\"\n",
+                "m.toml: sensor[0].dof = \"u\" is invalid: it must be \"w\" or \"theta\"",
+            ),
+        ];
+        for (extra, message) in cases {
+            assert_eq!(error_of(&format!("{GOOD}\n{extra}")), message, "{extra}");
+        }
+        let fixed = GOOD.replacen("k2 = 1.0e4\n", "k2 = 1.0e4\nfixed = [\"k3\"]\n", 1);
+        assert_eq!(
+            error_of(&fixed),
+            "m.toml: joint[0].fixed[0] = \"k3\" is invalid: a joint's parameters are \"k1\" and \"k2\""
+        );
+    }
+
+    #[test]
+    fn segments_must_lie_on_their_beam_without_overlap() {
+        let seg = |from: f64, to: f64| {
+            GOOD.replacen(
+                "second_moment = 3.2e-7\n\n[[beam]]",
+                &format!("second_moment = 3.2e-7\n[[beam.segment]]\nfrom = {from}\nto = {to}\narea = 4.8e-3\n\n[[beam]]"),
+                1,
+            )
+        };
+        let c = chain(&seg(0.15, 0.2)).unwrap();
+        assert_eq!(c.beams[0].segments[0].section.area, 4.8e-3);
+        assert_eq!(c.beams[0].segments[0].section.second_moment, 3.2e-7);
+        assert_eq!(
+            error_of(&seg(0.15, 0.25)),
+            "m.toml: beam[0].segment[0].to = 0.25 is invalid: it must lie after from = 0.15 and at most at the beam's length 0.2 m"
+        );
+    }
+
+    #[test]
+    fn elements_come_from_the_beam_or_the_mesh_size() {
+        let no_count = GOOD.replacen("elements = 7\n", "", 1);
+        assert_eq!(
+            error_of(&no_count),
+            "m.toml: beam[0].elements = missing is invalid: give the beam's number of elements, or [mesh].element_length"
+        );
+        let meshed = format!("[mesh]\nelement_length = 0.03\n{no_count}");
+        assert_eq!(chain(&meshed).unwrap().beams[0].elements, 7);
+    }
+}

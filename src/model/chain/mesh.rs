@@ -1,0 +1,107 @@
+//! The finite-element mesh of a chain: nodes where the beams end and where something happens
+//! (segment ends, supports, masses, sensors, requested nodes), elements between them.
+//!
+//! Nodes are numbered along the chain, beam by beam; every beam has its own end nodes, so a
+//! joint's two nodes share one abscissa. Within a beam, each interval between break points gets
+//! ceil(interval / h) elements of equal length (at least one), h = length / elements: a beam
+//! without break points keeps exactly its `elements` elements, and the paper's uniform chains
+//! mesh as they always did.
+
+use super::Chain;
+use super::beam::Section;
+
+/// A node of the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshNode {
+    /// Abscissa along the chain, m.
+    pub x: f64,
+    /// The beam it belongs to.
+    pub beam: usize,
+}
+
+/// An element of the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshElement {
+    /// The beam it belongs to.
+    pub beam: usize,
+    /// Its two nodes.
+    pub nodes: [usize; 2],
+    /// Its length, m (the interval's length over its element count, not a difference of
+    /// abscissae: the same bits as a uniform mesh's length / elements).
+    pub length: f64,
+    /// Its section.
+    pub section: Section,
+}
+
+/// The mesh of a chain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    /// Nodes in chain order.
+    pub nodes: Vec<MeshNode>,
+    /// Elements in chain order.
+    pub elements: Vec<MeshElement>,
+    /// First and last node of every beam.
+    pub beam_ends: Vec<(usize, usize)>,
+}
+
+/// Break points closer than this fraction of a beam's length are one point.
+const MERGE: f64 = 1e-9;
+
+impl Mesh {
+    /// Meshes `chain`.
+    pub fn of(chain: &Chain) -> Mesh {
+        let mut nodes = Vec::new();
+        let mut elements = Vec::new();
+        let mut beam_ends = Vec::new();
+        let features = chain.feature_positions();
+        let mut start = 0.0;
+        for (b, beam) in chain.beams.iter().enumerate() {
+            let length = beam.length;
+            let mut breaks: Vec<f64> = beam
+                .segments
+                .iter()
+                .flat_map(|g| [g.from, g.to])
+                .chain(features.iter().map(|&x| x - start))
+                .filter(|&s| s > MERGE * length && s < length * (1.0 - MERGE))
+                .collect();
+            breaks.sort_by(f64::total_cmp);
+            breaks.dedup_by(|a, b| (*a - *b).abs() <= MERGE * length);
+            let bounds: Vec<f64> = std::iter::once(0.0)
+                .chain(breaks)
+                .chain(std::iter::once(length))
+                .collect();
+            let h = beam.element_length();
+            let first = nodes.len();
+            nodes.push(MeshNode { x: start, beam: b });
+            for w in bounds.windows(2) {
+                let (a, z) = (w[0], w[1]);
+                let span = z - a;
+                let count = ((span / h) * (1.0 - 1e-9)).ceil().max(1.0) as usize;
+                let l = span / count as f64;
+                let section = beam.section_at(0.5 * (a + z));
+                for e in 1..=count {
+                    let x = if e == count {
+                        start + z
+                    } else {
+                        start + (a + l * e as f64)
+                    };
+                    let node = nodes.len();
+                    nodes.push(MeshNode { x, beam: b });
+                    elements.push(MeshElement {
+                        beam: b,
+                        nodes: [node - 1, node],
+                        length: l,
+                        section,
+                    });
+                }
+            }
+            beam_ends.push((first, nodes.len() - 1));
+            start += length;
+        }
+        Mesh {
+            nodes,
+            elements,
+            beam_ends,
+        }
+    }
+}

@@ -1,0 +1,84 @@
+//! The beam chain, as tests are set up: uniform or stepped Euler-Bernoulli beams joined end to
+//! end by joints of transversal stiffness k1 and rotational stiffness k2 (eq. (17)), free-free
+//! by default or held by supports, with point masses and sensors anywhere along it. The paper's
+//! Fig. 1 is the chain of two beams and one joint, free-free.
+//!
+//! - [`beam`]: element matrices, sections and stepped segments;
+//! - [`joint`]: the joint of eq. (17) and the names of its parameters;
+//! - [`setup`]: supports, point masses, sensors; the count of rigid-body modes;
+//! - [`mesh`]: nodes where things happen, elements between them;
+//! - [`assembly`]: the [`crate::structure::Structure`] of a chain;
+//! - [`config`]: the TOML model file, parsed and validated.
+
+pub mod assembly;
+pub mod beam;
+pub mod config;
+pub mod joint;
+pub mod mesh;
+pub mod setup;
+
+pub use beam::{Beam, Section, Segment};
+pub use joint::Joint;
+pub use mesh::Mesh;
+pub use setup::{PointMass, Sensor, Support, SupportKind};
+
+/// A validated chain: at least one beam and exactly `beams - 1` joints; joint i connects the
+/// last node of beam i to the first node of beam i + 1. Abscissae run from the first end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chain {
+    /// The beams in chain order.
+    pub beams: Vec<Beam>,
+    /// The joints.
+    pub joints: Vec<Joint>,
+    /// Supports (none: free-free).
+    pub supports: Vec<Support>,
+    /// Point masses.
+    pub masses: Vec<PointMass>,
+    /// Declared sensors.
+    pub sensors: Vec<Sensor>,
+    /// Extra node positions, m.
+    pub nodes_at: Vec<f64>,
+}
+
+impl Chain {
+    /// A free-free chain of `beams` and `joints`, nothing attached. The caller guarantees
+    /// `joints.len() + 1 == beams.len()` and valid values (see [`config`] for the checked path
+    /// from a file).
+    pub fn free(beams: Vec<Beam>, joints: Vec<Joint>) -> Self {
+        assert!(!beams.is_empty() && joints.len() + 1 == beams.len());
+        Self {
+            beams,
+            joints,
+            supports: Vec::new(),
+            masses: Vec::new(),
+            sensors: Vec::new(),
+            nodes_at: Vec::new(),
+        }
+    }
+
+    /// Length of the chain, m.
+    pub fn length(&self) -> f64 {
+        self.beams.iter().map(|b| b.length).sum()
+    }
+
+    /// Abscissa of the start of beam `b`, m.
+    pub fn beam_start(&self, b: usize) -> f64 {
+        self.beams[..b].iter().map(|b| b.length).sum()
+    }
+
+    /// Mass of all beams, kg.
+    pub fn beam_mass(&self) -> f64 {
+        self.beams.iter().map(Beam::mass).sum()
+    }
+
+    /// Abscissae where a node must be: supports, masses, sensors, requested nodes.
+    pub fn feature_positions(&self) -> Vec<f64> {
+        self.supports
+            .iter()
+            .map(|s| s.x)
+            .chain(self.masses.iter().map(|m| m.x))
+            .chain(self.sensors.iter().map(|s| s.x))
+            .chain(self.nodes_at.iter().copied())
+            .collect()
+    }
+}

@@ -1,0 +1,188 @@
+//! Global symmetric matrices K and M in compressed sparse column form, both triangles stored.
+//!
+//! A matrix is built from a list of entries `(row, col, value)` by summing the entries of a
+//! position in the order they were listed, starting from zero: exactly the sums a dense
+//! `a[(i, j)] += v` assembly in the same order forms, so a model assembled here and converted to
+//! dense is bitwise the model a dense assembly gives.
+
+use faer::Mat;
+use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
+
+use super::SparseSym;
+
+/// A square symmetric sparse matrix (both triangles stored), N x N.
+#[derive(Debug, Clone)]
+pub struct SymMatrix {
+    inner: SparseColMat<usize, f64>,
+}
+
+impl SymMatrix {
+    /// The matrix of size `n` with the entries of `entries`, summed per position in list order.
+    /// The caller lists both triangles (as [`SparseSym`] does) and indices below `n`.
+    pub fn from_entries(n: usize, entries: &[(usize, usize, f64)]) -> Self {
+        let mut order: Vec<usize> = (0..entries.len()).collect();
+        // Stable: entries of one position keep their listed order.
+        order.sort_by_key(|&e| (entries[e].1, entries[e].0));
+        let mut col_ptr = vec![0usize; n + 1];
+        let mut row_idx = Vec::with_capacity(entries.len());
+        let mut values: Vec<f64> = Vec::with_capacity(entries.len());
+        let mut last: Option<(usize, usize)> = None;
+        for &e in &order {
+            let (i, j, v) = entries[e];
+            assert!(
+                i < n && j < n,
+                "entry ({i}, {j}) outside a matrix of size {n}"
+            );
+            if last == Some((i, j)) {
+                *values.last_mut().expect("a value for the position") += v;
+            } else {
+                row_idx.push(i);
+                values.push(0.0 + v);
+                col_ptr[j + 1] += 1;
+                last = Some((i, j));
+            }
+        }
+        for j in 0..n {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Self {
+            inner: SparseColMat::new(symbolic, values),
+        }
+    }
+
+    /// This matrix plus `scale` times each of `terms`, summed after the present value of every
+    /// position (bitwise the dense `a[(i, j)] += scale * v` in the same order).
+    pub fn plus(&self, terms: &[(&SparseSym, f64)]) -> Self {
+        let mut entries = self.entries();
+        for (s, scale) in terms {
+            entries.extend(s.entries().iter().map(|&(i, j, v)| (i, j, scale * v)));
+        }
+        Self::from_entries(self.size(), &entries)
+    }
+
+    /// N.
+    pub fn size(&self) -> usize {
+        self.inner.nrows()
+    }
+
+    /// Stored entries.
+    pub fn nnz(&self) -> usize {
+        self.inner.val().len()
+    }
+
+    /// The stored entries `(row, col, value)`, column by column.
+    pub fn entries(&self) -> Vec<(usize, usize, f64)> {
+        let a = self.inner.as_ref();
+        let (col_ptr, row_idx, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+        (0..self.size())
+            .flat_map(|j| (col_ptr[j]..col_ptr[j + 1]).map(move |k| (row_idx[k], j, val[k])))
+            .collect()
+    }
+
+    /// The faer view, for the sparse solvers.
+    pub fn as_faer(&self) -> SparseColMatRef<'_, usize, f64> {
+        self.inner.as_ref()
+    }
+
+    /// The dense N x N matrix.
+    pub fn to_dense(&self) -> Mat<f64> {
+        let mut out = Mat::zeros(self.size(), self.size());
+        for (i, j, v) in self.entries() {
+            out[(i, j)] = v;
+        }
+        out
+    }
+
+    /// `y = A x`.
+    pub fn apply(&self, x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        let a = self.inner.as_ref();
+        let (col_ptr, row_idx, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+        for (j, &xj) in x.iter().enumerate() {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                y[row_idx[k]] += val[k] * xj;
+            }
+        }
+    }
+
+    /// The diagonal.
+    pub fn diagonal(&self) -> Vec<f64> {
+        let mut d = vec![0.0; self.size()];
+        for (i, j, v) in self.entries() {
+            if i == j {
+                d[i] = v;
+            }
+        }
+        d
+    }
+
+    /// Whether every stored value is finite.
+    pub fn is_finite(&self) -> bool {
+        self.inner.val().iter().all(|v| v.is_finite())
+    }
+
+    /// The largest |a_ij - a_ji| over the stored entries (0 for a symmetric matrix).
+    pub fn asymmetry(&self) -> f64 {
+        let dense_free = self.entries();
+        let at = |i: usize, j: usize| {
+            let a = self.inner.as_ref();
+            let (col_ptr, row_idx, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+            (col_ptr[j]..col_ptr[j + 1])
+                .find(|&k| row_idx[k] == i)
+                .map_or(0.0, |k| val[k])
+        };
+        dense_free
+            .iter()
+            .map(|&(i, j, v)| (v - at(j, i)).abs())
+            .fold(0.0, f64::max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entries_sum_in_listed_order_like_a_dense_assembly() {
+        let entries = [
+            (0, 0, 0.1),
+            (1, 0, 2.0),
+            (0, 1, 2.0),
+            (0, 0, 0.2),
+            (2, 2, 1e16),
+            (2, 2, 1.0),
+            (0, 0, 0.3),
+        ];
+        let a = SymMatrix::from_entries(3, &entries);
+        let mut dense = Mat::<f64>::zeros(3, 3);
+        for &(i, j, v) in &entries {
+            dense[(i, j)] += v;
+        }
+        let back = a.to_dense();
+        for i in 0..3 {
+            for j in 0..3 {
+                assert_eq!(
+                    back[(i, j)].to_bits(),
+                    dense[(i, j)].to_bits(),
+                    "({i}, {j})"
+                );
+            }
+        }
+        assert_eq!(a.nnz(), 4);
+        assert_eq!(a.asymmetry(), 0.0);
+        let mut y = [0.0; 3];
+        a.apply(&[1.0, 1.0, 0.0], &mut y);
+        assert_eq!(y, [0.1 + 0.2 + 0.3 + 2.0, 2.0, 0.0]);
+    }
+
+    #[test]
+    fn plus_adds_after_the_present_value() {
+        let a = SymMatrix::from_entries(2, &[(0, 0, 1.0), (1, 1, 3.0)]);
+        let s = SparseSym::spring(0, 1, 1.0);
+        let b = a.plus(&[(&s, 0.5)]).to_dense();
+        assert_eq!(b[(0, 0)], 1.5);
+        assert_eq!(b[(0, 1)], -0.5);
+        assert_eq!(b[(1, 1)], 3.5);
+    }
+}

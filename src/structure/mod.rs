@@ -1,0 +1,160 @@
+//! The model-agnostic structure every command works on: the matrices K and M, the parameters
+//! p_i with their derivatives dK/dp_i and dM/dp_i (eq. (8)), identified or held fixed, the DOF
+//! map, the number of rigid-body modes, and the sites where effects can act.
+//!
+//! K and M are linear in the parameters: K(p) = K_base + sum_i p_i dK/dp_i, and the same for
+//! M, so the first-order expansion of eq. (8) is exact in them. Builders make a structure:
+//! the beam chain ([`crate::model::chain`]) and external matrices
+//! ([`crate::model::external`]); identify, study, simulate and diagnose never ask which.
+//!
+//! - [`sparse`]: derivative matrices, a list of entries;
+//! - [`matrix`]: K and M, compressed sparse columns;
+//! - [`dofs`]: the DOF map (labels, positions, directions, line elements);
+//! - [`observation`]: what a sensor reads, c^T u, at a DOF or between nodes;
+//! - [`sites`]: joints, elements and free ends, for the effects.
+
+pub mod dofs;
+pub mod matrix;
+pub mod observation;
+pub mod sites;
+pub mod sparse;
+
+pub use dofs::{Direction, DofInfo, DofMap, LineElement};
+pub use matrix::SymMatrix;
+pub use observation::{LocateError, Observation, observe};
+pub use sites::{ElementSite, EndSite, JointSite, Section, Sites};
+pub use sparse::SparseSym;
+
+use crate::modal::{ModalError, ModalSolution};
+
+/// Whether a parameter is identified or held at its value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// Identified (the default): a column of the sensitivity system.
+    Identified,
+    /// Held fixed: part of the model, never corrected.
+    Fixed,
+}
+
+/// A model parameter p_i with the derivatives of the global matrices with respect to it.
+#[derive(Debug, Clone)]
+pub struct Parameter {
+    /// Name in output files (`k1`, `joint2.k2`, ...).
+    pub name: String,
+    /// Unit, for reports.
+    pub unit: &'static str,
+    /// Current value p_i.
+    pub value: f64,
+    /// dK/dp_i.
+    pub stiffness: SparseSym,
+    /// dM/dp_i (zero for a stiffness parameter).
+    pub mass: SparseSym,
+    /// Identified or fixed.
+    pub role: Role,
+}
+
+/// Global K (N x N, symmetric positive semidefinite) and M (symmetric positive definite).
+#[derive(Debug, Clone)]
+pub struct Matrices {
+    /// Stiffness matrix K.
+    pub k: SymMatrix,
+    /// Mass matrix M.
+    pub m: SymMatrix,
+}
+
+impl Matrices {
+    /// These matrices plus `scale` times each (dK, dM) of `terms`.
+    pub fn plus(&self, terms: &[(&SparseSym, &SparseSym, f64)]) -> Matrices {
+        let k: Vec<(&SparseSym, f64)> = terms.iter().map(|t| (t.0, t.2)).collect();
+        let m: Vec<(&SparseSym, f64)> = terms.iter().map(|t| (t.1, t.2)).collect();
+        Matrices {
+            k: self.k.plus(&k),
+            m: self.m.plus(&m),
+        }
+    }
+
+    /// N.
+    pub fn size(&self) -> usize {
+        self.k.size()
+    }
+}
+
+/// A structure: see the module docs.
+#[derive(Debug, Clone)]
+pub struct Structure {
+    /// K and M without the parameters' contributions.
+    pub base: Matrices,
+    /// Every parameter, identified and fixed, in model order.
+    pub parameters: Vec<Parameter>,
+    /// The DOFs.
+    pub dofs: DofMap,
+    /// Number of rigid-body modes (zero eigenvalues), from the model.
+    pub rigid: usize,
+    /// Where effects can act.
+    pub sites: Sites,
+    /// The sensors the model declares (what `simulate --measure sensors` reads).
+    pub sensors: Vec<Observation>,
+}
+
+impl Structure {
+    /// K and M at the current parameter values: the base matrices, then p_i dK/dp_i and
+    /// p_i dM/dp_i in parameter order.
+    pub fn assemble(&self) -> Matrices {
+        let terms: Vec<(&SparseSym, &SparseSym, f64)> = self
+            .parameters
+            .iter()
+            .map(|p| (&p.stiffness, &p.mass, p.value))
+            .collect();
+        self.base.plus(&terms)
+    }
+
+    /// Number of DOFs N.
+    pub fn dof_count(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// The identified parameters, in model order (the columns of the sensitivity system).
+    pub fn identified(&self) -> Vec<Parameter> {
+        self.parameters
+            .iter()
+            .filter(|p| p.role == Role::Identified)
+            .cloned()
+            .collect()
+    }
+
+    /// Positions in [`Structure::parameters`] of the identified parameters.
+    pub fn identified_indices(&self) -> Vec<usize> {
+        (0..self.parameters.len())
+            .filter(|&i| self.parameters[i].role == Role::Identified)
+            .collect()
+    }
+
+    /// The same structure with the identified parameters shifted by `delta` (in the order of
+    /// [`Structure::identified`]).
+    pub fn with_delta(&self, delta: &[f64]) -> Structure {
+        let at = self.identified_indices();
+        assert_eq!(delta.len(), at.len(), "one delta per identified parameter");
+        let mut out = self.clone();
+        for (&i, d) in at.iter().zip(delta) {
+            out.parameters[i].value += d;
+        }
+        out
+    }
+
+    /// The same structure with the identified parameters at `values`.
+    pub fn with_values(&self, values: &[f64]) -> Structure {
+        let at = self.identified_indices();
+        assert_eq!(values.len(), at.len(), "one value per identified parameter");
+        let mut out = self.clone();
+        for (&i, v) in at.iter().zip(values) {
+            out.parameters[i].value = *v;
+        }
+        out
+    }
+
+    /// The lowest `count` eigenpairs (at least: a dense solution returns all N), rigid-body
+    /// modes included; see [`ModalSolution`].
+    pub fn modes(&self, count: usize) -> Result<ModalSolution, ModalError> {
+        ModalSolution::lowest_of(&self.assemble(), count)
+    }
+}

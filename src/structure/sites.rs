@@ -1,0 +1,95 @@
+//! Where a structure can carry the effects a model may lack (`crate::model::effects`): its
+//! joints, its beam elements with their sections, its free ends, and its total mass. A builder
+//! fills what it knows; an external model may know none of it, and the effects that need a
+//! site then do not apply.
+
+use super::dofs::LineElement;
+
+/// The section of a beam element, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Section {
+    /// Young's modulus E, Pa.
+    pub youngs_modulus: f64,
+    /// Density rho, kg/m^3.
+    pub density: f64,
+    /// Area A, m^2.
+    pub area: f64,
+    /// Second moment of area I, m^4.
+    pub second_moment: f64,
+}
+
+impl Section {
+    /// Bending stiffness EI, N m^2.
+    pub fn bending_stiffness(&self) -> f64 {
+        self.youngs_modulus * self.second_moment
+    }
+
+    /// Mass per unit length rho A, kg/m.
+    pub fn mass_per_length(&self) -> f64 {
+        self.density * self.area
+    }
+
+    /// Squared radius of gyration I / A, m^2.
+    pub fn gyration_squared(&self) -> f64 {
+        self.second_moment / self.area
+    }
+}
+
+/// A joint between two beam ends.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointSite {
+    /// Abscissa, m.
+    pub x: f64,
+    /// w DOFs of its two nodes (`None` where a support removed it).
+    pub w: [Option<usize>; 2],
+    /// theta DOFs of its two nodes.
+    pub theta: [Option<usize>; 2],
+    /// Sections of the two beam ends it joins.
+    pub sections: [Section; 2],
+    /// Indices of its k1 and k2 in the structure's parameters.
+    pub parameters: [usize; 2],
+}
+
+/// A beam element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementSite {
+    /// Beam of the chain, 0-based.
+    pub beam: usize,
+    /// Position and DOFs.
+    pub line: LineElement,
+    /// Section.
+    pub section: Section,
+}
+
+impl ElementSite {
+    /// Length, m.
+    pub fn length(&self) -> f64 {
+        self.line.x[1] - self.line.x[0]
+    }
+}
+
+/// A free end of the chain (no support there).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EndSite {
+    /// Abscissa, m.
+    pub x: f64,
+    /// Its w DOF.
+    pub w: usize,
+    /// Its theta DOF.
+    pub theta: usize,
+}
+
+/// The sites of a structure.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Sites {
+    /// Mass of all beams (attachments excluded), kg: the scale of effect sizes.
+    pub beam_mass: f64,
+    /// Number of beams (0 for a model without beams).
+    pub beams: usize,
+    /// Joints, in chain order.
+    pub joints: Vec<JointSite>,
+    /// Beam elements, in chain order.
+    pub elements: Vec<ElementSite>,
+    /// Free ends.
+    pub free_ends: Vec<EndSite>,
+}

@@ -1,0 +1,482 @@
+//! Golden tests of test set-ups: supports, point masses, stepped beams, sensors between nodes,
+//! and the parameters a set-up may identify.
+//!
+//! References, all independent of the finite-element code:
+//! - clamped-free, pinned-pinned, clamped-pinned uniform Euler-Bernoulli beams:
+//!   omega_i = (beta_i L)^2 sqrt(EI / (rho A L^4)), beta L the textbook roots (Blevins,
+//!   *Formulas for Natural Frequency and Mode Shape*, table 8-1);
+//! - a cantilever with a tip mass M: roots of
+//!   1 + cos(bL) cosh(bL) + mu bL (cos(bL) sinh(bL) - sin(bL) cosh(bL)) = 0, mu = M / (rho A L)
+//!   (the same reference, section 8.2), found here by bisection;
+//! - a stepped free-free beam: the exact continuous solution, a transfer matrix of the state
+//!   (w, theta, M, Q) through each uniform piece written with the Krylov functions
+//!   S, T, U, V of beta x, frequencies where the end moment and shear vanish;
+//! - mode shapes of the cantilever: w(x) = cosh bx - cos bx - s (sinh bx - sin bx),
+//!   s = (cosh bL + cos bL) / (sinh bL + sin bL).
+//!
+//! ```text
+//!   |=========================== free        clamped-free (cantilever)
+//!   ^===========================^            pinned-pinned
+//!   |===========================^            clamped-pinned
+//!   |===========================[M]          cantilever with a tip mass
+//!   ========[##########]=========            free-free, stepped in the middle
+//! ```
+
+mod common;
+
+use common::steel_bar;
+use jointid::identify::{Identifier, Settings, Weighting};
+use jointid::modal::ModalSolution;
+use jointid::model::chain::{PointMass, Support, SupportKind};
+use jointid::model::{Beam, Chain, Joint};
+use jointid::simulate::exact_modes;
+use jointid::structure::{Direction, Observation, Section, Structure};
+
+const LENGTH: f64 = 0.5;
+
+fn section() -> Section {
+    steel_bar(1.0, 1).section()
+}
+
+fn omega_of_beta_l(bl: f64) -> f64 {
+    let s = section();
+    bl * bl * (s.bending_stiffness() / (s.mass_per_length() * LENGTH.powi(4))).sqrt()
+}
+
+fn support(x: f64, kind: SupportKind) -> Support {
+    Support {
+        x,
+        kind,
+        identify: [false; 2],
+    }
+}
+
+fn beam_with(supports: Vec<Support>, elements: usize) -> Chain {
+    let mut chain = Chain::free(vec![steel_bar(LENGTH, elements)], vec![]);
+    chain.supports = supports;
+    chain
+}
+
+/// The first `count` elastic angular frequencies of a structure.
+fn elastic(structure: &Structure, count: usize) -> Vec<f64> {
+    let modal = ModalSolution::solve(&structure.assemble()).unwrap();
+    (structure.rigid..structure.rigid + count)
+        .map(|i| modal.values()[i].sqrt())
+        .collect()
+}
+
+fn worst_error(found: &[f64], reference: &[f64]) -> f64 {
+    found
+        .iter()
+        .zip(reference)
+        .map(|(f, r)| (f - r).abs() / r)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn supported_beams_match_the_textbook_roots_with_h4_convergence() {
+    let pi = std::f64::consts::PI;
+    let cases: [(&str, Vec<Support>, [f64; 5]); 3] = [
+        (
+            "clamped-free",
+            vec![support(0.0, SupportKind::Clamped)],
+            [
+                1.8751040687,
+                4.6940911330,
+                7.8547574382,
+                10.9955407349,
+                14.1371683910,
+            ],
+        ),
+        (
+            "pinned-pinned",
+            vec![
+                support(0.0, SupportKind::Pinned),
+                support(LENGTH, SupportKind::Pinned),
+            ],
+            [pi, 2.0 * pi, 3.0 * pi, 4.0 * pi, 5.0 * pi],
+        ),
+        (
+            "clamped-pinned",
+            vec![
+                support(0.0, SupportKind::Clamped),
+                support(LENGTH, SupportKind::Pinned),
+            ],
+            [
+                3.9266023120,
+                7.0685827547,
+                10.2101761242,
+                13.3517687778,
+                16.4933614313,
+            ],
+        ),
+    ];
+    for (name, supports, roots) in cases {
+        let reference: Vec<f64> = roots.iter().map(|&b| omega_of_beta_l(b)).collect();
+        let errors: Vec<f64> = [20, 40, 80]
+            .iter()
+            .map(|&elements| {
+                let s = beam_with(supports.clone(), elements).build();
+                assert_eq!(s.rigid, 0, "{name}");
+                worst_error(&elastic(&s, 5), &reference)
+            })
+            .collect();
+        assert!(errors[2] < 2e-6, "{name}: {errors:?}");
+        // Hermite cubics: about 16 per halving of h.
+        assert!(errors[0] / errors[1] > 12.0, "{name}: {errors:?}");
+        assert!(errors[1] / errors[2] > 12.0, "{name}: {errors:?}");
+    }
+}
+
+#[test]
+fn rigid_body_modes_are_counted_from_the_supports() {
+    for (supports, rigid) in [
+        (vec![], 2),
+        (vec![support(0.25, SupportKind::Pinned)], 1),
+        (vec![support(0.25, SupportKind::Guided)], 1),
+        (vec![support(0.0, SupportKind::Clamped)], 0),
+    ] {
+        let s = beam_with(supports, 10).build();
+        assert_eq!(s.rigid, rigid);
+        let modal = ModalSolution::solve(&s.assemble()).unwrap();
+        let top = modal.values()[modal.len() - 1];
+        let zero = modal
+            .values()
+            .iter()
+            .filter(|l| l.abs() < 1e-10 * top)
+            .count();
+        assert_eq!(zero, rigid, "the eigensolution agrees");
+    }
+}
+
+/// The lowest root above `from` of `f` by scanning and bisection.
+fn root(f: impl Fn(f64) -> f64, from: f64, step: f64) -> f64 {
+    let (mut a, mut fa) = (from, f(from));
+    loop {
+        let b = a + step;
+        let fb = f(b);
+        if fa.signum() != fb.signum() {
+            let (mut lo, mut hi, mut flo) = (a, b, fa);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                let fm = f(mid);
+                if fm.signum() == flo.signum() {
+                    lo = mid;
+                    flo = fm;
+                } else {
+                    hi = mid;
+                }
+            }
+            return 0.5 * (lo + hi);
+        }
+        a = b;
+        fa = fb;
+    }
+}
+
+#[test]
+fn cantilever_with_a_tip_mass_matches_the_frequency_equation() {
+    let beam_mass = section().mass_per_length() * LENGTH;
+    for mu in [0.1, 0.5, 2.0] {
+        let equation = |bl: f64| {
+            1.0 + bl.cos() * bl.cosh() + mu * bl * (bl.cos() * bl.sinh() - bl.sin() * bl.cosh())
+        };
+        let mut roots = vec![root(equation, 0.05, 0.01)];
+        for _ in 0..2 {
+            let last = *roots.last().unwrap();
+            roots.push(root(equation, last + 0.05, 0.01));
+        }
+        let reference: Vec<f64> = roots.iter().map(|&b| omega_of_beta_l(b)).collect();
+        let mut chain = beam_with(vec![support(0.0, SupportKind::Clamped)], 40);
+        chain.masses = vec![PointMass {
+            x: LENGTH,
+            mass: mu * beam_mass,
+            rotary_inertia: 0.0,
+            spring: None,
+            identify: false,
+        }];
+        let err = worst_error(&elastic(&chain.build(), 3), &reference);
+        assert!(err < 1e-6, "mu {mu}: error {err}");
+    }
+}
+
+/// Angular frequencies where a free-free beam of uniform `pieces` (length, section) has zero
+/// end moment and shear: the exact continuous solution.
+fn stepped_free_free(pieces: &[(f64, Section)], count: usize) -> Vec<f64> {
+    let determinant = |omega: f64| {
+        // State (w, theta, M, Q) at x = 0 with M = Q = 0: two free columns (w0, theta0).
+        let mut columns = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]];
+        for (l, s) in pieces {
+            let ei = s.bending_stiffness();
+            let b = (s.mass_per_length() * omega * omega / ei).powf(0.25);
+            let x = b * l;
+            let (ch, sh, c, sn) = (x.cosh(), x.sinh(), x.cos(), x.sin());
+            let (ss, t, u, v) = (
+                0.5 * (ch + c),
+                0.5 * (sh + sn),
+                0.5 * (ch - c),
+                0.5 * (sh - sn),
+            );
+            for z in &mut columns {
+                let [w, th, m, q] = *z;
+                *z = [
+                    w * ss + th * t / b + m * u / (ei * b * b) + q * v / (ei * b * b * b),
+                    w * b * v + th * ss + m * t / (ei * b) + q * u / (ei * b * b),
+                    ei * (w * b * b * u + th * b * v) + m * ss + q * t / b,
+                    ei * (w * b * b * b * t + th * b * b * u) + m * b * v + q * ss,
+                ];
+            }
+        }
+        columns[0][2] * columns[1][3] - columns[0][3] * columns[1][2]
+    };
+    let mut out = Vec::new();
+    let mut from = 10.0;
+    while out.len() < count {
+        let w = root(determinant, from, 5.0);
+        out.push(w);
+        from = w + 1.0;
+    }
+    out
+}
+
+#[test]
+fn a_stepped_beam_matches_the_exact_stepped_solution() {
+    let thin = section();
+    // A lap: twice the thickness over 0.20-0.30 m, so twice the area and eight times I.
+    let thick = Section {
+        area: 2.0 * thin.area,
+        second_moment: 8.0 * thin.second_moment,
+        ..thin
+    };
+    let reference = stepped_free_free(&[(0.2, thin), (0.1, thick), (0.2, thin)], 4);
+    let errors: Vec<f64> = [20, 40, 80]
+        .iter()
+        .map(|&elements| {
+            let mut beam = Beam::uniform(LENGTH, elements, thin);
+            beam.segments = vec![jointid::model::chain::Segment {
+                from: 0.2,
+                to: 0.3,
+                section: thick,
+            }];
+            let s = Chain::free(vec![beam], vec![]).build();
+            worst_error(&elastic(&s, 4), &reference)
+        })
+        .collect();
+    assert!(errors[2] < 1e-6, "{errors:?}");
+    assert!(errors[0] / errors[1] > 12.0, "{errors:?}");
+}
+
+#[test]
+fn a_sensor_between_nodes_converges_to_the_analytic_cantilever_shape() {
+    let bl = 1.8751040687;
+    let b = bl / LENGTH;
+    let ratio = (bl.cosh() + bl.cos()) / (bl.sinh() + bl.sin());
+    let shape = |x: f64| (b * x).cosh() - (b * x).cos() - ratio * ((b * x).sinh() - (b * x).sin());
+    // Sensors off the node grid of every mesh below; the tip reads the scale.
+    let xs = [0.0371, 0.1234, 0.3333, LENGTH];
+    let errors: Vec<f64> = [5, 10, 20]
+        .iter()
+        .map(|&elements| {
+            let s = beam_with(vec![support(0.0, SupportKind::Clamped)], elements).build();
+            let points: Vec<Observation> = xs
+                .iter()
+                .map(|&x| s.dofs.at_x(x, Direction::W).unwrap())
+                .collect();
+            let modal = ModalSolution::solve(&s.assemble()).unwrap();
+            let values: Vec<f64> = points
+                .iter()
+                .map(|p| p.read_column(modal.vectors(), 0))
+                .collect();
+            let tip = values[3];
+            xs.iter()
+                .zip(&values)
+                .map(|(&x, v)| (v / tip - shape(x) / shape(LENGTH)).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    assert!(errors[2] < 1e-6, "{errors:?}");
+    assert!(
+        errors[0] / errors[1] > 8.0 && errors[1] / errors[2] > 8.0,
+        "{errors:?}"
+    );
+}
+
+/// A clamped test with a joint whose k1 is held fixed, a flexible end spring and a point mass,
+/// both identified.
+fn clamped_test() -> Chain {
+    let mut joint = Joint::identified(5e5, 2e3);
+    joint.roles[0] = jointid::structure::Role::Fixed;
+    let mut chain = Chain::free(vec![steel_bar(0.25, 8), steel_bar(0.25, 8)], vec![joint]);
+    let mut end = support(
+        LENGTH,
+        SupportKind::Spring {
+            translational: 2e5,
+            rotational: 0.0,
+        },
+    );
+    end.identify = [true, false];
+    chain.supports = vec![support(0.0, SupportKind::Clamped), end];
+    chain.masses = vec![PointMass {
+        x: 0.35,
+        mass: 0.3,
+        rotary_inertia: 2e-4,
+        spring: None,
+        identify: true,
+    }];
+    chain
+}
+
+#[test]
+fn identified_set_up_parameters_have_exact_eigenvalue_sensitivities() {
+    let s = clamped_test().build();
+    let names: Vec<String> = s.identified().iter().map(|p| p.name.clone()).collect();
+    assert_eq!(names, ["k2", "support1.translational", "mass0.m"]);
+    let modal = ModalSolution::solve(&s.assemble()).unwrap();
+    let y = modal.vectors();
+    let top = modal.values()[modal.len() - 1];
+    // Eigenvalues carry an absolute error of about eps * lambda_max (1e-3 here): the step is
+    // large enough for the difference quotient to stand above it, small enough for its
+    // truncation error (h^2 relative) to stay below the tolerance.
+    for (i, p) in s.identified().iter().enumerate() {
+        let h = 3e-3 * p.value;
+        let at = |sign: f64| {
+            let mut delta = vec![0.0; 3];
+            delta[i] = sign * h;
+            ModalSolution::solve(&s.with_delta(&delta).assemble()).unwrap()
+        };
+        let (plus, minus) = (at(1.0), at(-1.0));
+        for mode in 0..4 {
+            let column: Vec<f64> = (0..y.nrows()).map(|d| y[(d, mode)]).collect();
+            let lambda = modal.values()[mode];
+            let analytic =
+                p.stiffness.form(&column, &column) - lambda * p.mass.form(&column, &column);
+            let fd = (plus.values()[mode] - minus.values()[mode]) / (2.0 * h);
+            assert!(
+                (analytic - fd).abs() < 3e-5 * analytic.abs() + 100.0 * f64::EPSILON * top / h,
+                "{}: mode {mode}: {analytic} vs {fd}",
+                p.name
+            );
+        }
+    }
+}
+
+#[test]
+fn a_clamped_set_up_is_identified_exactly_from_noise_free_modes() {
+    let s = clamped_test().build();
+    let delta = [4e2, -3e4, 0.05];
+    let truth = s.with_delta(&delta);
+    let points: Vec<Observation> = (0..s.dof_count())
+        .map(|d| Observation::dof(&s.dofs, d))
+        .collect();
+    let measured = exact_modes(
+        &ModalSolution::solve(&truth.assemble()).unwrap(),
+        0,
+        &[1, 2, 3, 4],
+        &points,
+    );
+    let modal = ModalSolution::solve(&s.assemble()).unwrap();
+    let n = s.dof_count();
+    let id = Identifier::for_structure(
+        &s,
+        &modal,
+        Settings {
+            n,
+            m: 6,
+            weighting: Weighting::Inverse,
+        },
+    )
+    .unwrap();
+    // The floor is the eigenvector accuracy of the dense solution (1e-9 to 1e-8) times
+    // cond(W S_r), up to 1e2 on these modes.
+    for mode in measured.modes() {
+        let z = id.identify(mode).unwrap().relative.unwrap();
+        for ((p, zi), d) in id.parameters().iter().zip(z).zip(delta) {
+            let found = p.value * zi;
+            assert!(
+                (found - d).abs() < 1e-6 * d.abs(),
+                "mode {}: {} found {found}, introduced {d}",
+                mode.mode,
+                p.name
+            );
+        }
+    }
+}
+
+#[test]
+fn the_unesp_bert_set_up_is_a_model_file_without_tricks() {
+    let s = jointid::model::from_path(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/models/unesp-bert.toml"
+    )))
+    .unwrap();
+    assert_eq!(s.rigid, 0);
+    let labels: Vec<&str> = s.sensors.iter().map(|o| o.label.as_str()).collect();
+    assert_eq!(labels, ["acc1", "acc2", "acc3", "acc4"]);
+    // Every sensor and the stinger sit on nodes; the lap is a segment on either side of the
+    // joint at its centre.
+    assert!(s.sensors.iter().all(|o| o.terms.len() == 1));
+    assert!(
+        s.dofs
+            .dofs()
+            .iter()
+            .any(|d| (d.position[0] - 0.085).abs() < 1e-12)
+    );
+    assert_eq!(s.sites.joints.len(), 1);
+    assert!((s.sites.joints[0].x - 0.25).abs() < 1e-12);
+    assert_eq!(s.sites.joints[0].sections[0].area, 3.2258e-4);
+    let names: Vec<String> = s.identified().iter().map(|p| p.name.clone()).collect();
+    assert_eq!(names, ["k1", "k2"]);
+}
+
+#[test]
+fn a_parameter_a_mode_cannot_see_is_held_instead_of_failing_the_mode() {
+    // A joint on a pinned support: its transversal spring k1 connects two held DOFs and no
+    // mode can see it; k2 is seen by every mode.
+    let mut chain = Chain::free(
+        vec![steel_bar(0.25, 8), steel_bar(0.25, 8)],
+        vec![Joint::identified(1e7, 5e3)],
+    );
+    chain.supports = vec![
+        support(0.0, SupportKind::Clamped),
+        support(0.25, SupportKind::Pinned),
+    ];
+    let s = chain.build();
+    let truth = s.with_delta(&[0.0, 1e3]);
+    let points: Vec<Observation> = (0..s.dof_count())
+        .map(|d| Observation::dof(&s.dofs, d))
+        .collect();
+    let measured = exact_modes(
+        &ModalSolution::solve(&truth.assemble()).unwrap(),
+        0,
+        &[1, 2, 3],
+        &points,
+    );
+    let modal = ModalSolution::solve(&s.assemble()).unwrap();
+    let settings = Settings {
+        n: s.dof_count(),
+        m: 5,
+        weighting: Weighting::Inverse,
+    };
+    let id = Identifier::for_structure(&s, &modal, settings).unwrap();
+    for mode in measured.modes() {
+        let s_r = id.basis_index(mode.mode).unwrap();
+        let all = id.identify_paired(mode, s_r).unwrap();
+        assert!(
+            all.relative.is_err(),
+            "k1 is invisible: S_r is rank deficient"
+        );
+        assert_eq!(all.resolution[0], 0.0);
+        let auto = id
+            .identify_selected(mode, s_r, jointid::identify::Selection::Auto)
+            .unwrap();
+        assert_eq!(auto.solved, vec![false, true]);
+        let z = auto.relative.unwrap();
+        assert_eq!(z[0], 0.0);
+        assert!(
+            (5e3 * z[1] - 1e3).abs() < 1e-6 * 1e3,
+            "mode {}: {}",
+            mode.mode,
+            5e3 * z[1]
+        );
+    }
+}
