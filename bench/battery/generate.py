@@ -73,7 +73,7 @@ class Spec:
 def plan(battery: str) -> list:
     """The cases of a battery: every effect x size x noise situation, geometries and sensor
     layouts rotated so that each combination meets several of them."""
-    per = {"small": (2, 1), "large": (16, 4)}[battery]
+    per = {"small": (2, 1), "large": (8, 2)}[battery]
     n_clean, n_each = per
     specs = []
     for si, situation in enumerate(noise.SITUATIONS):

@@ -182,8 +182,11 @@ pub fn per_mode_corrections(
     for (r, m) in measured.modes().iter().enumerate() {
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
+        // A mode paired beyond the basis (fewer sensors than the mode's index) has no
+        // per-mode system: its correction is absent, not a panic.
         let std = Projector::new(&observe(identifier.basis(), &m.points))
             .ok()
+            .filter(|_| s < settings.n)
             .and_then(|projector| {
                 let jac = jacobian(
                     &projector,
