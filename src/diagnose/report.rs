@@ -302,6 +302,9 @@ pub struct CandidateReport {
     pub criterion: Option<f64>,
     /// Goodness of fit with the candidate, P(chi^2_dof > chi^2).
     pub fit_p_value: Option<f64>,
+    /// Lack of fit of the frequencies alone under the working noise, P(chi^2_dof > chi^2_f)
+    /// (module `noise`).
+    pub frequency_p_value: Option<f64>,
     /// The fit's summary with the candidate.
     #[serde(skip)]
     pub summary: Option<ErrorSummary>,
@@ -320,6 +323,9 @@ pub struct Report {
     pub criterion: String,
     /// The stated noise.
     pub noise: Noise,
+    /// The noise estimated from the data, beside the stated; the selection used its working
+    /// noise.
+    pub noise_estimate: super::noise::NoiseEstimate,
     /// Pairing remarks: modes paired with another model mode than their number.
     pub warnings: Vec<String>,
     /// The model as given (joints uncalibrated).
