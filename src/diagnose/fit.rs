@@ -406,7 +406,9 @@ fn run(
                 let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
                 m.values
                     .iter()
-                    .map(|v| noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt())
+                    .map(|v| {
+                        noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
+                    })
                     .collect()
             })
             .collect(),

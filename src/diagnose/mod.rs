@@ -237,8 +237,15 @@ pub fn diagnose(
     let per_mode = settings
         .per_mode
         .unwrap_or_else(|| default_per_mode(model, measured));
-    let per_mode_before = report::per_mode_corrections(&base, measured, noise, per_mode);
-    let per_mode_after = report::per_mode_corrections(after, measured, noise, per_mode);
+    // When no model explains the data, the residual of the largest model is not noise alone:
+    // the stated noise stays the yardstick of the per-mode corrections.
+    let yardstick = if verdict == Verdict::Unexplained {
+        stated
+    } else {
+        noise
+    };
+    let per_mode_before = report::per_mode_corrections(&base, measured, yardstick, per_mode);
+    let per_mode_after = report::per_mode_corrections(after, measured, yardstick, per_mode);
     let warnings = base
         .pairing
         .model_index

@@ -76,49 +76,14 @@ pub fn estimate(
     // shape scales are the shapes' own.
     let p_s = measured.modes().len() as f64 + unknowns as f64 * n_s / n;
     let p_f = unknowns as f64 * n_f / n;
-    let (mut a2, mut b2) = (
+    let (a2, b2) = variance_function(
+        &res.shape,
         stated.shape * stated.shape,
         (stated.shape * stated_floor).powi(2),
     );
-    for _ in 0..50 {
-        // weighted least squares of e^2 on (u^2, 1), weights 1 / v^2
-        let (mut s11, mut s12, mut s22, mut t1, mut t2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for &(u, e) in &res.shape {
-            let v = (a2 * u * u + b2).max(1e-300);
-            let w = 1.0 / (v * v);
-            let x1 = u * u;
-            s11 += w * x1 * x1;
-            s12 += w * x1;
-            s22 += w;
-            t1 += w * x1 * e * e;
-            t2 += w * e * e;
-        }
-        let det = s11 * s22 - s12 * s12;
-        let (mut na2, mut nb2) = if det > 0.0 {
-            ((t1 * s22 - t2 * s12) / det, (s11 * t2 - s12 * t1) / det)
-        } else {
-            (t1 / s11.max(1e-300), 0.0)
-        };
-        if na2 < 0.0 {
-            na2 = 0.0;
-            nb2 = t2 / s22;
-        } else if nb2 < 0.0 {
-            nb2 = 0.0;
-            na2 = t1 / s11;
-        }
-        let converged = (na2 - a2).abs() <= 1e-10 * na2.max(1e-300)
-            && (nb2 - b2).abs() <= 1e-10 * (na2 + nb2).max(1e-300);
-        a2 = na2;
-        b2 = nb2;
-        if converged {
-            break;
-        }
-    }
     let dof_s = (n_s - p_s).max(1.0);
     let correction = n_s / dof_s;
-    let a = (a2 * correction)
-        .sqrt()
-        .max(SMALLEST_FACTOR * stated.shape);
+    let a = (a2 * correction).sqrt().max(SMALLEST_FACTOR * stated.shape);
     let b = (b2 * correction).sqrt();
     let dof_f = (n_f - p_f).max(1.0);
     let frequency_check = (res.frequency.iter().map(|e| e * e).sum::<f64>() / dof_f).sqrt();
@@ -138,6 +103,46 @@ pub fn estimate(
         shape_values: res.shape.len(),
         frequency_values: res.frequency.len(),
     }
+}
+
+/// The variance function Var e = a^2 u^2 + b^2 fitted to the squared residuals e^2 of the
+/// pairs (u, e) by iteratively reweighted least squares (weights 1 / v^2), a^2, b^2 >= 0,
+/// from (a2, b2); no degrees-of-freedom correction. Returns (a^2, b^2).
+pub fn variance_function(pairs: &[(f64, f64)], mut a2: f64, mut b2: f64) -> (f64, f64) {
+    for _ in 0..50 {
+        let (mut s11, mut s12, mut s22, mut t1, mut t2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for &(u, e) in pairs {
+            let v = (a2 * u * u + b2).max(1e-300);
+            let w = 1.0 / (v * v);
+            let x1 = u * u;
+            s11 += w * x1 * x1;
+            s12 += w * x1;
+            s22 += w;
+            t1 += w * x1 * e * e;
+            t2 += w * e * e;
+        }
+        let det = s11 * s22 - s12 * s12;
+        let (mut na2, mut nb2) = if det > 1e-12 * s11 * s22 {
+            ((t1 * s22 - t2 * s12) / det, (s11 * t2 - s12 * t1) / det)
+        } else {
+            (t1 / s11.max(1e-300), 0.0)
+        };
+        if na2 < 0.0 {
+            na2 = 0.0;
+            nb2 = t2 / s22.max(1e-300);
+        } else if nb2 < 0.0 {
+            nb2 = 0.0;
+            na2 = t1 / s11.max(1e-300);
+        }
+        let converged = (na2 - a2).abs() <= 1e-10 * (na2 + nb2).max(1e-300)
+            && (nb2 - b2).abs() <= 1e-10 * (na2 + nb2).max(1e-300);
+        a2 = na2;
+        b2 = nb2;
+        if converged {
+            break;
+        }
+    }
+    (a2, b2)
 }
 
 /// Largest factor by which the stated shape noise may be off: an estimate beyond it means the
@@ -163,4 +168,47 @@ pub fn frequency_lack_of_fit(
         .sum();
     let dof = res.frequency.len().saturating_sub(unknowns).max(1);
     (chi2, dof, crate::stats::chi2_sf(chi2, dof as f64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pairs whose squared residuals lie exactly on a^2 u^2 + b^2: the fit returns a^2, b^2
+    /// to rounding, from any start.
+    #[test]
+    fn exact_variance_function_is_recovered() {
+        let (a, b) = (0.03, 0.004);
+        let pairs: Vec<(f64, f64)> = (0..40)
+            .map(|i| {
+                let u = -1.0 + 2.0 * f64::from(i) / 39.0;
+                (u, (a * a * u * u + b * b).sqrt())
+            })
+            .collect();
+        for start in [(1e-4, 1e-8), (1e-2, 1e-2), (4e-4, 0.0)] {
+            let (a2, b2) = variance_function(&pairs, start.0, start.1);
+            assert!(
+                (a2 - a * a).abs() <= 1e-12 * a * a,
+                "a^2 {a2} from {start:?}"
+            );
+            assert!(
+                (b2 - b * b).abs() <= 1e-10 * b * b,
+                "b^2 {b2} from {start:?}"
+            );
+        }
+    }
+
+    /// Residuals of a pure relative noise (b = 0): the floor is clamped at zero, not negative.
+    #[test]
+    fn floor_stays_non_negative() {
+        let pairs: Vec<(f64, f64)> = (1..30)
+            .map(|i| {
+                let u = f64::from(i) / 29.0;
+                (u, 0.02 * u * if i % 2 == 0 { 0.9 } else { 1.1 })
+            })
+            .collect();
+        let (a2, b2) = variance_function(&pairs, 4e-4, 1e-6);
+        assert!(b2 >= 0.0 && a2 > 0.0, "a^2 {a2}, b^2 {b2}");
+        assert!((a2.sqrt() / 0.02 - 1.0).abs() < 0.05, "a {}", a2.sqrt());
+    }
 }
