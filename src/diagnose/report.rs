@@ -15,8 +15,8 @@ use crate::structure::observe;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Verdict {
-    /// The calibrated model explains the data within the working noise (stated, or estimated from the data); no candidate is
-    /// significant.
+    /// The calibrated model explains the data within the working noise (stated, or estimated
+    /// from the data); no candidate is significant.
     None,
     /// A candidate is significant and brings the residual down to the noise.
     Effect,
