@@ -54,6 +54,9 @@ pub struct Calibration {
     pub noise: Noise,
     /// How measured modes pair with model modes.
     pub pairing: PairingRule,
+    /// Floor of the shape standard deviation, as a fraction of the mode's largest component
+    /// ([`SHAPE_FLOOR`] unless estimated from the data).
+    pub shape_floor: f64,
 }
 
 /// Why a fit failed.
@@ -330,6 +333,42 @@ fn model_sign(modal: &ModalSolution, s: usize, m: &crate::measured::MeasuredMode
     if dot < 0.0 { -1.0 } else { 1.0 }
 }
 
+/// The unweighted residuals of a fit: relative frequency errors (f_s - f_m) / f_m, and per
+/// shape component (u, e) with u the measured value and e = c_r y_s - u, both divided by the
+/// mode's measured peak.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Residuals {
+    /// Relative frequency residual of every measured mode.
+    pub frequency: Vec<f64>,
+    /// (measured component, residual) of every shape value, per unit peak.
+    pub shape: Vec<(f64, f64)>,
+}
+
+/// The unweighted residuals of `fitted` on `measured`.
+pub fn residuals(fitted: &Fitted, measured: &MeasuredModes) -> Residuals {
+    let y = fitted.modal.vectors();
+    let mut out = Residuals {
+        frequency: Vec::new(),
+        shape: Vec::new(),
+    };
+    for (r, m) in measured.modes().iter().enumerate() {
+        let s = fitted.pairing.model_index[r];
+        out.frequency
+            .push((fitted.modal.frequency_hz(s) - m.frequency_hz) / m.frequency_hz);
+        let sign = model_sign(&fitted.modal, s, m);
+        let peak = m
+            .values
+            .iter()
+            .fold(0.0_f64, |a, b| a.max(b.abs()))
+            .max(f64::MIN_POSITIVE);
+        for (p, &v) in m.points.iter().zip(&m.values) {
+            let e = fitted.scales[r] * sign * p.read_column(y, s) - v;
+            out.shape.push((v / peak, e / peak));
+        }
+    }
+    out
+}
+
 fn chi2(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
@@ -380,7 +419,9 @@ fn run(
                 let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
                 m.values
                     .iter()
-                    .map(|v| noise.shape * (v * v + (SHAPE_FLOOR * peak).powi(2)).sqrt())
+                    .map(|v| {
+                        noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
+                    })
                     .collect()
             })
             .collect(),

@@ -17,6 +17,7 @@
 //! - [`report`]: summaries, per-mode corrections, the report.
 
 pub mod fit;
+pub mod noise;
 pub mod pairing;
 pub mod report;
 pub mod sensitivity;
@@ -25,7 +26,8 @@ use std::sync::Arc;
 
 use rayon::prelude::*;
 
-pub use fit::{Calibration, Estimate, FitError, Fitted, Noise};
+pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
+pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
 
@@ -133,10 +135,39 @@ pub fn diagnose(
         &measured.points(),
         nominal.frequency_hz(rigid),
     ));
-    let noise = settings.noise;
+    let stated = settings.noise;
+    let stated_calibration = Calibration {
+        noise: stated,
+        pairing: settings.pairing.clone(),
+        shape_floor: fit::SHAPE_FLOOR,
+    };
+    let library: Vec<Arc<dyn Effect>> = candidates()
+        .into_iter()
+        .filter(|c| c.applies(&ctx))
+        .collect();
+    // The largest model under the stated noise gives the noise estimate; the selection runs
+    // under the working noise (module `noise`).
+    let first_base = fit::fit(&ctx, measured, &stated_calibration, &[])?;
+    let first = fit_all(&ctx, measured, &stated_calibration, &library);
+    let largest = first
+        .iter()
+        .filter_map(|(c, r)| r.as_ref().ok().map(|f| (c.name(), f)))
+        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
+        .filter(|(_, f)| f.chi2 < first_base.chi2)
+        .unwrap_or(("joint only", &first_base));
+    let estimate = noise::estimate(
+        largest.1,
+        measured,
+        largest.1.estimates.len(),
+        stated,
+        fit::SHAPE_FLOOR,
+        largest.0,
+    );
+    let noise = estimate.working;
     let calibration = Calibration {
         noise,
         pairing: settings.pairing.clone(),
+        shape_floor: estimate.working_floor,
     };
     let initial = fit::as_given(&ctx, measured, &calibration)?;
     let base = fit::fit(&ctx, measured, &calibration, &[])?;
@@ -146,18 +177,8 @@ pub fn diagnose(
             after: base.chi2,
         });
     }
-    let library: Vec<Arc<dyn Effect>> = candidates()
-        .into_iter()
-        .filter(|c| c.applies(&ctx))
-        .collect();
     let tried = library.len() as f64;
-    let fits: Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> = library
-        .into_par_iter()
-        .map(|c| {
-            let result = fit::fit(&ctx, measured, &calibration, std::slice::from_ref(&c));
-            (c, result)
-        })
-        .collect();
+    let fits = fit_all(&ctx, measured, &calibration, &library);
     let joint_count = base.estimates.len();
     let candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
         .iter()
@@ -191,6 +212,9 @@ pub fn diagnose(
                     lrt: Some(lrt),
                     criterion: Some((chi2_sf(lrt, k as f64) * tried).min(1.0)),
                     fit_p_value: Some(chi2_sf(f.chi2, f.dof as f64)),
+                    frequency_p_value: Some(
+                        noise::frequency_lack_of_fit(f, measured, f.estimates.len(), noise).2,
+                    ),
                     summary: Some(ErrorSummary::of(f, measured)),
                     error: None,
                 };
@@ -208,6 +232,7 @@ pub fn diagnose(
                     lrt: None,
                     criterion: None,
                     fit_p_value: None,
+                    frequency_p_value: None,
                     summary: None,
                     error: Some(e.to_string()),
                 },
@@ -215,24 +240,41 @@ pub fn diagnose(
             ),
         })
         .collect();
+    // A model explains the data when its whole fit and its frequencies alone pass under the
+    // working noise, and that noise is within LARGEST_FACTOR of the stated.
+    let plausible_noise = estimate.shape_factor <= noise::LARGEST_FACTOR;
     let base_p = chi2_sf(base.chi2, base.dof as f64);
+    let base_frequency_p =
+        noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
     let best = candidates
         .iter()
         .filter(|(c, _)| c.criterion.is_some_and(|p| p < ALPHA))
         .max_by(|a, b| a.0.lrt.unwrap_or(0.0).total_cmp(&b.0.lrt.unwrap_or(0.0)));
+    let explains = |fit_p: Option<f64>, frequency_p: Option<f64>| {
+        plausible_noise
+            && fit_p.is_some_and(|p| p >= FIT_ALPHA)
+            && frequency_p.is_some_and(|p| p >= FIT_ALPHA)
+    };
     let (verdict, after, selected): (Verdict, &Fitted, Option<String>) = match best {
-        Some((c, Some(f))) if c.fit_p_value.is_some_and(|p| p >= FIT_ALPHA) => {
+        Some((c, Some(f))) if explains(c.fit_p_value, c.frequency_p_value) => {
             (Verdict::Effect, f, Some(c.name.clone()))
         }
         Some(_) => (Verdict::Unexplained, &base, None),
-        None if base_p >= FIT_ALPHA => (Verdict::None, &base, None),
+        None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
         None => (Verdict::Unexplained, &base, None),
     };
     let per_mode = settings
         .per_mode
         .unwrap_or_else(|| default_per_mode(model, measured));
-    let per_mode_before = report::per_mode_corrections(&base, measured, noise, per_mode);
-    let per_mode_after = report::per_mode_corrections(after, measured, noise, per_mode);
+    // When no model explains the data, the residual of the largest model is not noise alone:
+    // the stated noise stays the yardstick of the per-mode corrections.
+    let yardstick = if verdict == Verdict::Unexplained {
+        stated
+    } else {
+        noise
+    };
+    let per_mode_before = report::per_mode_corrections(&base, measured, yardstick, per_mode);
+    let per_mode_after = report::per_mode_corrections(after, measured, yardstick, per_mode);
     let warnings = base
         .pairing
         .model_index
@@ -245,9 +287,11 @@ pub fn diagnose(
         verdict,
         selected,
         criterion: format!(
-            "likelihood-ratio test under the stated noise: a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}"
+            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}",
+            estimate.from_model
         ),
-        noise,
+        noise: stated,
+        noise_estimate: estimate,
         warnings,
         initial: ErrorSummary::of(&initial, measured),
         before: ErrorSummary::of(&base, measured),
@@ -263,6 +307,22 @@ pub fn diagnose(
         ),
         shape_floor: fit::SHAPE_FLOOR,
     })
+}
+
+/// Every candidate of `library` fitted with the joints.
+fn fit_all(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    library: &[Arc<dyn Effect>],
+) -> Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> {
+    library
+        .par_iter()
+        .map(|c| {
+            let result = fit::fit(ctx, measured, calibration, std::slice::from_ref(c));
+            (c.clone(), result)
+        })
+        .collect()
 }
 
 fn default_per_mode(model: &Structure, measured: &MeasuredModes) -> Settings {

@@ -15,8 +15,8 @@ use crate::structure::observe;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Verdict {
-    /// The calibrated model explains the data within the stated noise; no candidate is
-    /// significant.
+    /// The calibrated model explains the data within the working noise (stated, or estimated
+    /// from the data); no candidate is significant.
     None,
     /// A candidate is significant and brings the residual down to the noise.
     Effect,
@@ -182,12 +182,11 @@ pub fn per_mode_corrections(
     for (r, m) in measured.modes().iter().enumerate() {
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
-        // A mode paired beyond the sub-basis has no retained system (its outcome is the
-        // error that says so).
-        let in_basis = s < identifier.settings().n;
+        // A mode paired beyond the basis (fewer sensors than the mode's index) has no
+        // per-mode system: its correction is absent, not a panic.
         let std = Projector::new(&observe(identifier.basis(), &m.points))
             .ok()
-            .filter(|_| in_basis)
+            .filter(|_| s < settings.n)
             .and_then(|projector| {
                 let jac = jacobian(
                     &projector,
@@ -303,6 +302,9 @@ pub struct CandidateReport {
     pub criterion: Option<f64>,
     /// Goodness of fit with the candidate, P(chi^2_dof > chi^2).
     pub fit_p_value: Option<f64>,
+    /// Lack of fit of the frequencies alone under the working noise, P(chi^2_dof > chi^2_f)
+    /// (module `noise`).
+    pub frequency_p_value: Option<f64>,
     /// The fit's summary with the candidate.
     #[serde(skip)]
     pub summary: Option<ErrorSummary>,
@@ -321,6 +323,9 @@ pub struct Report {
     pub criterion: String,
     /// The stated noise.
     pub noise: Noise,
+    /// The noise estimated from the data, beside the stated; the selection used its working
+    /// noise.
+    pub noise_estimate: super::noise::NoiseEstimate,
     /// Pairing remarks: modes paired with another model mode than their number.
     pub warnings: Vec<String>,
     /// The model as given (joints uncalibrated).

@@ -77,7 +77,7 @@ fn corrections(
 pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = match (r.verdict, &r.selected) {
         (Verdict::Effect, Some(name)) => format!("effect: {name}"),
-        (Verdict::None, _) => "none: the calibrated model explains the data within the stated noise".to_string(),
+        (Verdict::None, _) => "none: the calibrated model explains the data within the noise (the working noise below)".to_string(),
         _ => "unexplained: the residual stays above the noise with every candidate (a frequency-dependent joint, or an effect outside the library)".to_string(),
     };
     writeln!(out, "verdict: {verdict}")?;
@@ -85,6 +85,20 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         out,
         "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
         r.noise.frequency, r.noise.shape, r.shape_floor
+    )?;
+    let e = &r.noise_estimate;
+    writeln!(
+        out,
+        "noise estimated from the shape residuals of the largest model ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); the selection used frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
+        e.from_model,
+        e.shape,
+        e.shape_factor,
+        e.shape_floor_abs,
+        e.frequency_check,
+        e.frequency_factor,
+        e.working.frequency,
+        e.working.shape,
+        e.working_floor
     )?;
     for w in &r.warnings {
         writeln!(out, "warning: {w}")?;
