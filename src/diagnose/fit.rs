@@ -136,6 +136,8 @@ pub struct Fitted {
     pub iterations: usize,
     /// The fitted scale c_r of every measured mode's model shape.
     pub scales: Vec<f64>,
+    /// The optimum in the fit's own unknowns (a start for a refit).
+    solution: Vec<f64>,
 }
 
 struct Problem<'a> {
@@ -380,7 +382,7 @@ pub fn as_given(
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, calibration, &[], false)
+    run(ctx, measured, calibration, &[], false, None)
 }
 
 /// Fits the joints of `ctx.model` (and the parameters of `effects`, starting at zero) to the
@@ -391,7 +393,26 @@ pub fn fit(
     calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, calibration, effects, true)
+    run(ctx, measured, calibration, effects, true, None)
+}
+
+/// As [`fit`], starting from `from`, an optimum of the same model under another calibration
+/// (the noise only: the same unknowns), which it reaches again in a few steps.
+pub fn refit(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    effects: &[Arc<dyn Effect>],
+    from: &Fitted,
+) -> Result<Fitted, FitError> {
+    run(
+        ctx,
+        measured,
+        calibration,
+        effects,
+        true,
+        Some(&from.solution),
+    )
 }
 
 fn run(
@@ -400,6 +421,7 @@ fn run(
     calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
     iterate: bool,
+    from: Option<&[f64]>,
 ) -> Result<Fitted, FitError> {
     let noise = calibration.noise;
     let joint_p0: Vec<f64> = ctx.structure.identified().iter().map(|p| p.value).collect();
@@ -440,11 +462,16 @@ fn run(
         .map(|e| e.name())
         .collect::<Vec<_>>()
         .join(" + ");
-    let mut x = vec![0.0; unknowns];
+    let mut x = match from {
+        Some(x0) if x0.len() == unknowns => x0.to_vec(),
+        _ => vec![0.0; unknowns],
+    };
     let start = problem.configured(&x);
     let start_modal = problem.modes(&start.assemble())?;
     let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
-    initial_scales(&problem, &start_modal, &pairing, &mut x);
+    if from.is_none() {
+        initial_scales(&problem, &start_modal, &pairing, &mut x);
+    }
     if !iterate {
         let eval = problem.evaluate(&x, &pairing)?;
         let dof = data - measured.modes().len();
@@ -639,6 +666,7 @@ fn finish(
     let scales = x[j + problem.effect_count()..].to_vec();
     Fitted {
         scales,
+        solution: x,
         configured: eval.configured,
         modal: eval.modal,
         pairing,

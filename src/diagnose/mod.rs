@@ -170,7 +170,7 @@ pub fn diagnose(
         shape_floor: estimate.working_floor,
     };
     let initial = fit::as_given(&ctx, measured, &calibration)?;
-    let base = fit::fit(&ctx, measured, &calibration, &[])?;
+    let base = fit::refit(&ctx, measured, &calibration, &[], &first_base)?;
     if base.chi2 > initial.chi2 * (1.0 + 1e-9) {
         return Err(DiagnoseError::ErrorGrew {
             before: initial.chi2,
@@ -178,7 +178,7 @@ pub fn diagnose(
         });
     }
     let tried = library.len() as f64;
-    let fits = fit_all(&ctx, measured, &calibration, &library);
+    let fits = refit_all(&ctx, measured, &calibration, &first);
     let joint_count = base.estimates.len();
     let candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
         .iter()
@@ -320,6 +320,27 @@ fn fit_all(
         .par_iter()
         .map(|c| {
             let result = fit::fit(ctx, measured, calibration, std::slice::from_ref(c));
+            (c.clone(), result)
+        })
+        .collect()
+}
+
+/// Every candidate fitted again under `calibration`, each from its fit in `first` (a
+/// candidate whose first fit failed starts afresh).
+fn refit_all(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    first: &[(Arc<dyn Effect>, Result<Fitted, FitError>)],
+) -> Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> {
+    first
+        .par_iter()
+        .map(|(c, earlier)| {
+            let effects = std::slice::from_ref(c);
+            let result = match earlier {
+                Ok(from) => fit::refit(ctx, measured, calibration, effects, from),
+                Err(_) => fit::fit(ctx, measured, calibration, effects),
+            };
             (c.clone(), result)
         })
         .collect()
