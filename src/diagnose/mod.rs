@@ -309,13 +309,16 @@ pub fn diagnose(
     })
 }
 
+/// A candidate with its fit (or why it failed).
+type CandidateFit = (Arc<dyn Effect>, Result<Fitted, FitError>);
+
 /// Every candidate of `library` fitted with the joints.
 fn fit_all(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
     library: &[Arc<dyn Effect>],
-) -> Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> {
+) -> Vec<CandidateFit> {
     library
         .par_iter()
         .map(|c| {
@@ -331,8 +334,8 @@ fn refit_all(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
-    first: &[(Arc<dyn Effect>, Result<Fitted, FitError>)],
-) -> Vec<(Arc<dyn Effect>, Result<Fitted, FitError>)> {
+    first: &[CandidateFit],
+) -> Vec<CandidateFit> {
     first
         .par_iter()
         .map(|(c, earlier)| {
