@@ -327,3 +327,25 @@ fn bad_diagnose_and_simulate_inputs_are_explained() {
     assert!(!out.exists());
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+#[ignore]
+fn probe_trend() {
+    for (e, size) in [("element_damage", 0.3), ("rising_joint", 0.3), ("rising_joint", 0.1)] {
+        for seed in 1..=5 {
+            let r = run(&test_data(&[(e, size)], seed));
+            for f in &r.flatness_before {
+                println!(
+                    "{e} {seed} {:?} {} slope/se {:.2} chi2 {:.1}/{} line {:.1} p {:.2e}",
+                    r.verdict,
+                    f.param,
+                    f.slope_per_khz / f.slope_se_per_khz,
+                    f.chi2,
+                    f.dof,
+                    f.line_chi2,
+                    f.line_p_value
+                );
+            }
+        }
+    }
+}

@@ -69,7 +69,9 @@ fn verdict_word(case: &Path, truth: &serde_json::Value) -> String {
         Ok(report) => match report.verdict {
             Verdict::None => "none".to_string(),
             Verdict::Effect => format!("effect:{}", report.selected.unwrap_or_default()),
+            Verdict::Ambiguous => format!("ambiguous:{}", report.contenders.join("|")),
             Verdict::Unexplained => "unexplained".to_string(),
+            Verdict::FrequencyDependent => "frequency_dependent".to_string(),
         },
         Err(e) => format!("error: {e}"),
     }

@@ -7,9 +7,20 @@
 //! D_c = chi^2_0 - chi^2_c is chi-square with k_c degrees of freedom when c is absent. A
 //! candidate is significant when P(chi^2_{k_c} > D_c), times the number of candidates tried
 //! (Bonferroni), is below [`ALPHA`]. Goodness of fit: P(chi^2_dof > chi^2) >= [`FIT_ALPHA`].
+//! A candidate whose fitted size is not physically plausible (a negative mass or spring, a
+//! joint or sensor mass above the beams' mass, an inadmissible theta: `Effect::plausible`,
+//! `Effect::admissible`, `EffectParameter::non_negative`) is excluded, with the reason.
 //! - no significant candidate: `none` if the joint-only fit is good, else `unexplained`;
-//! - otherwise the significant candidate with the largest D_c: `effect` if its fit is good,
-//!   else `unexplained` (it helps, but the residual stays above the noise).
+//! - otherwise the significant candidate with the largest D_c, if its fit is good: `effect`
+//!   when every other significant candidate c' is at least [`AMBIGUITY_MARGIN`] behind it in
+//!   Akaike's information criterion (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model
+//!   Selection and Multimodel Inference", sec. 2.6), else `ambiguous` naming those within it;
+//! - if its fit is not good, or no candidate is significant and the joint-only fit is not
+//!   good: `frequency_dependent` when a per-mode joint correction trends with frequency
+//!   beyond [`TREND_SIGMAS`] standard errors and the corrections of every joint parameter
+//!   follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about the weighted line)
+//!   >= [`FIT_ALPHA`]: the paper's frequency-dependent joint), else `unexplained`; both report
+//!   where the misfit sits ([`report::ResidualPattern`]).
 //!
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
@@ -29,7 +40,7 @@ use rayon::prelude::*;
 pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
-pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
+pub use report::{CandidateReport, ErrorSummary, ResidualPattern, Report, Verdict};
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -42,6 +53,11 @@ use crate::structure::{Structure, check_elastic};
 pub const ALPHA: f64 = 0.01;
 /// Smallest goodness-of-fit probability of a model that explains the data.
 pub const FIT_ALPHA: f64 = 0.001;
+/// Smallest lead in AIC of the selected candidate over every other significant one.
+pub const AMBIGUITY_MARGIN: f64 = 6.0;
+/// A per-mode correction whose slope against frequency exceeds this many standard errors
+/// trends with frequency.
+pub const TREND_SIGMAS: f64 = 3.0;
 
 /// Why a diagnosis cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -217,6 +233,7 @@ pub fn diagnose(
                     ),
                     summary: Some(ErrorSummary::of(f, measured)),
                     error: None,
+                    excluded: implausible(c.as_ref(), &ctx, f, &theta),
                 };
                 (report, Some(f))
             }
@@ -235,6 +252,7 @@ pub fn diagnose(
                     frequency_p_value: None,
                     summary: None,
                     error: Some(e.to_string()),
+                    excluded: None,
                 },
                 None,
             ),
@@ -246,23 +264,37 @@ pub fn diagnose(
     let base_p = chi2_sf(base.chi2, base.dof as f64);
     let base_frequency_p =
         noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
-    let best = candidates
+    let mut significant: Vec<&(CandidateReport, Option<&Fitted>)> = candidates
         .iter()
-        .filter(|(c, _)| c.criterion.is_some_and(|p| p < ALPHA))
-        .max_by(|a, b| a.0.lrt.unwrap_or(0.0).total_cmp(&b.0.lrt.unwrap_or(0.0)));
+        .filter(|(c, _)| c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA))
+        .collect();
+    significant.sort_by(|a, b| b.0.lrt.unwrap_or(0.0).total_cmp(&a.0.lrt.unwrap_or(0.0)));
     let explains = |fit_p: Option<f64>, frequency_p: Option<f64>| {
         plausible_noise
             && fit_p.is_some_and(|p| p >= FIT_ALPHA)
             && frequency_p.is_some_and(|p| p >= FIT_ALPHA)
     };
-    let (verdict, after, selected): (Verdict, &Fitted, Option<String>) = match best {
-        Some((c, Some(f))) if explains(c.fit_p_value, c.frequency_p_value) => {
-            (Verdict::Effect, f, Some(c.name.clone()))
-        }
-        Some(_) => (Verdict::Unexplained, &base, None),
-        None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
-        None => (Verdict::Unexplained, &base, None),
-    };
+    let mut contenders = Vec::new();
+    let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) =
+        match significant.first() {
+            Some((c, Some(f))) if explains(c.fit_p_value, c.frequency_p_value) => {
+                let lead = |other: &CandidateReport| aic(other) - aic(c);
+                let close: Vec<String> = significant[1..]
+                    .iter()
+                    .filter(|(o, _)| lead(o) < AMBIGUITY_MARGIN)
+                    .map(|(o, _)| o.name.clone())
+                    .collect();
+                if close.is_empty() {
+                    (Verdict::Effect, f, Some(c.name.clone()))
+                } else {
+                    contenders = std::iter::once(c.name.clone()).chain(close).collect();
+                    (Verdict::Ambiguous, f, Some(c.name.clone()))
+                }
+            }
+            Some(_) => (Verdict::Unexplained, &base, None),
+            None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
+            None => (Verdict::Unexplained, &base, None),
+        };
     let per_mode = settings
         .per_mode
         .unwrap_or_else(|| default_per_mode(model, measured));
@@ -275,6 +307,30 @@ pub fn diagnose(
     };
     let per_mode_before = report::per_mode_corrections(&base, measured, yardstick, per_mode);
     let per_mode_after = report::per_mode_corrections(after, measured, yardstick, per_mode);
+    let flatness_before = report::flatness(&per_mode_before);
+    let mut trend = Vec::new();
+    let mut pattern = None;
+    if verdict == Verdict::Unexplained {
+        trend = flatness_before
+            .iter()
+            .filter(|f| f.slope_per_khz.abs() > TREND_SIGMAS * f.slope_se_per_khz)
+            .cloned()
+            .collect();
+        // A joint whose stiffness changes with frequency moves the corrections along a
+        // smooth curve; an effect outside the library scatters them about any line.
+        let smooth = flatness_before
+            .iter()
+            .all(|f| f.line_p_value >= FIT_ALPHA);
+        if !trend.is_empty() && smooth {
+            verdict = Verdict::FrequencyDependent;
+        }
+        pattern = Some(report::ResidualPattern::of(
+            &base,
+            measured,
+            noise,
+            estimate.working_floor,
+        ));
+    }
     let warnings = base
         .pairing
         .model_index
@@ -286,6 +342,9 @@ pub fn diagnose(
     Ok(Report {
         verdict,
         selected,
+        contenders,
+        pattern,
+        trend,
         criterion: format!(
             "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}",
             estimate.from_model
@@ -297,7 +356,7 @@ pub fn diagnose(
         before: ErrorSummary::of(&base, measured),
         after: ErrorSummary::of(after, measured),
         candidates: candidates.into_iter().map(|(c, _)| c).collect(),
-        flatness_before: report::flatness(&per_mode_before),
+        flatness_before,
         flatness_after: report::flatness(&per_mode_after),
         per_mode_before,
         per_mode_after,
@@ -307,6 +366,37 @@ pub fn diagnose(
         ),
         shape_floor: fit::SHAPE_FLOOR,
     })
+}
+
+/// Akaike's information criterion of a fitted candidate relative to the joint-only fit
+/// (AIC = chi^2 + 2 k with k its effect parameters; the joints' 2 p are common to all).
+fn aic(c: &CandidateReport) -> f64 {
+    let k = c.parameters.len();
+    c.chi2.unwrap_or(f64::INFINITY) + 2.0 * k as f64
+}
+
+/// Why the fitted theta of `effect` is not a physical explanation, if it is not: a negative
+/// value of a non-negative parameter, a theta the calibrated structure does not admit, a size
+/// outside the effect's plausible range.
+fn implausible(
+    effect: &dyn Effect,
+    ctx: &EffectContext,
+    fitted: &Fitted,
+    theta: &[f64],
+) -> Option<String> {
+    let negative = effect
+        .parameters(ctx)
+        .iter()
+        .zip(theta)
+        .find(|(p, t)| p.non_negative && **t < 0.0)
+        .map(|(p, t)| format!("{} = {t:.4e} {} is negative", p.name, p.unit));
+    negative
+        .or_else(|| {
+            effect
+                .admissible(ctx, &fitted.configured.structure, theta)
+                .err()
+        })
+        .or_else(|| effect.plausible(ctx, theta).err())
 }
 
 /// Every candidate of `library` fitted with the joints.
