@@ -264,34 +264,29 @@ pub fn diagnose(
     let base_p = chi2_sf(base.chi2, base.dof as f64);
     let base_frequency_p =
         noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
-    let mut significant: Vec<&(CandidateReport, Option<&Fitted>)> = candidates
-        .iter()
-        .filter(|(c, _)| c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA))
-        .collect();
-    significant.sort_by(|a, b| b.0.lrt.unwrap_or(0.0).total_cmp(&a.0.lrt.unwrap_or(0.0)));
     let explains = |fit_p: Option<f64>, frequency_p: Option<f64>| {
         plausible_noise
             && fit_p.is_some_and(|p| p >= FIT_ALPHA)
             && frequency_p.is_some_and(|p| p >= FIT_ALPHA)
     };
+    let reports: Vec<CandidateReport> = candidates.iter().map(|(c, _)| c.clone()).collect();
     let mut contenders = Vec::new();
     let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) =
-        match significant.first() {
-            Some((c, Some(f))) if explains(c.fit_p_value, c.frequency_p_value) => {
-                let lead = |other: &CandidateReport| aic(other) - aic(c);
-                let close: Vec<String> = significant[1..]
-                    .iter()
-                    .filter(|(o, _)| lead(o) < AMBIGUITY_MARGIN)
-                    .map(|(o, _)| o.name.clone())
-                    .collect();
-                if close.is_empty() {
-                    (Verdict::Effect, f, Some(c.name.clone()))
-                } else {
-                    contenders = std::iter::once(c.name.clone()).chain(close).collect();
-                    (Verdict::Ambiguous, f, Some(c.name.clone()))
+        match select(&reports) {
+            Some((b, close)) => match &candidates[b] {
+                (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value) => {
+                    if close.is_empty() {
+                        (Verdict::Effect, *f, Some(c.name.clone()))
+                    } else {
+                        contenders = std::iter::once(b)
+                            .chain(close)
+                            .map(|i| reports[i].name.clone())
+                            .collect();
+                        (Verdict::Ambiguous, *f, Some(c.name.clone()))
+                    }
                 }
-            }
-            Some(_) => (Verdict::Unexplained, &base, None),
+                _ => (Verdict::Unexplained, &base, None),
+            },
             None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
             None => (Verdict::Unexplained, &base, None),
         };
@@ -368,6 +363,30 @@ pub fn diagnose(
     })
 }
 
+/// The selection among fitted candidates: among the significant ones (adjusted p-value below
+/// [`ALPHA`]) whose size is plausible, the one with the largest likelihood-ratio statistic,
+/// and every other of them less than [`AMBIGUITY_MARGIN`] behind it in AIC (indices into
+/// `candidates`; `None` when no candidate is significant).
+pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
+    let mut significant: Vec<usize> = (0..candidates.len())
+        .filter(|&i| {
+            let c = &candidates[i];
+            c.error.is_none() && c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA)
+        })
+        .collect();
+    significant.sort_by(|&a, &b| {
+        let lrt = |i: usize| candidates[i].lrt.unwrap_or(0.0);
+        lrt(b).total_cmp(&lrt(a))
+    });
+    let (&best, rest) = significant.split_first()?;
+    let close = rest
+        .iter()
+        .copied()
+        .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
+        .collect();
+    Some((best, close))
+}
+
 /// Akaike's information criterion of a fitted candidate relative to the joint-only fit
 /// (AIC = chi^2 + 2 k with k its effect parameters; the joints' 2 p are common to all).
 fn aic(c: &CandidateReport) -> f64 {
@@ -428,5 +447,72 @@ fn default_per_mode(model: &Structure, measured: &MeasuredModes) -> Settings {
         n,
         m: (n - rigid).min(6),
         weighting: Weighting::Inverse,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fitted candidate with `k` parameters, chi^2 `chi2` against the joint-only 100.
+    fn fitted(name: &str, k: usize, chi2: f64) -> CandidateReport {
+        let lrt = 100.0 - chi2;
+        CandidateReport {
+            name: name.to_string(),
+            parameters: (0..k)
+                .map(|i| Estimate {
+                    name: format!("{name}.{i}"),
+                    unit: "",
+                    value: 1.0,
+                    se: 0.1,
+                })
+                .collect(),
+            size: Some(1.0),
+            size_se: Some(0.1),
+            describe: String::new(),
+            chi2: Some(chi2),
+            dof: Some(50),
+            lrt: Some(lrt),
+            criterion: Some((chi2_sf(lrt, k as f64) * 3.0).min(1.0)),
+            fit_p_value: Some(0.5),
+            frequency_p_value: Some(0.5),
+            summary: None,
+            error: None,
+            excluded: None,
+        }
+    }
+
+    #[test]
+    fn the_best_is_selected_alone_only_with_a_lead_of_the_margin_in_aic() {
+        // Leads of 6.5 and 5.5 in chi^2 at equal k: effect, then ambiguous.
+        let clear = [
+            fitted("a", 1, 80.0),
+            fitted("b", 1, 50.0),
+            fitted("c", 1, 56.5),
+        ];
+        assert_eq!(select(&clear), Some((1, Vec::new())));
+        let close = [
+            fitted("a", 1, 80.0),
+            fitted("b", 1, 50.0),
+            fitted("c", 1, 55.5),
+        ];
+        assert_eq!(select(&close), Some((1, vec![2])));
+        // A lead of 9 in chi^2 with 2 more parameters is a lead of 5 in AIC: ambiguous, the
+        // one with the larger statistic first.
+        let penalised = [fitted("a", 3, 50.0), fitted("b", 1, 59.0)];
+        assert_eq!(select(&penalised), Some((0, vec![1])));
+        // A runner-up that is not significant does not contend: D = 5 < chi2_1 isf(0.01/2).
+        let weak = [fitted("a", 1, 95.0), fitted("b", 1, 99.0)];
+        assert_eq!(select(&weak), None);
+    }
+
+    #[test]
+    fn an_implausible_or_failed_candidate_is_not_selected_nor_contends() {
+        let mut heavy = fitted("heavy", 1, 40.0);
+        heavy.excluded = Some("heavier than the beams".into());
+        let mut failed = fitted("failed", 1, 41.0);
+        failed.error = Some("did not converge".into());
+        let candidates = [heavy, failed, fitted("light", 1, 50.0)];
+        assert_eq!(select(&candidates), Some((2, Vec::new())));
     }
 }

@@ -479,3 +479,55 @@ pub struct Report {
     /// The shape-noise floor used in the weights.
     pub shape_floor: f64,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn correction(mode: usize, f_hz: f64, value: f64, std: f64) -> ModeCorrection {
+        ModeCorrection {
+            mode,
+            frequency_hz: f_hz,
+            param: "k1".into(),
+            relative: Some(value),
+            correction: Some(value),
+            std: Some(std),
+        }
+    }
+
+    #[test]
+    fn corrections_on_a_line_have_its_slope_and_no_chi2_about_it() {
+        // 2 + 3 f (f in kHz) at 0.5, 1, 2, 4 kHz, std 0.1.
+        let list: Vec<ModeCorrection> = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .enumerate()
+            .map(|(r, f)| correction(r + 1, 1000.0 * f, 2.0 + 3.0 * f, 0.1))
+            .collect();
+        let f = &flatness(&list)[0];
+        assert!((f.slope_per_khz - 3.0).abs() < 1e-12, "{f:?}");
+        assert!(f.line_chi2 < 1e-18, "{f:?}");
+        assert!((f.line_p_value - 1.0).abs() < 1e-12);
+        // Mean 2 + 3 * 1.875 = 7.625; chi^2 about it sum (3 (f - 1.875) / 0.1)^2.
+        assert!((f.mean - 7.625).abs() < 1e-12);
+        let expected: f64 = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .map(|x: &f64| (30.0 * (x - 1.875)).powi(2))
+            .sum();
+        assert!((f.chi2 - expected).abs() < 1e-9 * expected);
+    }
+
+    #[test]
+    fn a_zigzag_about_a_constant_has_no_slope_and_all_its_chi2_about_the_line() {
+        // +1, -1, -1, +1 about 5 at symmetric frequencies: slope 0, chi^2 4 about both.
+        let list = vec![
+            correction(1, 1000.0, 6.0, 1.0),
+            correction(2, 2000.0, 4.0, 1.0),
+            correction(3, 3000.0, 4.0, 1.0),
+            correction(4, 4000.0, 6.0, 1.0),
+        ];
+        let f = &flatness(&list)[0];
+        assert!(f.slope_per_khz.abs() < 1e-12);
+        assert!((f.chi2 - 4.0).abs() < 1e-12 && (f.line_chi2 - 4.0).abs() < 1e-12);
+        assert!((f.line_p_value - chi2_sf(4.0, 2.0)).abs() < 1e-15);
+    }
+}
