@@ -153,11 +153,23 @@ fn effects_outside_the_library_are_unexplained_with_the_pattern_shown() {
     assert!(damaged.before.p_value < 1e-6);
     // The per-mode corrections of a damaged element scatter about any straight line in
     // frequency: not a frequency-dependent joint.
-    assert!(damaged.flatness_before.iter().any(|f| f.line_p_value < FIT_ALPHA));
-    let pattern = damaged.pattern.as_ref().expect("pattern of an unexplained verdict");
+    assert!(
+        damaged
+            .flatness_before
+            .iter()
+            .any(|f| f.line_p_value < FIT_ALPHA)
+    );
+    let pattern = damaged
+        .pattern
+        .as_ref()
+        .expect("pattern of an unexplained verdict");
     // Every mode, the largest chi^2 first; shares are fractions.
     assert_eq!(pattern.modes.len(), 6);
-    let totals: Vec<f64> = pattern.modes.iter().map(|m| m.frequency + m.shape).collect();
+    let totals: Vec<f64> = pattern
+        .modes
+        .iter()
+        .map(|m| m.frequency + m.shape)
+        .collect();
     assert!(totals.windows(2).all(|w| w[0] >= w[1]), "{totals:?}");
     assert!((0.0..=1.0).contains(&pattern.frequency_share));
     assert!(!pattern.regions.is_empty());

@@ -80,8 +80,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
                 jointid::diagnose::Verdict::Ambiguous =>
                     format!("ambiguous ({})", report.contenders.join(", ")),
                 jointid::diagnose::Verdict::Unexplained => "unexplained".to_string(),
-                jointid::diagnose::Verdict::FrequencyDependent =>
-                    "frequency-dependent".to_string(),
+                jointid::diagnose::Verdict::FrequencyDependent => "frequency-dependent".to_string(),
             }
         );
         staged.extend(stage_figures(dir, &title, &figures, &inputs)?);

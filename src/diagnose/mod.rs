@@ -40,7 +40,7 @@ use rayon::prelude::*;
 pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
-pub use report::{CandidateReport, ErrorSummary, ResidualPattern, Report, Verdict};
+pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -271,25 +271,25 @@ pub fn diagnose(
     };
     let reports: Vec<CandidateReport> = candidates.iter().map(|(c, _)| c.clone()).collect();
     let mut contenders = Vec::new();
-    let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) =
-        match select(&reports) {
-            Some((b, close)) => match &candidates[b] {
-                (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value) => {
-                    if close.is_empty() {
-                        (Verdict::Effect, *f, Some(c.name.clone()))
-                    } else {
-                        contenders = std::iter::once(b)
-                            .chain(close)
-                            .map(|i| reports[i].name.clone())
-                            .collect();
-                        (Verdict::Ambiguous, *f, Some(c.name.clone()))
-                    }
+    let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) = match select(&reports)
+    {
+        Some((b, close)) => match &candidates[b] {
+            (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value) => {
+                if close.is_empty() {
+                    (Verdict::Effect, *f, Some(c.name.clone()))
+                } else {
+                    contenders = std::iter::once(b)
+                        .chain(close)
+                        .map(|i| reports[i].name.clone())
+                        .collect();
+                    (Verdict::Ambiguous, *f, Some(c.name.clone()))
                 }
-                _ => (Verdict::Unexplained, &base, None),
-            },
-            None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
-            None => (Verdict::Unexplained, &base, None),
-        };
+            }
+            _ => (Verdict::Unexplained, &base, None),
+        },
+        None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
+        None => (Verdict::Unexplained, &base, None),
+    };
     let per_mode = settings
         .per_mode
         .unwrap_or_else(|| default_per_mode(model, measured));
@@ -313,9 +313,7 @@ pub fn diagnose(
             .collect();
         // A joint whose stiffness changes with frequency moves the corrections along a
         // smooth curve; an effect outside the library scatters them about any line.
-        let smooth = flatness_before
-            .iter()
-            .all(|f| f.line_p_value >= FIT_ALPHA);
+        let smooth = flatness_before.iter().all(|f| f.line_p_value >= FIT_ALPHA);
         if !trend.is_empty() && smooth {
             verdict = Verdict::FrequencyDependent;
         }
@@ -514,5 +512,35 @@ mod tests {
         failed.error = Some("did not converge".into());
         let candidates = [heavy, failed, fitted("light", 1, 50.0)];
         assert_eq!(select(&candidates), Some((2, Vec::new())));
+    }
+
+    #[test]
+    fn verdicts_are_written_as_the_battery_reads_them() {
+        let words: Vec<String> = [
+            Verdict::None,
+            Verdict::Effect,
+            Verdict::Ambiguous,
+            Verdict::Unexplained,
+            Verdict::FrequencyDependent,
+        ]
+        .iter()
+        .map(|v| {
+            serde_json::to_value(v)
+                .unwrap()
+                .as_str()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
+        assert_eq!(
+            words,
+            [
+                "none",
+                "effect",
+                "ambiguous",
+                "unexplained",
+                "frequency_dependent"
+            ]
+        );
     }
 }

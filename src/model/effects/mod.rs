@@ -321,7 +321,10 @@ mod tests {
     #[test]
     fn masses_up_to_the_beams_mass_are_plausible_and_beyond_are_not() {
         let ctx = context();
-        for effect in [by_name("joint_mass").unwrap(), by_name("sensor_mass").unwrap()] {
+        for effect in [
+            by_name("joint_mass").unwrap(),
+            by_name("sensor_mass").unwrap(),
+        ] {
             // Sizes are mass / mass of all beams (joint_mass: per joint; the context has one).
             let light = effect.theta_of_size(&ctx, 0.99);
             assert!(effect.plausible(&ctx, &light).is_ok(), "{}", effect.name());
@@ -331,6 +334,10 @@ mod tests {
         }
         // The default: every other effect has no range beyond the fit's bounds.
         let shear = by_name("shear").unwrap();
-        assert!(shear.plausible(&ctx, &shear.theta_of_size(&ctx, 50.0)).is_ok());
+        assert!(
+            shear
+                .plausible(&ctx, &shear.theta_of_size(&ctx, 50.0))
+                .is_ok()
+        );
     }
 }
