@@ -10,17 +10,18 @@
 //! A candidate whose fitted size is not physically plausible (a negative mass or spring, a
 //! joint or sensor mass above the beams' mass, an inadmissible theta: `Effect::plausible`,
 //! `Effect::admissible`, `EffectParameter::non_negative`) is excluded, with the reason.
-//! - no significant candidate: `none` if the joint-only fit is good, else `unexplained`;
-//! - otherwise the significant candidate with the largest D_c, if its fit is good: `effect`
-//!   when every other significant candidate c' is at least [`AMBIGUITY_MARGIN`] behind it in
-//!   Akaike's information criterion (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model
-//!   Selection and Multimodel Inference", sec. 2.6), else `ambiguous` naming those within it;
-//! - if its fit is not good, or no candidate is significant and the joint-only fit is not
-//!   good: `frequency_dependent` when a per-mode joint correction trends with frequency
-//!   beyond [`TREND_SIGMAS`] standard errors and the corrections of every joint parameter
-//!   follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about the weighted line)
-//!   >= [`FIT_ALPHA`]: the paper's frequency-dependent joint), else `unexplained`; both report
-//!   where the misfit sits ([`report::ResidualPattern`]).
+//! - no significant candidate and the joint-only fit good: `none`;
+//! - the significant candidate with the largest D_c, if its fit is good: `effect` when every
+//!   other significant candidate is at least [`AMBIGUITY_MARGIN`] behind it in Akaike's
+//!   information criterion (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model Selection
+//!   and Multimodel Inference", sec. 2.6), else `ambiguous` naming those within it;
+//! - if its fit is not good: `unexplained`;
+//! - no significant candidate (no static effect of the library even helps) and the
+//!   joint-only fit not good: `frequency_dependent` when a per-mode joint correction trends
+//!   with frequency beyond [`TREND_SIGMAS`] standard errors and the corrections of every
+//!   joint parameter follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about
+//!   the weighted line) >= [`FIT_ALPHA`]: the paper's frequency-dependent joint), else
+//!   `unexplained`. Both report where the misfit sits ([`report::ResidualPattern`]).
 //!
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
@@ -271,6 +272,10 @@ pub fn diagnose(
     };
     let reports: Vec<CandidateReport> = candidates.iter().map(|(c, _)| c.clone()).collect();
     let mut contenders = Vec::new();
+    let chosen = select(&reports);
+    // A significant static candidate carries part of the misfit: the data then show a static
+    // effect the library lacks, not a joint that changes with frequency.
+    let static_helps = chosen.is_some();
     let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) = match select(&reports)
     {
         Some((b, close)) => match &candidates[b] {
@@ -314,7 +319,7 @@ pub fn diagnose(
         // A joint whose stiffness changes with frequency moves the corrections along a
         // smooth curve; an effect outside the library scatters them about any line.
         let smooth = flatness_before.iter().all(|f| f.line_p_value >= FIT_ALPHA);
-        if !trend.is_empty() && smooth {
+        if !trend.is_empty() && smooth && !static_helps {
             verdict = Verdict::FrequencyDependent;
         }
         pattern = Some(report::ResidualPattern::of(
@@ -339,7 +344,7 @@ pub fn diagnose(
         pattern,
         trend,
         criterion: format!(
-            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}",
+            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
             estimate.from_model
         ),
         noise: stated,
