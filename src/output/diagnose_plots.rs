@@ -280,7 +280,7 @@ fn stiffness_figure(report: &Report, param: &str) -> Result<Option<Figure>, Plot
             line: true,
         },
         Series {
-            name: format!("per mode (+- 1 std)"),
+            name: "per mode (+- 1 std)".into(),
             points: points
                 .iter()
                 .map(|(f, c, _)| (*f, calibrated + c))
