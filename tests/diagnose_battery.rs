@@ -179,4 +179,3 @@ fn verdicts_per_noise_situation_reach_their_floors() {
         clean.1
     );
 }
-
