@@ -22,12 +22,16 @@ const NOISE: Noise = Noise {
 };
 
 fn test_data(effects: &[(&str, f64)], seed: u64) -> MeasuredModes {
+    test_data_at(effects, seed, NOISE)
+}
+
+fn test_data_at(effects: &[(&str, f64)], seed: u64, noise: Noise) -> MeasuredModes {
     let model = paper_model(1e7, 1e4);
     let translations = common::translations(&model);
     let effects: Vec<(String, f64)> = effects.iter().map(|(n, s)| (n.to_string(), *s)).collect();
     let errors = Errors {
-        shape: NOISE.shape,
-        frequency: NOISE.frequency,
+        shape: noise.shape,
+        frequency: noise.frequency,
         kind: NoiseKind::Gaussian,
         seed,
     };
@@ -35,11 +39,15 @@ fn test_data(effects: &[(&str, f64)], seed: u64) -> MeasuredModes {
 }
 
 fn run(data: &MeasuredModes) -> Report {
+    run_at(data, NOISE)
+}
+
+fn run_at(data: &MeasuredModes, noise: Noise) -> Report {
     diagnose(
         &paper_model(1e7, 1e4),
         data,
         DiagnoseSettings {
-            noise: NOISE,
+            noise,
             pairing: PairingRule::default(),
             per_mode: None,
         },
@@ -138,27 +146,103 @@ fn clean_data_is_explained_by_the_nominal_model_in_at_least_95_percent_of_seeds(
 }
 
 #[test]
-fn effects_outside_the_library_are_unexplained_with_the_trend_shown() {
+fn effects_outside_the_library_are_unexplained_with_the_pattern_shown() {
     let damaged = run(&test_data(&[("element_damage", 0.3)], 5));
     assert_eq!(damaged.verdict, Verdict::Unexplained);
     assert_eq!(damaged.selected, None);
     assert!(damaged.before.p_value < 1e-6);
-    // A joint whose stiffness rises with the mode (30% more per mode): the per-mode k1
-    // corrections rise with frequency, a slope beyond 3 standard errors. (At 20% per mode the
-    // verdict is the same, but the slope is 2.2 to 5.1 standard errors over 8 seeds.)
-    for seed in 1..=5 {
-        let rising = run(&test_data(&[("rising_joint", 0.3)], seed));
-        assert_eq!(rising.verdict, Verdict::Unexplained);
-        let k1 = rising
+    // The per-mode corrections of a damaged element scatter about any straight line in
+    // frequency: not a frequency-dependent joint.
+    assert!(
+        damaged
             .flatness_before
             .iter()
-            .find(|f| f.param == "k1")
-            .unwrap();
+            .any(|f| f.line_p_value < FIT_ALPHA)
+    );
+    let pattern = damaged
+        .pattern
+        .as_ref()
+        .expect("pattern of an unexplained verdict");
+    // Every mode, the largest chi^2 first; shares are fractions.
+    assert_eq!(pattern.modes.len(), 6);
+    let totals: Vec<f64> = pattern
+        .modes
+        .iter()
+        .map(|m| m.frequency + m.shape)
+        .collect();
+    assert!(totals.windows(2).all(|w| w[0] >= w[1]), "{totals:?}");
+    assert!((0.0..=1.0).contains(&pattern.frequency_share));
+    assert!(!pattern.regions.is_empty());
+    let shares: f64 = pattern.regions.iter().map(|g| g.share).sum();
+    assert!(shares > 0.0 && shares <= 1.0 + 1e-12, "{shares}");
+    assert!(pattern.regions.iter().all(|g| g.x_from <= g.x_to));
+    // The pattern's chi^2 is the joint-only fit's.
+    let sum: f64 = totals.iter().sum();
+    assert!(
+        (sum - damaged.before.chi2).abs() < 1e-6 * sum,
+        "{sum} against {}",
+        damaged.before.chi2
+    );
+}
+
+#[test]
+fn a_joint_stiffening_with_frequency_is_frequency_dependent_with_its_trend() {
+    // A joint whose stiffness rises with the mode (30% more per mode): the per-mode k1
+    // corrections rise with frequency along a line, a slope beyond 3 standard errors. (At 20%
+    // per mode the slope is 2.2 to 5.1 standard errors over 8 seeds.)
+    for seed in 1..=5 {
+        let rising = run(&test_data(&[("rising_joint", 0.3)], seed));
+        assert_eq!(rising.verdict, Verdict::FrequencyDependent, "seed {seed}");
+        let k1 = rising.trend.iter().find(|f| f.param == "k1").unwrap();
         assert!(
             k1.slope_per_khz > 3.0 * k1.slope_se_per_khz,
             "seed {seed}: {k1:?}"
         );
+        assert!(rising.pattern.is_some());
+        // Every verdict keeps the before/after table: after is the joint-only fit.
+        assert_eq!(rising.after, rising.before);
     }
+    // 10% per mode at a quarter of the noise.
+    let quiet = Noise {
+        frequency: NOISE.frequency / 4.0,
+        shape: NOISE.shape / 4.0,
+    };
+    for seed in 1..=3 {
+        let rising = run_at(&test_data_at(&[("rising_joint", 0.1)], seed, quiet), quiet);
+        assert_eq!(rising.verdict, Verdict::FrequencyDependent, "seed {seed}");
+    }
+}
+
+#[test]
+fn a_joint_mass_heavier_than_the_beams_is_excluded_with_the_reason() {
+    // The heavy joint lowers the frequencies by up to 60%: every mode paired by number.
+    let heavy = diagnose(
+        &paper_model(1e7, 1e4),
+        &test_data(&[("joint_mass", 1.5)], 1),
+        DiagnoseSettings {
+            noise: NOISE,
+            pairing: PairingRule {
+                given: (1..=6).map(|r| (r, r)).collect(),
+                ..PairingRule::default()
+            },
+            per_mode: None,
+        },
+    )
+    .unwrap();
+    let joint_mass = heavy
+        .candidates
+        .iter()
+        .find(|c| c.name == "joint_mass")
+        .unwrap();
+    let reason = joint_mass.excluded.as_deref().expect("excluded");
+    assert!(reason.contains("mass of all beams"), "{reason}");
+    assert!(joint_mass.size.unwrap() >= 1.0);
+    assert_ne!(heavy.selected.as_deref(), Some("joint_mass"));
+    assert!(!heavy.contenders.iter().any(|c| c == "joint_mass"));
+    let mut text = Vec::new();
+    jointid::output::diagnose::write_text(&mut text, &heavy).unwrap();
+    let text = String::from_utf8(text).unwrap();
+    assert!(text.contains("excluded"), "{text}");
 }
 
 #[test]

@@ -34,7 +34,9 @@ const FLOOR: [(&str, usize); 5] = [
     ("floor_x10", 18),
     ("twice_stated", 18),
     ("half_stated", 14),
-    ("heavy_tailed", 19),
+    // 18, was 19: case 090 (weak shear) is `ambiguous` between shear and sensor_mass, whose
+    // chi^2 differ by 0.9 (the margin is 6 in AIC); it was named shear by that 0.9.
+    ("heavy_tailed", 18),
 ];
 /// Clean cases (of all situations) required to be `none`.
 const CLEAN_FLOOR: usize = 10;
@@ -49,7 +51,8 @@ fn battery() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/battery")
 }
 
-/// `none`, `effect:<name>` or `unexplained`, or `error: ...` when diagnose refuses.
+/// `none`, `effect:<name>`, `ambiguous:<contenders>`, `unexplained` or `frequency_dependent`,
+/// or `error: ...` when diagnose refuses.
 fn verdict_word(case: &Path, truth: &serde_json::Value) -> String {
     let model = jointid::model::from_path(&case.join("model.toml")).expect("model.toml");
     let measured =
@@ -69,7 +72,9 @@ fn verdict_word(case: &Path, truth: &serde_json::Value) -> String {
         Ok(report) => match report.verdict {
             Verdict::None => "none".to_string(),
             Verdict::Effect => format!("effect:{}", report.selected.unwrap_or_default()),
+            Verdict::Ambiguous => format!("ambiguous:{}", report.contenders.join("|")),
             Verdict::Unexplained => "unexplained".to_string(),
+            Verdict::FrequencyDependent => "frequency_dependent".to_string(),
         },
         Err(e) => format!("error: {e}"),
     }

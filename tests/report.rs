@@ -195,6 +195,17 @@ fn diagnose_plots_show_shapes_errors_corrections_and_candidates() {
             "{texts:?}"
         );
     }
+    for param in ["k1", "k2"] {
+        let texts = svg_texts(&plots.join(format!("stiffness_{param}.svg")));
+        assert!(
+            texts.contains(&"weighted mean over the modes".to_string())
+                && texts.contains(&"frequency-independent joint: mean + 2 std".to_string())
+                && texts
+                    .iter()
+                    .any(|t| t.starts_with(&format!("Per-mode {param} against frequency: slope"))),
+            "{texts:?}"
+        );
+    }
     let texts = svg_texts(&plots.join("candidates.svg"));
     assert!(
         texts.contains(&"selected".to_string())
@@ -203,7 +214,7 @@ fn diagnose_plots_show_shapes_errors_corrections_and_candidates() {
     );
     assert_eq!(
         assert_page_references_exist(&plots.join("index.html")),
-        4 + 1 + 2 + 1
+        4 + 1 + 2 + 2 + 1
     );
     std::fs::remove_dir_all(dir).unwrap();
 }

@@ -74,10 +74,14 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         let title = format!(
             "Diagnosis of {}: verdict {}",
             args.measured.display(),
-            report.selected.as_deref().unwrap_or(match report.verdict {
-                jointid::diagnose::Verdict::None => "none",
-                _ => "unexplained",
-            })
+            match report.verdict {
+                jointid::diagnose::Verdict::None => "none".to_string(),
+                jointid::diagnose::Verdict::Effect => report.selected.clone().unwrap_or_default(),
+                jointid::diagnose::Verdict::Ambiguous =>
+                    format!("ambiguous ({})", report.contenders.join(", ")),
+                jointid::diagnose::Verdict::Unexplained => "unexplained".to_string(),
+                jointid::diagnose::Verdict::FrequencyDependent => "frequency-dependent".to_string(),
+            }
         );
         staged.extend(stage_figures(dir, &title, &figures, &inputs)?);
     }

@@ -7,9 +7,21 @@
 //! D_c = chi^2_0 - chi^2_c is chi-square with k_c degrees of freedom when c is absent. A
 //! candidate is significant when P(chi^2_{k_c} > D_c), times the number of candidates tried
 //! (Bonferroni), is below [`ALPHA`]. Goodness of fit: P(chi^2_dof > chi^2) >= [`FIT_ALPHA`].
-//! - no significant candidate: `none` if the joint-only fit is good, else `unexplained`;
-//! - otherwise the significant candidate with the largest D_c: `effect` if its fit is good,
-//!   else `unexplained` (it helps, but the residual stays above the noise).
+//! A candidate whose fitted size is not physically plausible (a negative mass or spring, a
+//! joint or sensor mass above the beams' mass, an inadmissible theta: `Effect::plausible`,
+//! `Effect::admissible`, `EffectParameter::non_negative`) is excluded, with the reason.
+//! - no significant candidate and the joint-only fit good: `none`;
+//! - the significant candidate with the largest D_c, if its fit is good: `effect` when every
+//!   other significant candidate is at least [`AMBIGUITY_MARGIN`] behind it in Akaike's
+//!   information criterion (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model Selection
+//!   and Multimodel Inference", sec. 2.6), else `ambiguous` naming those within it;
+//! - if its fit is not good: `unexplained`;
+//! - no significant candidate (no static effect of the library even helps) and the
+//!   joint-only fit not good: `frequency_dependent` when a per-mode joint correction trends
+//!   with frequency beyond [`TREND_SIGMAS`] standard errors and the corrections of every
+//!   joint parameter follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about
+//!   the weighted line) >= [`FIT_ALPHA`]: the paper's frequency-dependent joint), else
+//!   `unexplained`. Both report where the misfit sits ([`report::ResidualPattern`]).
 //!
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
@@ -29,7 +41,7 @@ use rayon::prelude::*;
 pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
-pub use report::{CandidateReport, ErrorSummary, Report, Verdict};
+pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -42,6 +54,11 @@ use crate::structure::{Structure, check_elastic};
 pub const ALPHA: f64 = 0.01;
 /// Smallest goodness-of-fit probability of a model that explains the data.
 pub const FIT_ALPHA: f64 = 0.001;
+/// Smallest lead in AIC of the selected candidate over every other significant one.
+pub const AMBIGUITY_MARGIN: f64 = 6.0;
+/// A per-mode correction whose slope against frequency exceeds this many standard errors
+/// trends with frequency.
+pub const TREND_SIGMAS: f64 = 3.0;
 
 /// Why a diagnosis cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -171,7 +188,8 @@ pub fn diagnose(
     };
     let initial = fit::as_given(&ctx, measured, &calibration)?;
     let base = fit::refit(&ctx, measured, &calibration, &[], &first_base)?;
-    if base.chi2 > initial.chi2 * (1.0 + 1e-9) {
+    // Growth beyond round-off (relative, and absolute for data the model fits exactly).
+    if base.chi2 > initial.chi2 * (1.0 + 1e-9) + 1e-9 * base.dof as f64 {
         return Err(DiagnoseError::ErrorGrew {
             before: initial.chi2,
             after: base.chi2,
@@ -217,6 +235,7 @@ pub fn diagnose(
                     ),
                     summary: Some(ErrorSummary::of(f, measured)),
                     error: None,
+                    excluded: implausible(c.as_ref(), &ctx, f, &theta),
                 };
                 (report, Some(f))
             }
@@ -235,6 +254,7 @@ pub fn diagnose(
                     frequency_p_value: None,
                     summary: None,
                     error: Some(e.to_string()),
+                    excluded: None,
                 },
                 None,
             ),
@@ -246,20 +266,33 @@ pub fn diagnose(
     let base_p = chi2_sf(base.chi2, base.dof as f64);
     let base_frequency_p =
         noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
-    let best = candidates
-        .iter()
-        .filter(|(c, _)| c.criterion.is_some_and(|p| p < ALPHA))
-        .max_by(|a, b| a.0.lrt.unwrap_or(0.0).total_cmp(&b.0.lrt.unwrap_or(0.0)));
     let explains = |fit_p: Option<f64>, frequency_p: Option<f64>| {
         plausible_noise
             && fit_p.is_some_and(|p| p >= FIT_ALPHA)
             && frequency_p.is_some_and(|p| p >= FIT_ALPHA)
     };
-    let (verdict, after, selected): (Verdict, &Fitted, Option<String>) = match best {
-        Some((c, Some(f))) if explains(c.fit_p_value, c.frequency_p_value) => {
-            (Verdict::Effect, f, Some(c.name.clone()))
-        }
-        Some(_) => (Verdict::Unexplained, &base, None),
+    let reports: Vec<CandidateReport> = candidates.iter().map(|(c, _)| c.clone()).collect();
+    let mut contenders = Vec::new();
+    let chosen = select(&reports);
+    // A significant static candidate carries part of the misfit: the data then show a static
+    // effect the library lacks, not a joint that changes with frequency.
+    let static_helps = chosen.is_some();
+    let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) = match select(&reports)
+    {
+        Some((b, close)) => match &candidates[b] {
+            (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value) => {
+                if close.is_empty() {
+                    (Verdict::Effect, *f, Some(c.name.clone()))
+                } else {
+                    contenders = std::iter::once(b)
+                        .chain(close)
+                        .map(|i| reports[i].name.clone())
+                        .collect();
+                    (Verdict::Ambiguous, *f, Some(c.name.clone()))
+                }
+            }
+            _ => (Verdict::Unexplained, &base, None),
+        },
         None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
         None => (Verdict::Unexplained, &base, None),
     };
@@ -275,6 +308,28 @@ pub fn diagnose(
     };
     let per_mode_before = report::per_mode_corrections(&base, measured, yardstick, per_mode);
     let per_mode_after = report::per_mode_corrections(after, measured, yardstick, per_mode);
+    let flatness_before = report::flatness(&per_mode_before);
+    let mut trend = Vec::new();
+    let mut pattern = None;
+    if verdict == Verdict::Unexplained {
+        trend = flatness_before
+            .iter()
+            .filter(|f| f.slope_per_khz.abs() > TREND_SIGMAS * f.slope_se_per_khz)
+            .cloned()
+            .collect();
+        // A joint whose stiffness changes with frequency moves the corrections along a
+        // smooth curve; an effect outside the library scatters them about any line.
+        let smooth = flatness_before.iter().all(|f| f.line_p_value >= FIT_ALPHA);
+        if !trend.is_empty() && smooth && !static_helps {
+            verdict = Verdict::FrequencyDependent;
+        }
+        pattern = Some(report::ResidualPattern::of(
+            &base,
+            measured,
+            noise,
+            estimate.working_floor,
+        ));
+    }
     let warnings = base
         .pairing
         .model_index
@@ -286,8 +341,11 @@ pub fn diagnose(
     Ok(Report {
         verdict,
         selected,
+        contenders,
+        pattern,
+        trend,
         criterion: format!(
-            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}",
+            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
             estimate.from_model
         ),
         noise: stated,
@@ -297,7 +355,7 @@ pub fn diagnose(
         before: ErrorSummary::of(&base, measured),
         after: ErrorSummary::of(after, measured),
         candidates: candidates.into_iter().map(|(c, _)| c).collect(),
-        flatness_before: report::flatness(&per_mode_before),
+        flatness_before,
         flatness_after: report::flatness(&per_mode_after),
         per_mode_before,
         per_mode_after,
@@ -307,6 +365,61 @@ pub fn diagnose(
         ),
         shape_floor: fit::SHAPE_FLOOR,
     })
+}
+
+/// The selection among fitted candidates: among the significant ones (adjusted p-value below
+/// [`ALPHA`]) whose size is plausible, the one with the largest likelihood-ratio statistic,
+/// and every other of them less than [`AMBIGUITY_MARGIN`] behind it in AIC (indices into
+/// `candidates`; `None` when no candidate is significant).
+pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
+    let mut significant: Vec<usize> = (0..candidates.len())
+        .filter(|&i| {
+            let c = &candidates[i];
+            c.error.is_none() && c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA)
+        })
+        .collect();
+    significant.sort_by(|&a, &b| {
+        let lrt = |i: usize| candidates[i].lrt.unwrap_or(0.0);
+        lrt(b).total_cmp(&lrt(a))
+    });
+    let (&best, rest) = significant.split_first()?;
+    let close = rest
+        .iter()
+        .copied()
+        .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
+        .collect();
+    Some((best, close))
+}
+
+/// Akaike's information criterion of a fitted candidate relative to the joint-only fit
+/// (AIC = chi^2 + 2 k with k its effect parameters; the joints' 2 p are common to all).
+fn aic(c: &CandidateReport) -> f64 {
+    let k = c.parameters.len();
+    c.chi2.unwrap_or(f64::INFINITY) + 2.0 * k as f64
+}
+
+/// Why the fitted theta of `effect` is not a physical explanation, if it is not: a negative
+/// value of a non-negative parameter, a theta the calibrated structure does not admit, a size
+/// outside the effect's plausible range.
+fn implausible(
+    effect: &dyn Effect,
+    ctx: &EffectContext,
+    fitted: &Fitted,
+    theta: &[f64],
+) -> Option<String> {
+    let negative = effect
+        .parameters(ctx)
+        .iter()
+        .zip(theta)
+        .find(|(p, t)| p.non_negative && **t < 0.0)
+        .map(|(p, t)| format!("{} = {t:.4e} {} is negative", p.name, p.unit));
+    negative
+        .or_else(|| {
+            effect
+                .admissible(ctx, &fitted.configured.structure, theta)
+                .err()
+        })
+        .or_else(|| effect.plausible(ctx, theta).err())
 }
 
 /// A candidate with its fit (or why it failed).
@@ -362,5 +475,102 @@ fn default_per_mode(model: &Structure, measured: &MeasuredModes) -> Settings {
         n,
         m: (n - rigid).min(6),
         weighting: Weighting::Inverse,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fitted candidate with `k` parameters, chi^2 `chi2` against the joint-only 100.
+    fn fitted(name: &str, k: usize, chi2: f64) -> CandidateReport {
+        let lrt = 100.0 - chi2;
+        CandidateReport {
+            name: name.to_string(),
+            parameters: (0..k)
+                .map(|i| Estimate {
+                    name: format!("{name}.{i}"),
+                    unit: "",
+                    value: 1.0,
+                    se: 0.1,
+                })
+                .collect(),
+            size: Some(1.0),
+            size_se: Some(0.1),
+            describe: String::new(),
+            chi2: Some(chi2),
+            dof: Some(50),
+            lrt: Some(lrt),
+            criterion: Some((chi2_sf(lrt, k as f64) * 3.0).min(1.0)),
+            fit_p_value: Some(0.5),
+            frequency_p_value: Some(0.5),
+            summary: None,
+            error: None,
+            excluded: None,
+        }
+    }
+
+    #[test]
+    fn the_best_is_selected_alone_only_with_a_lead_of_the_margin_in_aic() {
+        // Leads of 6.5 and 5.5 in chi^2 at equal k: effect, then ambiguous.
+        let clear = [
+            fitted("a", 1, 80.0),
+            fitted("b", 1, 50.0),
+            fitted("c", 1, 56.5),
+        ];
+        assert_eq!(select(&clear), Some((1, Vec::new())));
+        let close = [
+            fitted("a", 1, 80.0),
+            fitted("b", 1, 50.0),
+            fitted("c", 1, 55.5),
+        ];
+        assert_eq!(select(&close), Some((1, vec![2])));
+        // A lead of 9 in chi^2 with 2 more parameters is a lead of 5 in AIC: ambiguous, the
+        // one with the larger statistic first.
+        let penalised = [fitted("a", 3, 50.0), fitted("b", 1, 59.0)];
+        assert_eq!(select(&penalised), Some((0, vec![1])));
+        // A runner-up that is not significant does not contend: D = 5 < chi2_1 isf(0.01/2).
+        let weak = [fitted("a", 1, 95.0), fitted("b", 1, 99.0)];
+        assert_eq!(select(&weak), None);
+    }
+
+    #[test]
+    fn an_implausible_or_failed_candidate_is_not_selected_nor_contends() {
+        let mut heavy = fitted("heavy", 1, 40.0);
+        heavy.excluded = Some("heavier than the beams".into());
+        let mut failed = fitted("failed", 1, 41.0);
+        failed.error = Some("did not converge".into());
+        let candidates = [heavy, failed, fitted("light", 1, 50.0)];
+        assert_eq!(select(&candidates), Some((2, Vec::new())));
+    }
+
+    #[test]
+    fn verdicts_are_written_as_the_battery_reads_them() {
+        let words: Vec<String> = [
+            Verdict::None,
+            Verdict::Effect,
+            Verdict::Ambiguous,
+            Verdict::Unexplained,
+            Verdict::FrequencyDependent,
+        ]
+        .iter()
+        .map(|v| {
+            serde_json::to_value(v)
+                .unwrap()
+                .as_str()
+                .unwrap()
+                .to_string()
+        })
+        .collect();
+        assert_eq!(
+            words,
+            [
+                "none",
+                "effect",
+                "ambiguous",
+                "unexplained",
+                "frequency_dependent"
+            ]
+        );
     }
 }

@@ -20,9 +20,115 @@ pub enum Verdict {
     None,
     /// A candidate is significant and brings the residual down to the noise.
     Effect,
-    /// The residual stays above the noise with every candidate: a frequency-dependent joint,
-    /// or an effect outside the library.
+    /// The best candidate explains the data, but another does nearly as well (within
+    /// [`super::AMBIGUITY_MARGIN`] of information criterion): the data cannot tell them apart.
+    Ambiguous,
+    /// The residual stays above the noise with every candidate: an effect outside the library
+    /// ([`Report::pattern`] says where the residual sits).
     Unexplained,
+    /// No static model explains the data and the per-mode joint corrections trend with
+    /// frequency beyond [`super::TREND_SIGMAS`] standard errors along a straight line: the
+    /// paper's frequency-dependent joint ([`Report::trend`]).
+    #[serde(rename = "frequency_dependent")]
+    FrequencyDependent,
+}
+
+/// The chi^2 one measured mode carries in a fit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModeChi2 {
+    /// Measured mode r.
+    pub mode: usize,
+    /// From its frequency.
+    pub frequency: f64,
+    /// From its shape components.
+    pub shape: f64,
+}
+
+/// A stretch of the beams where the shape residual concentrates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Region {
+    /// First abscissa of the stretch, m.
+    pub x_from: f64,
+    /// Last abscissa, m.
+    pub x_to: f64,
+    /// Its share of the shape chi^2 (all modes).
+    pub share: f64,
+}
+
+/// Where the remaining misfit sits: by mode (frequency against shape) and along the beams.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResidualPattern {
+    /// Every mode, the largest total chi^2 first.
+    pub modes: Vec<ModeChi2>,
+    /// The frequencies' share of the whole chi^2.
+    pub frequency_share: f64,
+    /// Stretches of the sensors whose summed squared shape residual (over modes) is at least
+    /// half the largest one, the largest share first.
+    pub regions: Vec<Region>,
+}
+
+impl ResidualPattern {
+    /// The pattern of `fitted` on `measured` under `noise` with shape floor `floor` (the
+    /// residuals weighted as in the fit, module `fit`).
+    pub fn of(fitted: &Fitted, measured: &MeasuredModes, noise: Noise, floor: f64) -> Self {
+        let residuals = super::fit::residuals(fitted, measured);
+        let mut shape = residuals.shape.iter();
+        let mut modes = Vec::new();
+        let mut at_x: Vec<(f64, f64)> = Vec::new();
+        for (m, rf) in measured.modes().iter().zip(&residuals.frequency) {
+            let mut shape_chi2 = 0.0;
+            for p in &m.points {
+                let Some(&(u, e)) = shape.next() else { break };
+                let z2 = (e / (noise.shape * (u * u + floor * floor).sqrt())).powi(2);
+                shape_chi2 += z2;
+                match at_x.iter_mut().find(|(x, _)| (x - p.x).abs() <= 1e-9) {
+                    Some(slot) => slot.1 += z2,
+                    None => at_x.push((p.x, z2)),
+                }
+            }
+            modes.push(ModeChi2 {
+                mode: m.mode,
+                frequency: (rf / noise.frequency).powi(2),
+                shape: shape_chi2,
+            });
+        }
+        let frequency_total: f64 = modes.iter().map(|m| m.frequency).sum();
+        let total = frequency_total + modes.iter().map(|m| m.shape).sum::<f64>();
+        modes.sort_by(|a, b| (b.frequency + b.shape).total_cmp(&(a.frequency + a.shape)));
+        at_x.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let shape_total: f64 = at_x.iter().map(|(_, z)| z).sum();
+        let largest = at_x.iter().map(|(_, z)| *z).fold(0.0, f64::max);
+        let mut regions: Vec<Region> = Vec::new();
+        let mut open = false;
+        for &(x, z) in &at_x {
+            if largest > 0.0 && z >= 0.5 * largest {
+                match regions.last_mut() {
+                    Some(r) if open => {
+                        r.x_to = x;
+                        r.share += z / shape_total;
+                    }
+                    _ => regions.push(Region {
+                        x_from: x,
+                        x_to: x,
+                        share: z / shape_total,
+                    }),
+                }
+                open = true;
+            } else {
+                open = false;
+            }
+        }
+        regions.sort_by(|a, b| b.share.total_cmp(&a.share));
+        ResidualPattern {
+            modes,
+            frequency_share: if total > 0.0 {
+                frequency_total / total
+            } else {
+                0.0
+            },
+            regions,
+        }
+    }
 }
 
 /// How one measured mode compares with its paired model mode.
@@ -162,6 +268,11 @@ pub struct Flatness {
     pub slope_per_khz: f64,
     /// Standard error of the slope: a slope beyond 3 of them is a trend with frequency.
     pub slope_se_per_khz: f64,
+    /// chi^2 of the deviations from the weighted straight line in frequency (dof = modes - 2).
+    pub line_chi2: f64,
+    /// P(chi^2_{modes - 2} > line_chi2) (1 with two modes): small when a straight line does
+    /// not carry the corrections either.
+    pub line_p_value: f64,
 }
 
 /// The per-mode corrections of every joint parameter on the calibrated `fitted` model.
@@ -265,6 +376,7 @@ pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
             } else {
                 (0.0, f64::INFINITY)
             };
+            let line_chi2 = (chi2 - slope * slope * sxx).max(0.0);
             Some(Flatness {
                 param: name.to_string(),
                 mean,
@@ -273,6 +385,12 @@ pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
                 p_value: chi2_sf(chi2, dof as f64),
                 slope_per_khz: slope,
                 slope_se_per_khz: slope_se,
+                line_chi2,
+                line_p_value: if dof > 1 {
+                    chi2_sf(line_chi2, (dof - 1) as f64)
+                } else {
+                    1.0
+                },
             })
         })
         .collect()
@@ -310,15 +428,27 @@ pub struct CandidateReport {
     pub summary: Option<ErrorSummary>,
     /// Why the fit failed, if it did.
     pub error: Option<String>,
+    /// Why the fitted size is not physically plausible (the candidate is then excluded from
+    /// the selection), if it is not.
+    pub excluded: Option<String>,
 }
 
 /// A whole diagnosis.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
-    /// none, effect or unexplained.
+    /// none, effect, ambiguous, unexplained or frequency-dependent.
     pub verdict: Verdict,
-    /// The selected candidate, when the verdict is `effect`.
+    /// The selected candidate, when the verdict is `effect` (when `ambiguous`: the best of
+    /// the contenders, whose fit is `after`).
     pub selected: Option<String>,
+    /// When `ambiguous`: every candidate within the margin of the best, best first.
+    pub contenders: Vec<String>,
+    /// When `unexplained` or `frequency-dependent`: where the misfit of the joint-only fit
+    /// sits, under the working noise.
+    pub pattern: Option<ResidualPattern>,
+    /// When `frequency-dependent`: the per-mode corrections (before) that trend with
+    /// frequency.
+    pub trend: Vec<Flatness>,
     /// The statistical criterion, in words.
     pub criterion: String,
     /// The stated noise.
@@ -348,4 +478,56 @@ pub struct Report {
     pub per_mode_settings: String,
     /// The shape-noise floor used in the weights.
     pub shape_floor: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn correction(mode: usize, f_hz: f64, value: f64, std: f64) -> ModeCorrection {
+        ModeCorrection {
+            mode,
+            frequency_hz: f_hz,
+            param: "k1".into(),
+            relative: Some(value),
+            correction: Some(value),
+            std: Some(std),
+        }
+    }
+
+    #[test]
+    fn corrections_on_a_line_have_its_slope_and_no_chi2_about_it() {
+        // 2 + 3 f (f in kHz) at 0.5, 1, 2, 4 kHz, std 0.1.
+        let list: Vec<ModeCorrection> = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .enumerate()
+            .map(|(r, f)| correction(r + 1, 1000.0 * f, 2.0 + 3.0 * f, 0.1))
+            .collect();
+        let f = &flatness(&list)[0];
+        assert!((f.slope_per_khz - 3.0).abs() < 1e-12, "{f:?}");
+        assert!(f.line_chi2 < 1e-18, "{f:?}");
+        assert!((f.line_p_value - 1.0).abs() < 1e-12);
+        // Mean 2 + 3 * 1.875 = 7.625; chi^2 about it sum (3 (f - 1.875) / 0.1)^2.
+        assert!((f.mean - 7.625).abs() < 1e-12);
+        let expected: f64 = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .map(|x: &f64| (30.0 * (x - 1.875)).powi(2))
+            .sum();
+        assert!((f.chi2 - expected).abs() < 1e-9 * expected);
+    }
+
+    #[test]
+    fn a_zigzag_about_a_constant_has_no_slope_and_all_its_chi2_about_the_line() {
+        // +1, -1, -1, +1 about 5 at symmetric frequencies: slope 0, chi^2 4 about both.
+        let list = vec![
+            correction(1, 1000.0, 6.0, 1.0),
+            correction(2, 2000.0, 4.0, 1.0),
+            correction(3, 3000.0, 4.0, 1.0),
+            correction(4, 4000.0, 6.0, 1.0),
+        ];
+        let f = &flatness(&list)[0];
+        assert!(f.slope_per_khz.abs() < 1e-12);
+        assert!((f.chi2 - 4.0).abs() < 1e-12 && (f.line_chi2 - 4.0).abs() < 1e-12);
+        assert!((f.line_p_value - chi2_sf(4.0, 2.0)).abs() < 1e-15);
+    }
 }

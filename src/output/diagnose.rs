@@ -4,7 +4,7 @@ use std::io::{self, Write};
 
 use super::table::{sci, write_table};
 use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
-use crate::diagnose::{Report, Verdict};
+use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
 
 fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
     vec![
@@ -78,9 +78,65 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = match (r.verdict, &r.selected) {
         (Verdict::Effect, Some(name)) => format!("effect: {name}"),
         (Verdict::None, _) => "none: the calibrated model explains the data within the noise (the working noise below)".to_string(),
-        _ => "unexplained: the residual stays above the noise with every candidate (a frequency-dependent joint, or an effect outside the library)".to_string(),
+        (Verdict::Ambiguous, _) => format!(
+            "ambiguous: {} explain the data about equally well (AIC within {AMBIGUITY_MARGIN} of the best); 'after' is the best, {}",
+            r.contenders.join(", "),
+            r.selected.as_deref().unwrap_or("")
+        ),
+        (Verdict::FrequencyDependent, _) => "frequency-dependent: no static candidate explains the data and the per-mode joint corrections trend with frequency (the paper's frequency-dependent joint)".to_string(),
+        _ => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".to_string(),
     };
     writeln!(out, "verdict: {verdict}")?;
+    for f in &r.trend {
+        writeln!(
+            out,
+            "  trend of {}: {} +- {} per kHz ({:.1} standard errors) about a weighted mean of {}",
+            f.param,
+            sci(f.slope_per_khz),
+            sci(f.slope_se_per_khz),
+            f.slope_per_khz / f.slope_se_per_khz,
+            sci(f.mean)
+        )?;
+    }
+    if let Some(p) = &r.pattern {
+        let modes: Vec<String> = p
+            .modes
+            .iter()
+            .take(3)
+            .map(|m| {
+                format!(
+                    "mode {} (chi^2 {:.1}: frequency {:.1}, shape {:.1})",
+                    m.mode,
+                    m.frequency + m.shape,
+                    m.frequency,
+                    m.shape
+                )
+            })
+            .collect();
+        writeln!(
+            out,
+            "  remaining misfit: {} of chi^2 in the frequencies; most in {}",
+            format_args!("{:.0}%", 100.0 * p.frequency_share),
+            modes.join(", ")
+        )?;
+        let regions: Vec<String> = p
+            .regions
+            .iter()
+            .map(|g| {
+                format!(
+                    "x = {:.4} to {:.4} m ({:.0}%)",
+                    g.x_from,
+                    g.x_to,
+                    100.0 * g.share
+                )
+            })
+            .collect();
+        writeln!(
+            out,
+            "  largest shape residuals along the beams (share of the shape chi^2): {}",
+            regions.join("; ")
+        )?;
+    }
     writeln!(
         out,
         "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
@@ -160,6 +216,18 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         .candidates
         .iter()
         .map(|c| match &c.error {
+            None if c.excluded.is_some() => vec![
+                c.name.clone(),
+                format!(
+                    "{} +- {}",
+                    sci(c.size.unwrap_or(0.0)),
+                    sci(c.size_se.unwrap_or(0.0))
+                ),
+                format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
+                format!("{:.1}", c.lrt.unwrap_or(0.0)),
+                "excluded".into(),
+                c.excluded.clone().unwrap_or_default(),
+            ],
             Some(e) => vec![
                 c.name.clone(),
                 "fit failed".into(),

@@ -68,4 +68,16 @@ impl Effect for JointMass {
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
         theta.iter().sum::<f64>() / theta.len() as f64 / ctx.structure.sites.beam_mass
     }
+
+    /// The joints' hardware together is lighter than the beams it joins.
+    fn plausible(&self, ctx: &EffectContext, theta: &[f64]) -> Result<(), String> {
+        let total: f64 = theta.iter().sum();
+        let beams = ctx.structure.sites.beam_mass;
+        if total >= beams {
+            return Err(format!(
+                "the joint masses add up to {total:.4e} kg, not less than the mass of all beams {beams:.4e} kg"
+            ));
+        }
+        Ok(())
+    }
 }

@@ -101,6 +101,13 @@ pub trait Effect: Send + Sync + std::fmt::Debug {
         Ok(())
     }
 
+    /// Whether a fitted theta is a physically plausible size (beyond the bounds the fit keeps:
+    /// [`EffectParameter::non_negative`] and [`Effect::admissible`]); the reason when not. A
+    /// fitted size outside it is not an explanation of the data.
+    fn plausible(&self, _ctx: &EffectContext, _theta: &[f64]) -> Result<(), String> {
+        Ok(())
+    }
+
     /// Whether the effect can act on this structure and data.
     fn applies(&self, ctx: &EffectContext) -> bool {
         let params = self.parameters(ctx);
@@ -309,5 +316,28 @@ mod tests {
             assert!((back - size).abs() < 1e-12, "{}: {back}", effect.name());
             assert!(by_name(effect.name()).is_some());
         }
+    }
+
+    #[test]
+    fn masses_up_to_the_beams_mass_are_plausible_and_beyond_are_not() {
+        let ctx = context();
+        for effect in [
+            by_name("joint_mass").unwrap(),
+            by_name("sensor_mass").unwrap(),
+        ] {
+            // Sizes are mass / mass of all beams (joint_mass: per joint; the context has one).
+            let light = effect.theta_of_size(&ctx, 0.99);
+            assert!(effect.plausible(&ctx, &light).is_ok(), "{}", effect.name());
+            let heavy = effect.theta_of_size(&ctx, 1.0);
+            let reason = effect.plausible(&ctx, &heavy).unwrap_err();
+            assert!(reason.contains("mass of all beams"), "{reason}");
+        }
+        // The default: every other effect has no range beyond the fit's bounds.
+        let shear = by_name("shear").unwrap();
+        assert!(
+            shear
+                .plausible(&ctx, &shear.theta_of_size(&ctx, 50.0))
+                .is_ok()
+        );
     }
 }

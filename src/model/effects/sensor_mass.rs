@@ -59,4 +59,17 @@ impl Effect for SensorMass {
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
         theta[0] * ctx.sensors.len().max(1) as f64 / ctx.structure.sites.beam_mass
     }
+
+    /// The sensors together are lighter than the beams they sit on.
+    fn plausible(&self, ctx: &EffectContext, theta: &[f64]) -> Result<(), String> {
+        let total = theta[0] * ctx.sensors.len().max(1) as f64;
+        let beams = ctx.structure.sites.beam_mass;
+        if total >= beams {
+            return Err(format!(
+                "the {} sensors weigh {total:.4e} kg together, not less than the mass of all beams {beams:.4e} kg",
+                ctx.sensors.len()
+            ));
+        }
+        Ok(())
+    }
 }
