@@ -7,26 +7,30 @@
 //!
 //! The lap region of joint j is the beam element on each side of the joint (the element of
 //! beam j ending at the joint and the element of beam j + 1 starting there): the shortest
-//! region the mesh resolves. Its bending stiffness is EI (1 + a_j), so
+//! region the mesh resolves. Its bending stiffness is EI (1 + a_j) and its mass per length
+//! rho A (1 + b_j), so
 //!
 //! ```text
-//!   K(a) - K(0) = sum_j a_j (k_e(left of j) + k_e(right of j)),   dK/da_j = k_e(left) + k_e(right)
+//!   K - K0 = sum_j a_j (k_e(left of j) + k_e(right of j)),   dK/da_j = k_e(left) + k_e(right)
+//!   M - M0 = sum_j b_j (m_e(left of j) + m_e(right of j)),   dM/db_j = m_e(left) + m_e(right)
 //! ```
 //!
-//! with k_e the Euler-Bernoulli element stiffness of the nominal section. The region's mass is
-//! left nominal: splice plates that double the section's height multiply EI by 8 and the mass
-//! per length by 2 (a lap of a few per cent of a beam adds a few per cent of the beam's mass
-//! at a node, below what the shapes resolve; `joint_mass` is the candidate for the hardware's
-//! mass). One parameter a_j >= 0 per joint.
+//! with k_e, m_e the Euler-Bernoulli element stiffness and consistent mass of the nominal
+//! section. Two parameters a_j, b_j >= 0 per joint, in that order. Both are needed: where the
+//! joint springs are soft, stiffening the elements beside them changes little and the lap's
+//! added mass is what the modes see (the independent battery's lap joints, k2 of a few
+//! thousand N m/rad, showed it); where the joint is stiff, the stiffening dominates.
 //!
 //! Size (in `jointid simulate --effect lap=size`): the thickness t of splice plates bonded on
-//! both faces over the lap region, as a fraction of the section height h: EI times
-//! (1 + 2 t / h)^3 (the stiffening of a solid rectangle of height h + 2t), a = (1 + 2 s)^3 - 1.
+//! both faces over the lap region, as a fraction s = t / h of the section height h: EI times
+//! (1 + 2 s)^3 (a solid rectangle of height h + 2t), rho A times 1 + 2 s, i.e.
+//! a = (1 + 2 s)^3 - 1, b = 2 s. The size of fitted parameters is the mean over joints of
+//! the two sizes they imply, ((1 + a)^(1/3) - 1) / 2 and b / 2.
 
 use super::{
     Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name,
 };
-use crate::model::chain::beam::element_stiffness;
+use crate::model::chain::beam::{element_mass, element_stiffness};
 use crate::structure::{ElementSite, SparseSym, Structure};
 
 /// See the module docs.
@@ -48,18 +52,20 @@ fn region(ctx: &EffectContext, joint: usize) -> Vec<&ElementSite> {
     left.into_iter().chain(right).collect()
 }
 
-/// dK/da_j of every joint with a lap region.
+/// dK/da_j and dM/db_j of every joint with a lap region, in parameter order.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    (0..joints_with_region(ctx))
-        .map(|j| {
-            let mut k = SparseSym::zero();
-            for element in region(ctx, j) {
-                let ke = element_stiffness(&element.section, element.length());
-                k.add_element(&element.line.dofs, &ke, 1.0);
-            }
-            (k, SparseSym::zero())
-        })
-        .collect()
+    let mut out = Vec::new();
+    for j in 0..joints_with_region(ctx) {
+        let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
+        for element in region(ctx, j) {
+            let (section, l) = (&element.section, element.length());
+            k.add_element(&element.line.dofs, &element_stiffness(section, l), 1.0);
+            m.add_element(&element.line.dofs, &element_mass(section, l), 1.0);
+        }
+        out.push((k, SparseSym::zero()));
+        out.push((SparseSym::zero(), m));
+    }
+    out
 }
 
 /// The number of joints, or 0 when some joint has no element beside it (a structure whose
@@ -95,11 +101,13 @@ impl Effect for Lap {
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
         let joints = joints_with_region(ctx);
         (0..joints)
-            .map(|j| EffectParameter {
-                name: per_joint_name(self.name(), j, joints, "EI_fraction"),
-                unit: "-",
-                scale: 1.0,
-                non_negative: true,
+            .flat_map(|j| {
+                ["EI_fraction", "mass_fraction"].map(|suffix| EffectParameter {
+                    name: per_joint_name(self.name(), j, joints, suffix),
+                    unit: "-",
+                    scale: 1.0,
+                    non_negative: true,
+                })
             })
             .collect()
     }
@@ -113,11 +121,15 @@ impl Effect for Lap {
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        vec![fraction_of_size(size); joints_with_region(ctx)]
+        [fraction_of_size(size), 2.0 * size].repeat(joints_with_region(ctx))
     }
 
     fn size_of_theta(&self, _ctx: &EffectContext, theta: &[f64]) -> f64 {
-        theta.iter().map(|&a| size_of_fraction(a)).sum::<f64>() / theta.len() as f64
+        let sizes: f64 = theta
+            .chunks(2)
+            .map(|ab| size_of_fraction(ab[0]) + ab[1] / 2.0)
+            .sum();
+        sizes / theta.len() as f64
     }
 
     fn admissible(
@@ -127,10 +139,10 @@ impl Effect for Lap {
         theta: &[f64],
     ) -> Result<(), String> {
         match theta.iter().enumerate().find(|(_, a)| **a <= -1.0) {
-            Some((j, a)) => Err(format!(
-                "the lap of joint {} has EI times 1 + a = {}: it must stay above 0",
-                j + 1,
-                1.0 + a
+            Some((i, a)) => Err(format!(
+                "the lap of joint {} has its {} times 1 + {a}: the factor must stay above 0",
+                i / 2 + 1,
+                if i % 2 == 0 { "EI" } else { "mass per length" }
             )),
             None => Ok(()),
         }
@@ -153,7 +165,7 @@ mod tests {
         assert_eq!(elements.len(), 2);
         assert!((elements[0].line.x[1] - joint.x).abs() < 1e-12);
         assert!((elements[1].line.x[0] - joint.x).abs() < 1e-12);
-        let (k, _) = Lap.contribution(&ctx, &[0.5]);
+        let (k, _) = Lap.contribution(&ctx, &[0.5, 0.0]);
         let n = ctx.structure.dof_count();
         let mut kd = faer::Mat::zeros(n, n);
         k.add_to(&mut kd, 1.0);
@@ -183,6 +195,35 @@ mod tests {
             (energy - expected).abs() < 1e-10 * expected,
             "{energy} vs {expected}"
         );
+    }
+
+    /// dM/db is the region's consistent mass: a rigid translation w = 1 of the region carries
+    /// its mass rho A (l_left + l_right) times b.
+    #[test]
+    fn lap_mass_is_the_region_mass() {
+        let ctx = context();
+        let elements = region(&ctx, 0);
+        let (_, m) = Lap.contribution(&ctx, &[0.0, 0.25]);
+        let n = ctx.structure.dof_count();
+        let mut md = faer::Mat::zeros(n, n);
+        m.add_to(&mut md, 1.0);
+        let mut u = vec![0.0; n];
+        for e in &elements {
+            for node in 0..2 {
+                if let Some(d) = e.line.dofs[2 * node] {
+                    u[d] = 1.0;
+                }
+            }
+        }
+        let mass: f64 = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .map(|(i, j)| u[i] * md[(i, j)] * u[j])
+            .sum();
+        let expected: f64 = elements
+            .iter()
+            .map(|e| 0.25 * e.section.mass_per_length() * e.length())
+            .sum();
+        assert!((mass - expected).abs() < 1e-12 * expected, "{mass} vs {expected}");
     }
 
     #[test]
