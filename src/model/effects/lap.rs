@@ -27,9 +27,7 @@
 //! a = (1 + 2 s)^3 - 1, b = 2 s. The size of fitted parameters is the mean over joints of
 //! the two sizes they imply, ((1 + a)^(1/3) - 1) / 2 and b / 2.
 
-use super::{
-    Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name,
-};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
 use crate::model::chain::beam::{element_mass, element_stiffness};
 use crate::structure::{ElementSite, SparseSym, Structure};
 
@@ -223,7 +221,10 @@ mod tests {
             .iter()
             .map(|e| 0.25 * e.section.mass_per_length() * e.length())
             .sum();
-        assert!((mass - expected).abs() < 1e-12 * expected, "{mass} vs {expected}");
+        assert!(
+            (mass - expected).abs() < 1e-12 * expected,
+            "{mass} vs {expected}"
+        );
     }
 
     #[test]
