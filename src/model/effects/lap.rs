@@ -7,27 +7,28 @@
 //!
 //! The lap region of joint j is the beam element on each side of the joint (the element of
 //! beam j ending at the joint and the element of beam j + 1 starting there): the shortest
-//! region the mesh resolves. Its bending stiffness is EI (1 + a_j) and its mass per length
-//! rho A (1 + b_j), so
+//! region the mesh resolves. Over it, splice plates of thickness t on both faces of a section
+//! of height h (or the overlap of the two beams) multiply the bending stiffness by
+//! (1 + 2 s)^3 (a solid rectangle of height h + 2t) and the mass per length by 1 + 2 s, with
+//! s = t / h the one parameter per joint:
 //!
 //! ```text
-//!   K - K0 = sum_j a_j (k_e(left of j) + k_e(right of j)),   dK/da_j = k_e(left) + k_e(right)
-//!   M - M0 = sum_j b_j (m_e(left of j) + m_e(right of j)),   dM/db_j = m_e(left) + m_e(right)
+//!   K(s) - K(0) = ((1 + 2 s_j)^3 - 1) sum k_e,   dK/ds_j = 6 (1 + 2 s_j)^2 sum k_e
+//!   M(s) - M(0) = 2 s_j sum m_e,                 dM/ds_j = 2 sum m_e
 //! ```
 //!
-//! with k_e, m_e the Euler-Bernoulli element stiffness and consistent mass of the nominal
-//! section. Two parameters a_j, b_j >= 0 per joint, in that order. Both are needed: where the
-//! joint springs are soft, stiffening the elements beside them changes little and the lap's
-//! added mass is what the modes see (the independent battery's lap joints, k2 of a few
-//! thousand N m/rad, showed it); where the joint is stiff, the stiffening dominates.
+//! summed over the two region elements of joint j, k_e, m_e the Euler-Bernoulli element
+//! stiffness and consistent mass of the nominal section. Stiffness and mass are tied by the
+//! plates' geometry on purpose: where the joint springs are soft (k2 of a few thousand
+//! N m/rad in the independent battery) stiffening the elements beside them changes little and
+//! the lap's added mass is what the modes see, and a free mass parameter then makes the lap a
+//! copy of `joint_mass` with more freedom (it took a strong joint mass from `joint_mass` on
+//! that battery); tied, the lap has as many parameters as `joint_mass` and its own signature.
+//! s >= 0 (a lap stiffens).
 //!
-//! Size (in `jointid simulate --effect lap=size`): the thickness t of splice plates bonded on
-//! both faces over the lap region, as a fraction s = t / h of the section height h: EI times
-//! (1 + 2 s)^3 (a solid rectangle of height h + 2t), rho A times 1 + 2 s, i.e.
-//! a = (1 + 2 s)^3 - 1, b = 2 s. The size of fitted parameters is the mean over joints of
-//! the two sizes they imply, ((1 + a)^(1/3) - 1) / 2 and b / 2.
+//! Size (in `jointid simulate --effect lap=size`): s = t / h, the same at every joint.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_joint_name};
+use super::{Effect, EffectContext, EffectParameter, per_joint_name};
 use crate::model::chain::beam::{element_mass, element_stiffness};
 use crate::structure::{ElementSite, SparseSym, Structure};
 
@@ -50,20 +51,38 @@ fn region(ctx: &EffectContext, joint: usize) -> Vec<&ElementSite> {
     left.into_iter().chain(right).collect()
 }
 
-/// dK/da_j and dM/db_j of every joint with a lap region, in parameter order.
-fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    let mut out = Vec::new();
-    for j in 0..joints_with_region(ctx) {
-        let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
-        for element in region(ctx, j) {
-            let (section, l) = (&element.section, element.length());
-            k.add_element(&element.line.dofs, &element_stiffness(section, l), 1.0);
-            m.add_element(&element.line.dofs, &element_mass(section, l), 1.0);
-        }
-        out.push((k, SparseSym::zero()));
-        out.push((SparseSym::zero(), m));
-    }
-    out
+/// sum k_e and sum m_e over the lap region of every joint.
+fn regions(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
+    (0..joints_with_region(ctx))
+        .map(|j| {
+            let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
+            for element in region(ctx, j) {
+                let (section, l) = (&element.section, element.length());
+                k.add_element(&element.line.dofs, &element_stiffness(section, l), 1.0);
+                m.add_element(&element.line.dofs, &element_mass(section, l), 1.0);
+            }
+            (k, m)
+        })
+        .collect()
+}
+
+/// (K, M) of every joint's region scaled by (f(s_j), g(s_j)).
+fn scaled(
+    ctx: &EffectContext,
+    theta: &[f64],
+    f: impl Fn(f64) -> f64,
+    g: impl Fn(f64) -> f64,
+) -> Vec<(SparseSym, SparseSym)> {
+    regions(ctx)
+        .into_iter()
+        .zip(theta)
+        .map(|((k, m), &s)| {
+            let (mut ks, mut ms) = (SparseSym::zero(), SparseSym::zero());
+            ks.extend_scaled(&k, f(s));
+            ms.extend_scaled(&m, g(s));
+            (ks, ms)
+        })
+        .collect()
 }
 
 /// The number of joints, or 0 when some joint has no element beside it (a structure whose
@@ -82,11 +101,6 @@ fn fraction_of_size(s: f64) -> f64 {
     (1.0 + 2.0 * s).powi(3) - 1.0
 }
 
-/// The inverse of [`fraction_of_size`].
-fn size_of_fraction(a: f64) -> f64 {
-    ((1.0 + a).cbrt() - 1.0) / 2.0
-}
-
 impl Effect for Lap {
     fn name(&self) -> &'static str {
         "lap"
@@ -99,35 +113,35 @@ impl Effect for Lap {
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
         let joints = joints_with_region(ctx);
         (0..joints)
-            .flat_map(|j| {
-                ["EI_fraction", "mass_fraction"].map(|suffix| EffectParameter {
-                    name: per_joint_name(self.name(), j, joints, suffix),
-                    unit: "-",
-                    scale: 1.0,
-                    non_negative: true,
-                })
+            .map(|j| EffectParameter {
+                name: per_joint_name(self.name(), j, joints, "t_over_h"),
+                unit: "-",
+                scale: 0.1,
+                non_negative: true,
             })
             .collect()
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        linear_contribution(&patterns(ctx), theta)
+        let mut k = SparseSym::zero();
+        let mut m = SparseSym::zero();
+        for (kj, mj) in scaled(ctx, theta, fraction_of_size, |s| 2.0 * s) {
+            k.extend_scaled(&kj, 1.0);
+            m.extend_scaled(&mj, 1.0);
+        }
+        (k, m)
     }
 
-    fn derivatives(&self, ctx: &EffectContext, _theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        patterns(ctx)
+    fn derivatives(&self, ctx: &EffectContext, theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
+        scaled(ctx, theta, |s| 6.0 * (1.0 + 2.0 * s).powi(2), |_| 2.0)
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        [fraction_of_size(size), 2.0 * size].repeat(joints_with_region(ctx))
+        vec![size; joints_with_region(ctx)]
     }
 
     fn size_of_theta(&self, _ctx: &EffectContext, theta: &[f64]) -> f64 {
-        let sizes: f64 = theta
-            .chunks(2)
-            .map(|ab| size_of_fraction(ab[0]) + ab[1] / 2.0)
-            .sum();
-        sizes / theta.len() as f64
+        theta.iter().sum::<f64>() / theta.len() as f64
     }
 
     fn admissible(
@@ -136,11 +150,10 @@ impl Effect for Lap {
         _current: &Structure,
         theta: &[f64],
     ) -> Result<(), String> {
-        match theta.iter().enumerate().find(|(_, a)| **a <= -1.0) {
-            Some((i, a)) => Err(format!(
-                "the lap of joint {} has its {} times 1 + {a}: the factor must stay above 0",
-                i / 2 + 1,
-                if i % 2 == 0 { "EI" } else { "mass per length" }
+        match theta.iter().enumerate().find(|(_, s)| **s <= -0.5) {
+            Some((j, s)) => Err(format!(
+                "the lap of joint {} has t / h = {s}: the section height h + 2t must stay above 0",
+                j + 1
             )),
             None => Ok(()),
         }
@@ -152,7 +165,7 @@ mod tests {
     use super::*;
     use crate::model::effects::tests::context;
 
-    /// The region is the two elements touching the joint, and dK/da is their stiffness: the
+    /// The region is the two elements touching the joint, and K(s) - K(0) is (1 + 2 s)^3 - 1 times their stiffness: the
     /// lap's contribution to the strain energy of a rigid rotation about the joint is zero,
     /// and that of a uniform curvature kappa over the region is a EI kappa^2 (l_left + l_right).
     #[test]
@@ -163,7 +176,7 @@ mod tests {
         assert_eq!(elements.len(), 2);
         assert!((elements[0].line.x[1] - joint.x).abs() < 1e-12);
         assert!((elements[1].line.x[0] - joint.x).abs() < 1e-12);
-        let (k, _) = Lap.contribution(&ctx, &[0.5, 0.0]);
+        let (k, _) = Lap.contribution(&ctx, &[0.5]);
         let n = ctx.structure.dof_count();
         let mut kd = faer::Mat::zeros(n, n);
         k.add_to(&mut kd, 1.0);
@@ -188,7 +201,8 @@ mod tests {
             .sum();
         let ei = elements[0].section.bending_stiffness();
         let length: f64 = elements.iter().map(|e| e.length()).sum();
-        let expected = 0.5 * ei * kappa * kappa * length;
+        // s = 0.5: EI times (1 + 2 s)^3 = 8, an added 7 EI.
+        let expected = 7.0 * ei * kappa * kappa * length;
         assert!(
             (energy - expected).abs() < 1e-10 * expected,
             "{energy} vs {expected}"
@@ -196,12 +210,13 @@ mod tests {
     }
 
     /// dM/db is the region's consistent mass: a rigid translation w = 1 of the region carries
-    /// its mass rho A (l_left + l_right) times b.
+    /// its mass rho A (l_left + l_right) times 2 s.
     #[test]
     fn lap_mass_is_the_region_mass() {
         let ctx = context();
         let elements = region(&ctx, 0);
-        let (_, m) = Lap.contribution(&ctx, &[0.0, 0.25]);
+        // s = 0.125: rho A times 1 + 2 s = 1.25.
+        let (_, m) = Lap.contribution(&ctx, &[0.125]);
         let n = ctx.structure.dof_count();
         let mut md = faer::Mat::zeros(n, n);
         m.add_to(&mut md, 1.0);
@@ -230,6 +245,5 @@ mod tests {
     #[test]
     fn size_is_the_splice_plate_thickness() {
         assert!((fraction_of_size(0.5) - 7.0).abs() < 1e-15);
-        assert!((size_of_fraction(7.0) - 0.5).abs() < 1e-15);
     }
 }
