@@ -309,7 +309,10 @@ fn simulate_then_diagnose_writes_the_json_report() {
     assert!(v["before"]["frequency_rms_pct"].as_f64().unwrap() > 10.0);
     assert!(v["after"]["frequency_rms_pct"].as_f64().unwrap() < 0.2);
     let candidates = v["candidates"].as_array().unwrap();
-    assert_eq!(candidates.len(), 5);
+    assert_eq!(
+        candidates.len(),
+        jointid::model::effects::candidates().len()
+    );
     for c in candidates {
         for key in ["name", "parameters", "chi2", "criterion"] {
             assert!(!c[key].is_null(), "candidate {} lacks {key}", c["name"]);

@@ -1,6 +1,8 @@
 //! `joint_mass`: the mass of the joint hardware (bolts, flanges, washers) that the beam model
 //! does not carry: mass m per joint, half lumped at each of its two nodes, with the rotary
-//! inertia (m/2) r^2 of a body of the adjacent beam's radius of gyration r^2 = I/A.
+//! inertia (m/2) r^2 of a body of the adjacent beam's radius of gyration r^2 = I/A. It keeps
+//! this coupled inertia (one parameter per joint); hardware whose rotary inertia is its own is
+//! the separate candidate `joint_inertia` (rotary inertia only, no translational mass).
 
 use super::{
     Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,

@@ -10,15 +10,23 @@
 //! apply to that structure.
 
 mod element_damage;
+mod end_mass;
 mod joint_coupling;
+mod joint_inertia;
 mod joint_mass;
+mod lap;
+mod local_stiffness;
 mod sensor_mass;
 mod shear;
 mod suspension;
 
 pub use element_damage::ElementDamage;
+pub use end_mass::EndMass;
 pub use joint_coupling::JointCoupling;
+pub use joint_inertia::JointInertia;
 pub use joint_mass::JointMass;
+pub use lap::Lap;
+pub use local_stiffness::{LocalStiffness, scan};
 pub use sensor_mass::SensorMass;
 pub use shear::Shear;
 pub use suspension::Suspension;
@@ -129,6 +137,9 @@ pub fn candidates() -> Vec<Arc<dyn Effect>> {
         Arc::new(SensorMass),
         Arc::new(Suspension),
         Arc::new(Shear),
+        Arc::new(Lap),
+        Arc::new(JointInertia),
+        Arc::new(EndMass),
     ]
 }
 
