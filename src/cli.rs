@@ -369,6 +369,10 @@ pub struct DiagnoseArgs {
     /// comma-separated; the other modes pair by MAC within the window.
     #[arg(long, value_delimiter = ',', value_parser = parse_pair)]
     pub pair: Vec<(usize, usize)>,
+    /// Also search the richer candidates: lap (a splice region at each joint), joint_inertia
+    /// (joint rotary inertia alone), end_mass (masses at the free ends).
+    #[arg(long)]
+    pub extended: bool,
 }
 
 fn parse_pair(s: &str) -> Result<(usize, usize), String> {

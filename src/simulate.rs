@@ -7,7 +7,9 @@ use std::sync::Arc;
 use crate::input::Number;
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
-use crate::model::effects::{Configured, EffectContext, by_name, candidates, outside_library};
+use crate::model::effects::{
+    Configured, EffectContext, by_name, candidates, extended, outside_library,
+};
 use crate::structure::{Observation, Structure, check_elastic};
 use crate::study::noise::{NoiseKind, TrialRng};
 
@@ -134,6 +136,7 @@ pub enum SimulateError {
 pub fn effect_catalogue() -> Vec<(String, String)> {
     candidates()
         .into_iter()
+        .chain(extended())
         .chain(outside_library())
         .map(|e| (e.name().to_string(), e.describe().to_string()))
         .chain([(RISING_JOINT.to_string(), "joint stiffnesses that rise with the mode (outside the candidate library): mode r is simulated with every k1, k2 times (1 + size (r - 1))".to_string())])

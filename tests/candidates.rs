@@ -59,6 +59,7 @@ fn run(data: &MeasuredModes) -> Report {
             noise: NOISE,
             pairing: PairingRule::default(),
             per_mode: None,
+            extended: true,
         },
     )
     .unwrap()

@@ -50,6 +50,7 @@ fn run_at(data: &MeasuredModes, noise: Noise) -> Report {
             noise,
             pairing: PairingRule::default(),
             per_mode: None,
+            extended: false,
         },
     )
     .unwrap()
@@ -226,6 +227,7 @@ fn a_joint_mass_heavier_than_the_beams_is_excluded_with_the_reason() {
                 ..PairingRule::default()
             },
             per_mode: None,
+            extended: false,
         },
     )
     .unwrap();

@@ -67,6 +67,7 @@ fn verdict_word(case: &Path, truth: &serde_json::Value) -> String {
         },
         pairing: PairingRule::default(),
         per_mode: None,
+        extended: false,
     };
     match diagnose(&model, &measured, settings) {
         Ok(report) => match report.verdict {

@@ -57,6 +57,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             given: args.pair.clone(),
         },
         per_mode,
+        extended: args.extended,
     };
     let report = diagnose(&model, &measured, settings)
         .with_context(|| format!("{}", args.measured.display()))?;

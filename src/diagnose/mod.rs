@@ -46,7 +46,7 @@ pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
-use crate::model::effects::{Effect, EffectContext, candidates};
+use crate::model::effects::{Effect, EffectContext, candidates, extended};
 use crate::stats::chi2_sf;
 use crate::structure::{Structure, check_elastic};
 
@@ -112,6 +112,8 @@ pub struct DiagnoseSettings {
     /// The paper's per-mode identification (None: n = the fewest identified DOFs of a mode,
     /// at most N; m = min(n - 2, 6); inverse weighting).
     pub per_mode: Option<Settings>,
+    /// Also search the richer candidates ([`crate::model::effects::extended`]).
+    pub extended: bool,
 }
 
 /// Diagnoses `measured` against `model`.
@@ -160,6 +162,7 @@ pub fn diagnose(
     };
     let library: Vec<Arc<dyn Effect>> = candidates()
         .into_iter()
+        .chain(settings.extended.then(extended).into_iter().flatten())
         .filter(|c| c.applies(&ctx))
         .collect();
     // The largest model under the stated noise gives the noise estimate; the selection runs
