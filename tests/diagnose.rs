@@ -8,7 +8,7 @@ mod common;
 
 use common::{jointid, paper_model, scratch};
 use jointid::diagnose::{
-    DiagnoseSettings, FIT_ALPHA, Noise, PairingRule, Report, Verdict, diagnose,
+    DiagnoseSettings, FIT_ALPHA, Noise, PairingRule, Report, Verdict, diagnose, on_lines,
 };
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;
@@ -184,6 +184,22 @@ fn effects_outside_the_library_are_unexplained_with_the_pattern_shown() {
         "{sum} against {}",
         damaged.before.chi2
     );
+}
+
+#[test]
+fn corrections_on_two_modes_are_never_a_testable_line() {
+    // Any two per-mode corrections lie on a line (chi^2 about it 0, p 1): no frequency
+    // dependence can be told from them. Three on a line can.
+    let six = test_data(&[("rising_joint", 0.3)], 1);
+    let report = run(&six);
+    let mut flat = report.flatness_before.clone();
+    assert!(on_lines(&flat), "{flat:?}");
+    for f in &mut flat {
+        f.dof = 1;
+        f.line_chi2 = 0.0;
+        f.line_p_value = 1.0;
+    }
+    assert!(!on_lines(&flat));
 }
 
 #[test]

@@ -20,7 +20,8 @@
 //!   joint-only fit not good: `frequency_dependent` when a per-mode joint correction trends
 //!   with frequency beyond [`TREND_SIGMAS`] standard errors and the corrections of every
 //!   joint parameter follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about
-//!   the weighted line) >= [`FIT_ALPHA`]: the paper's frequency-dependent joint), else
+//!   the weighted line) >= [`FIT_ALPHA`], on at least [`MIN_TREND_MODES`] modes: the paper's
+//!   frequency-dependent joint), else
 //!   `unexplained`. Both report where the misfit sits ([`report::ResidualPattern`]).
 //!
 //! - [`pairing`]: MAC pairing of measured and model modes;
@@ -59,6 +60,9 @@ pub const AMBIGUITY_MARGIN: f64 = 6.0;
 /// A per-mode correction whose slope against frequency exceeds this many standard errors
 /// trends with frequency.
 pub const TREND_SIGMAS: f64 = 3.0;
+/// Fewest modes with corrections for a `frequency-dependent` verdict: a line through them
+/// must be testable (at least one degree of freedom about it).
+pub const MIN_TREND_MODES: usize = 3;
 
 /// Why a diagnosis cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -322,7 +326,7 @@ pub fn diagnose(
             .collect();
         // A joint whose stiffness changes with frequency moves the corrections along a
         // smooth curve; an effect outside the library scatters them about any line.
-        let smooth = flatness_before.iter().all(|f| f.line_p_value >= FIT_ALPHA);
+        let smooth = on_lines(&flatness_before);
         if !trend.is_empty() && smooth && !static_helps {
             verdict = Verdict::FrequencyDependent;
         }
@@ -423,6 +427,15 @@ fn implausible(
                 .err()
         })
         .or_else(|| effect.plausible(ctx, theta).err())
+}
+
+/// Whether the per-mode corrections of every parameter follow a straight line in frequency,
+/// testably: on at least [`MIN_TREND_MODES`] modes (any two lie on a line) and with
+/// P(chi^2 about the line) >= [`FIT_ALPHA`].
+pub fn on_lines(flatness: &[report::Flatness]) -> bool {
+    flatness
+        .iter()
+        .all(|f| f.dof + 1 >= MIN_TREND_MODES && f.line_p_value >= FIT_ALPHA)
 }
 
 /// A candidate with its fit (or why it failed).
