@@ -18,6 +18,7 @@
 //! effects (clamped at 0 where the effect must be non-negative), and c_r.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
@@ -149,6 +150,9 @@ struct Problem<'a> {
     joint_p0: Vec<f64>,
     /// Per measured mode, sigma of each shape component.
     sigma: Vec<Vec<f64>>,
+    /// Pairs the last eigensolution needed to cover the pairing window: the next one starts
+    /// there instead of doubling up from the minimum again.
+    covering: AtomicUsize,
 }
 
 struct Evaluation {
@@ -231,7 +235,10 @@ impl Problem<'_> {
         let given = self.pairing.given.iter().map(|g| g.1).max().unwrap_or(0);
         let count = self.rigid() + modes.len().max(given) + 2;
         let f_max = modes.iter().map(|m| m.frequency_hz).fold(0.0, f64::max);
-        ModalSolution::covering(mats, count, (1.0 + self.pairing.window) * f_max)
+        let start = count.max(self.covering.load(Ordering::Relaxed));
+        let modal = ModalSolution::covering(mats, start, (1.0 + self.pairing.window) * f_max)?;
+        self.covering.store(modal.len(), Ordering::Relaxed);
+        Ok(modal)
     }
 
     /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
@@ -448,6 +455,7 @@ fn run(
             })
             .collect(),
         joint_p0,
+        covering: AtomicUsize::new(0),
     };
     let unknowns = problem.joint_count() + problem.effect_count() + measured.modes().len();
     let data: usize = measured.modes().iter().map(|m| 1 + m.points.len()).sum();
@@ -738,6 +746,7 @@ mod tests {
                         .collect()
                 })
                 .collect(),
+            covering: AtomicUsize::new(0),
         };
         let x = vec![0.1, -0.2, 2.0, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
         let pairing = pair(&nominal, &measured, 2, &rule).unwrap();
