@@ -7,9 +7,9 @@ use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_plots::diagnose_figures;
-use jointid::output::{check_outputs, diagnose as out, stage};
+use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 
-use crate::commands::report::{commit_all, stage_figures};
+use crate::commands::report::stage_figures;
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     for (name, v) in [

@@ -9,9 +9,8 @@ use anyhow::{Context, bail};
 use crate::cli::{ExtractArgs, FrfQuantity};
 use jointid::extract::{Quantity, Settings, csv, extract, universal};
 use jointid::output::stabilization::stabilization_svg;
-use jointid::output::{check_outputs, stage};
+use jointid::output::{check_outputs, commit_all, stage};
 
-use crate::commands::report::commit_all;
 use jointid::uff::{Record, read_path};
 
 /// Below this MPC a mode is named on stderr as complex.

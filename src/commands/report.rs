@@ -6,7 +6,7 @@ use crate::cli::ReportArgs;
 use std::path::{Path, PathBuf};
 
 use jointid::output::study_report::{Figure, figure_page, index_html, study_figures};
-use jointid::output::{Staged, check_outputs, stage};
+use jointid::output::{Staged, check_outputs, commit_all, stage};
 use jointid::report::StudyResults;
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
@@ -43,16 +43,6 @@ pub fn stage_figures(
     inputs: &[&Path],
 ) -> anyhow::Result<Vec<Staged>> {
     stage_page(dir, figures, &figure_page(title, figures), inputs)
-}
-
-/// Commits staged files, in order.
-pub fn commit_all(staged: Vec<Staged>) -> anyhow::Result<()> {
-    for file in staged {
-        let path = file.path().to_path_buf();
-        file.commit()
-            .with_context(|| format!("{}: cannot write", path.display()))?;
-    }
-    Ok(())
 }
 
 /// The figures and the page, staged in `dir` (created if absent; removed again when it was

@@ -13,10 +13,9 @@ use jointid::cluster::{
     ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
 };
 use jointid::output::study::{TrialsWriter, write_results};
-use jointid::output::{check_outputs, stage};
+use jointid::output::{check_outputs, commit_all, stage};
 use jointid::study::check::selected_rows;
 
-use crate::commands::report::commit_all;
 use crate::commands::resources::check_memory;
 use jointid::study::resources::peak_bytes;
 use jointid::study::{CellResult, Study, StudyRun};

@@ -117,6 +117,18 @@ where
     Ok(staged)
 }
 
+/// Commits staged files in order (the outputs of one run, all complete by now); the error
+/// names the file that could not be put in place.
+pub fn commit_all(staged: Vec<Staged>) -> io::Result<()> {
+    for file in staged {
+        let path = file.path().to_path_buf();
+        file.commit().map_err(|e| {
+            io::Error::new(e.kind(), format!("{}: cannot write: {e}", path.display()))
+        })?;
+    }
+    Ok(())
+}
+
 /// Writes `path` through `fill`; on any error the temporary file is removed and `path` is
 /// left as it was.
 pub fn write_atomically<E>(

@@ -12,5 +12,5 @@ pub mod study;
 pub mod study_report;
 pub mod table;
 
-pub use atomic::{Staged, stage, write_atomically};
+pub use atomic::{Staged, commit_all, stage, write_atomically};
 pub use guard::check_outputs;
