@@ -24,8 +24,6 @@ pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
 pub use noise::NoiseKind;
 pub use plan::{Cell, CellPlan, StudyContext};
 
-use crate::structure::check_elastic;
-
 /// The statistics of one cell.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CellResult {
@@ -82,27 +80,7 @@ pub struct StudyRun {
 impl StudyRun {
     /// Solves the models and validates every cell before anything is computed.
     pub fn new(study: Study) -> Result<Self, StudyError> {
-        let context = StudyContext::new(&study).map_err(|cause| StudyError::Modal {
-            file: study.model_file.clone(),
-            cause,
-        })?;
-        let rigid = study.model.rigid;
-        for (which, structure, modal) in [
-            ("nominal", study.model.clone(), &context.nominal),
-            (
-                "modified (truth.delta)",
-                study.model.with_delta(&study.delta),
-                &context.truth,
-            ),
-        ] {
-            check_elastic(&structure.assemble(), modal, rigid).map_err(|cause| {
-                StudyError::Mechanism {
-                    file: study.file.clone(),
-                    which,
-                    cause,
-                }
-            })?;
-        }
+        let context = StudyContext::new(&study)?;
         let cells = study.cells();
         let problems: Vec<String> = cells
             .iter()

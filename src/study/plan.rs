@@ -5,9 +5,10 @@
 //! The nominal and truth eigensolutions are shared by every cell: the model is the same.
 
 use crate::identify::{Identifier, IdentifyError, ModeSystem, Projector, Settings, Weighting};
-use crate::modal::{ModalError, ModalSolution};
-use crate::structure::Parameter;
+use crate::modal::ModalSolution;
+use crate::structure::{Parameter, Structure, check_elastic};
 
+use super::StudyError;
 use super::config::{NfSpec, Study};
 use super::unidentified;
 
@@ -121,7 +122,8 @@ impl StudyContext {
     /// Solves the nominal and the truth model for the pairs the grid uses: the truth up to
     /// the highest mode, the nominal up to the largest basis n as well (all pairs, by the
     /// dense solve, for a small model; the lowest ones by the sparse solver for a large one).
-    pub fn new(study: &Study) -> Result<Self, ModalError> {
+    /// Either model being a mechanism is an error.
+    pub fn new(study: &Study) -> Result<Self, StudyError> {
         let rigid = study.model.rigid;
         let highest = study.modes.iter().copied().max().unwrap_or(1) + rigid;
         let largest_n = study
@@ -130,12 +132,26 @@ impl StudyContext {
             .flat_map(|g| g.n.iter().copied())
             .max()
             .unwrap_or(highest);
+        let solve = |which: &'static str, structure: &Structure, count: usize| {
+            let matrices = structure.assemble();
+            let modal =
+                ModalSolution::lowest_of(&matrices, count).map_err(|cause| StudyError::Modal {
+                    file: study.model_file.clone(),
+                    cause,
+                })?;
+            check_elastic(&matrices, &modal, rigid).map_err(|cause| StudyError::Mechanism {
+                file: study.file.clone(),
+                which,
+                cause,
+            })?;
+            Ok::<_, StudyError>(modal)
+        };
         let truth = study.model.with_delta(&study.delta);
         Ok(Self {
-            nominal: ModalSolution::lowest_of(&study.model.assemble(), largest_n.max(highest))?,
-            truth: ModalSolution::lowest_of(&truth.assemble(), highest)?,
+            nominal: solve("nominal", &study.model, largest_n.max(highest))?,
+            truth: solve("modified (truth.delta)", &truth, highest)?,
             params: study.model.identified(),
-            rigid: study.model.rigid,
+            rigid,
         })
     }
 }
