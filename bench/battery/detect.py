@@ -29,6 +29,7 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+import effects
 import fe
 
 WEAK = 16.0
@@ -64,15 +65,7 @@ class JointFit:
 
     def residuals(self, x: np.ndarray, freqs: np.ndarray, shapes: np.ndarray) -> np.ndarray:
         f, y = self.model(x)
-        out = [(f - freqs) / (self.sf * freqs)]
-        for r in range(self.count):
-            ym = shapes[:, r]
-            sigma = self.ss * np.sqrt(ym**2 + (FLOOR * np.max(np.abs(ym))) ** 2)
-            yv = y[:, r] / sigma
-            t = ym / sigma
-            c = float(yv @ t / (yv @ yv))
-            out.append(c * yv - t)
-        return np.concatenate(out)
+        return weighted_residuals(f, y, freqs, shapes, self.sf, self.ss)
 
     def noncentrality(self, freqs: np.ndarray, shapes: np.ndarray, start: np.ndarray | None = None) -> tuple[float, np.ndarray]:
         """min chi^2 over the joints and the fitted log-stiffnesses."""
@@ -83,6 +76,20 @@ class JointFit:
             if best is None or chi2 < best[0]:
                 best = (chi2, sol.x)
         return best
+
+
+def weighted_residuals(f, y, freqs, shapes, sf: float, ss: float) -> np.ndarray:
+    """Residuals of model modes (f, y at the sensors) against data in units of the stated noise
+    (module docs), each model shape scaled onto the data in closed form."""
+    out = [(f - freqs) / (sf * freqs)]
+    for r in range(len(freqs)):
+        ym = shapes[:, r]
+        sigma = ss * np.sqrt(ym**2 + (FLOOR * np.max(np.abs(ym))) ** 2)
+        yv = y[:, r] / sigma
+        t = ym / sigma
+        c = float(yv @ t / (yv @ yv))
+        out.append(c * yv - t)
+    return np.concatenate(out)
 
 
 def find_size(noncentrality, target: float, guess: float, lower: float, upper: float, rtol: float = 0.08):
@@ -120,3 +127,92 @@ def find_size(noncentrality, target: float, guess: float, lower: float, upper: f
         s = s_new
     best = min(hist, key=lambda t: abs(math.log(t[1] / target)) if t[1] > 0 else 1e9)
     return best[0], best[1], abs(best[1] / target - 1.0) > 0.3, hist
+
+
+# Mimicry: how well a library effect reproduces another effect's noise-free data.
+#
+# An effect outside the library (or another library effect) can leave data that a library
+# effect reproduces to within the noise: a lap whose splice plates stiffen the beam behind a
+# soft rotational joint spring shows only its added mass, which is a joint mass; no method can
+# then tell them apart, and naming the library effect states what the data show. The mimicry
+# of library effect e is the noncentrality left when e explains the data at its best:
+#
+#     lambda_e = min over the joints' k1, k2 and e's knobs of the weighted residual sum of
+#                squares of (nominal + e) against the noise-free data,
+#
+# the same yardstick as the detectability above. Knobs (the battery's own effects, with the
+# knobs a fit would free): joint_coupling s in [-0.95, 0.95]; joint_mass its mass and its
+# rotary inertia ratio c in [1, 9] (c = 1 is the coupled inertia of jointid's candidate, so
+# the mimic covers it); sensor_mass its mass (its cube inertia follows); suspension its bounce
+# ratio; shear a factor t in [0, 3] on the Timoshenko shear flexibility and rotary inertia of
+# the physical section (t = 1 the true Timoshenko beam).
+MIMICS = ["joint_coupling", "joint_mass", "sensor_mass", "suspension", "shear"]
+
+# knob bounds and starting points per library effect
+# (the first start is the nominal model: the effect absent)
+_KNOBS = {
+    "joint_coupling": ([-0.95], [0.95], [[0.0], [0.05], [-0.05]]),
+    "joint_mass": ([0.0, 1.0], [1.0, 9.0], [[0.0, 1.0], [0.01, 1.0], [0.01, 5.0]]),
+    "sensor_mass": ([0.0], [0.5], [[0.0], [0.005], [0.05]]),
+    "suspension": ([0.0], [0.5], [[0.0], [0.02], [0.2]]),
+    "shear": ([0.0], [3.0], [[0.0], [0.5], [1.5]]),
+}
+
+
+class Mimic:
+    """Library effect ``name`` on the case's nominal chain, the joints' k1, k2 and the effect's
+    knobs free, against fixed data."""
+
+    def __init__(self, name: str, geom, nominal: fe.Chain, sensors: list, count: int, frequency_noise: float, shape_noise: float):
+        self.name, self.geom, self.nominal = name, geom, nominal
+        self.sensors, self.count = sensors, count
+        self.dofs = 2 * np.asarray(sensors)
+        self.sf, self.ss = frequency_noise, shape_noise
+        self.joints = len(nominal.joints)
+
+    def chain(self, x: np.ndarray) -> fe.Chain:
+        joints = [fe.Joint(k1=math.exp(x[2 * j]), k2=math.exp(x[2 * j + 1])) for j in range(self.joints)]
+        knobs = x[2 * self.joints :]
+        if self.name == "shear":
+            c = copy.deepcopy(self.nominal)
+            c.joints = joints
+            for b in c.beams:
+                b.timoshenko, b.shear_scale = True, float(knobs[0])
+            return c
+        params = {"joint_coupling": {"sign": 1.0}, "joint_mass": {"inertia_ratio": float(knobs[-1])}}.get(self.name, {})
+        return effects.build(self.name, float(knobs[0]), self.geom, joints, self.sensors, params, nominal=self.nominal).effect
+
+    def residuals(self, x: np.ndarray, freqs: np.ndarray, shapes: np.ndarray) -> np.ndarray:
+        f, y = fe.elastic_modes(self.chain(x), self.count)
+        return weighted_residuals(f, y[self.dofs, :], freqs, shapes, self.sf, self.ss)
+
+    def noncentrality(self, freqs: np.ndarray, shapes: np.ndarray, joints_start: np.ndarray) -> tuple[float, list]:
+        """min chi^2 over the joints and the knobs, from ``joints_start`` and each of the
+        effect's knob starts; and the knobs at the minimum."""
+        lower, upper, starts = _KNOBS[self.name]
+        lo = np.concatenate([np.full(2 * self.joints, -np.inf), lower])
+        hi = np.concatenate([np.full(2 * self.joints, np.inf), upper])
+        best = None
+        for knobs in starts:
+            x0 = np.concatenate([joints_start, knobs])
+            sol = scipy.optimize.least_squares(self.residuals, x0, args=(freqs, shapes), bounds=(lo, hi), method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, max_nfev=400)
+            chi2 = float(np.sum(sol.fun**2))
+            if best is None or chi2 < best[0]:
+                best = (chi2, [float(v) for v in sol.x[2 * self.joints :]])
+        return best
+
+
+def mimicry(geom, nominal: fe.Chain, sensors: list, freqs: np.ndarray, shapes: np.ndarray, joints_start: np.ndarray,
+            frequency_noise: float, shape_noise: float, skip: str | None = None) -> dict:
+    """lambda_e and e's knobs at its best, for every library effect e but ``skip`` (the truth's
+    own name). The fits start from the joint-only optimum (so lambda_e never exceeds the
+    truth's own noncentrality) and from the truth joints."""
+    _, best_joints = JointFit(nominal, sensors, len(freqs), frequency_noise, shape_noise).noncentrality(freqs, shapes, joints_start)
+    out = {}
+    for name in MIMICS:
+        if name == skip:
+            continue
+        mimic = Mimic(name, geom, nominal, sensors, len(freqs), frequency_noise, shape_noise)
+        lam, knobs = min(mimic.noncentrality(freqs, shapes, start) for start in (best_joints, joints_start))
+        out[name] = {"noncentrality": lam, "knobs": knobs}
+    return out

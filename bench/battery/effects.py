@@ -130,11 +130,15 @@ def draw_parameters(name: str, geom: Geometry, nominal: fe.Chain, sensors: list,
     return {}
 
 
-def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sensors: list, params: dict) -> Built:
-    """Nominal, base truth and effect truth chains of one case (see module docs)."""
+def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sensors: list, params: dict,
+          nominal: fe.Chain | None = None) -> Built:
+    """Nominal, base truth and effect truth chains of one case (see module docs). ``nominal``:
+    put the effect on this chain instead of the geometry's (the mimicry fits of detect.py,
+    which put a library effect on another case's nominal model; not for shear, whose size is
+    the section)."""
     if name == "shear":
         nominal = geom.chain(height=size)
-    else:
+    elif nominal is None:
         nominal = geom.chain()
     base = with_joints(nominal, truth_joints)
     eff = copy.deepcopy(base)

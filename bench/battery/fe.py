@@ -51,6 +51,9 @@ class Beam:
     poisson: float = 0.3
     shear_coefficient: float | None = None  # kappa; None: Cowper's rectangle 10(1+nu)/(12+11nu)
     timoshenko: bool = False  # truth-only: Timoshenko elements instead of Euler-Bernoulli
+    # mimicry fits only (detect.py): Timoshenko with the shear flexibility and the rotary
+    # inertia times this factor (1: the physical beam; 0: Euler-Bernoulli)
+    shear_scale: float = 1.0
     # truth-only: pieces (x0, x1, EI factor, rho A factor), x from the beam's first node
     pieces: list = field(default_factory=list)
     # node positions from the beam's first node (elements + 1 values); None: uniform mesh
@@ -228,9 +231,10 @@ def beam_element(beam: Beam, e: int) -> tuple[np.ndarray, np.ndarray]:
     x0, l = xs[e], xs[e + 1] - xs[e]
     ei = beam.youngs_modulus * beam.second_moment
     rho_a = beam.density * beam.area
-    if beam.timoshenko:
+    if beam.timoshenko and beam.shear_scale > 0.0:
         g = beam.youngs_modulus / (2.0 * (1.0 + beam.poisson))
-        return timoshenko(ei, beam.kappa() * g * beam.area, rho_a, beam.density * beam.second_moment, l)
+        t = beam.shear_scale
+        return timoshenko(ei, beam.kappa() * g * beam.area / t, rho_a, t * beam.density * beam.second_moment, l)
     local = [(p[0] - x0, p[1] - x0, p[2], p[3]) for p in beam.pieces if p[1] > x0 and p[0] < x0 + l]
     if local:
         return eb_piecewise(ei, rho_a, l, local)

@@ -165,6 +165,10 @@ def make_case(spec: Spec, seed: int) -> dict:
     if spec.effect is None:
         fit = detect.JointFit(built.nominal, sensors, MODES, noise.STATED_FREQUENCY, noise.STATED_SHAPE)
         lam, _ = fit.noncentrality(freqs, ys, np.log([v for j in joints for v in (j.k1, j.k2)]))
+    mimicry = {}
+    if spec.effect is not None:
+        mimicry = detect.mimicry(geom, built.nominal, sensors, freqs, ys, np.log([v for j in joints for v in (j.k1, j.k2)]),
+                                 noise.STATED_FREQUENCY, noise.STATED_SHAPE, skip=spec.effect)
     f_noisy, y_noisy = noise.apply(spec.situation, freqs, ys, rng)
     kind = "clean" if spec.effect is None else effects.EFFECTS[spec.effect].kind
     truth = {
@@ -190,6 +194,7 @@ def make_case(spec: Spec, seed: int) -> dict:
             "noncentrality_target": target,
             "noncentrality": lam,
             "size_search": [{"size": s, "noncentrality": l} for s, l in hist],
+            "mimicry": mimicry,
         },
         "sensors": {"kind": spec.sensors, "nodes": sensors, "dof": "w"},
         "modes": MODES,
@@ -199,7 +204,7 @@ def make_case(spec: Spec, seed: int) -> dict:
             "stated": {"frequency": noise.STATED_FREQUENCY, "shape": noise.STATED_SHAPE},
         },
         "noise_free": {"frequency_hz": list(map(float, freqs)), **info},
-        "expected": expected(spec.effect, kind, spec.size_class),
+        "expected": expected(spec.effect, kind, spec.size_class, lam, mimicry, spec.situation),
     }
     return {"spec": spec, "truth": truth, "model": built.nominal, "freqs": f_noisy, "shapes": y_noisy, "sensors": sensors}
 

@@ -29,6 +29,17 @@ truth.json under "expected"). Why these:
 - outside, weak: `unexplained`, or `none` (at the limit, as above); a named effect is wrong.
 `ambiguous` is counted as not right everywhere (shown in its own column).
 
+Mimicry (truth.json "effect.mimicry", computed by the generator, detect.py): a library effect
+e that reproduces the truth's noise-free data to within the detection limit is not something
+any test can tell from the truth, and naming it states what the data show. `effect:e` is also
+right when e's mimicry noncentrality lambda_e, at the situation's true noise, is at most
+min(16, lambda / 16): below the battery's detection limit (16) and leaving at most 1/16 of the
+truth's own noncentrality lambda (so a weak effect, lambda 16, is mimicked only by an effect
+within lambda_e <= 1). At the true noise: lambda scales as (stated / true sigma)^2, so x4 for
+half_stated and x1/4 for twice_stated; floor_x10 and heavy_tailed keep the stated value (for
+floor_x10 that overstates lambda_e: the strict side). The tables give both scores: `right`
+with the mimicry rule, `strict` without it.
+
 Usage: run.py BATTERY_DIR [--jointid target/release/jointid] [--jobs 2] [--reports DIR]
        [--markdown FILE] [--csv FILE]
 """
@@ -65,11 +76,32 @@ RULE_TEXT = {
 }
 
 
-def expected(effect: str | None, kind: str, size_class: str) -> dict:
-    """The right verdict words of a truth and the rule that gives them."""
+# noncentrality at the situation's true noise over that at the stated noise (module docs)
+TRUE_NOISE_POWER = {"as_stated": 1.0, "floor_x10": 1.0, "twice_stated": 0.25, "half_stated": 4.0, "heavy_tailed": 1.0}
+DETECTION_LIMIT = 16.0
+
+
+def mimics(noncentrality: float | None, mimicry: dict | None, situation: str | None) -> list:
+    """The library effects that reproduce the truth within the detection limit (module docs)."""
+    if not mimicry or not noncentrality or situation is None:
+        return []
+    power = TRUE_NOISE_POWER[situation]
+    limit = min(DETECTION_LIMIT, power * noncentrality / DETECTION_LIMIT)
+    return sorted(e for e, m in mimicry.items() if power * m["noncentrality"] <= limit)
+
+
+def expected(effect: str | None, kind: str, size_class: str, noncentrality: float | None = None,
+             mimicry: dict | None = None, situation: str | None = None) -> dict:
+    """The right verdict words of a truth and the rules that give them (without `mimicry`:
+    the strict rules)."""
     key = (kind, size_class)
     words = [w.format(name=effect) for w in RULES[key]] + ALSO_RIGHT.get(effect or "", [])
-    return {"right_verdicts": words, "rule": RULE_TEXT[key]}
+    also = mimics(noncentrality, mimicry, situation)
+    rule = RULE_TEXT[key]
+    if also:
+        words += [f"effect:{e}" for e in also if f"effect:{e}" not in words]
+        rule += f"; mimicked within the detection limit by {', '.join(also)}: naming it is also right"
+    return {"right_verdicts": words, "rule": rule}
 
 
 def verdict_word(report: dict) -> str:
@@ -119,7 +151,9 @@ def run_case(jointid: str, case: Path, reports: Path) -> dict:
         except (json.JSONDecodeError, OSError) as e:
             word, detail = "error", f"unreadable report: {e}"
     eff = truth["effect"]
-    right = expected(eff["name"], eff["kind"], eff["size_class"])["right_verdicts"]
+    strict = expected(eff["name"], eff["kind"], eff["size_class"])["right_verdicts"]
+    situation = truth["noise"]["situation"]
+    right = expected(eff["name"], eff["kind"], eff["size_class"], eff.get("noncentrality"), eff.get("mimicry"), situation)["right_verdicts"]
     return {
         "case": case.name,
         "situation": truth["noise"]["situation"],
@@ -131,6 +165,8 @@ def run_case(jointid: str, case: Path, reports: Path) -> dict:
         "sensors": truth["sensors"]["kind"],
         "verdict": word,
         "right": word in right,
+        "strict": word in strict,
+        "mimics": "+".join(mimics(eff.get("noncentrality"), eff.get("mimicry"), situation)),
         "seconds": seconds,
         "detail": detail,
     }
@@ -148,8 +184,8 @@ def markdown(rows: list, wall: float, battery: str) -> str:
     situations = list(dict.fromkeys(r["situation"] for r in sorted(rows, key=lambda r: r["case"])))
     words = sorted({r["verdict"] for r in rows}, key=lambda w: (w != "none", not w.startswith("effect:"), w))
     lines += [
-        "| noise situation | cases | right | clean -> none | library strong named | library weak named | library weak named or none | outside right | errors |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| noise situation | cases | right | strict | clean -> none | library strong named | library weak named | library weak named or none | outside right | errors |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
 
     def frac(sel, pred):
@@ -160,6 +196,7 @@ def markdown(rows: list, wall: float, battery: str) -> str:
         right = sum(r["right"] for r in rs)
         return (
             f"| {label} | {len(rs)} | {right}/{len(rs)} ({100 * right / len(rs):.0f}%) "
+            f"| {frac(rs, lambda r: r['strict'])} "
             f"| {frac((r for r in rs if r['kind'] == 'clean'), lambda r: r['verdict'] == 'none')} "
             f"| {frac((r for r in rs if r['kind'] == 'library' and r['size_class'] == 'strong'), lambda r: r['right'])} "
             f"| {frac((r for r in rs if r['kind'] == 'library' and r['size_class'] == 'weak'), lambda r: r['verdict'] == 'effect:' + r['effect'])} "
@@ -185,8 +222,8 @@ def markdown(rows: list, wall: float, battery: str) -> str:
         right = sum(r["right"] for r in rs)
         lines += [f"## {s}: {right}/{len(rs)} right ({100 * right / len(rs):.0f}%)", ""]
         cols = [w for w in words if any(r["verdict"] == w for r in rows)]
-        lines.append("| truth \\ verdict | " + " | ".join(c.replace("effect:", "") if c.startswith("effect:") else f"*{c}*" for c in cols) + " | right |")
-        lines.append("|---" * (len(cols) + 2) + "|")
+        lines.append("| truth \\ verdict | " + " | ".join(c.replace("effect:", "") if c.startswith("effect:") else f"*{c}*" for c in cols) + " | right | strict | mimicked by |")
+        lines.append("|---" * (len(cols) + 4) + "|")
         by_truth = defaultdict(list)
         for r in rs:
             by_truth[r["truth"]].append(r)
@@ -194,7 +231,10 @@ def markdown(rows: list, wall: float, battery: str) -> str:
             cnt = Counter(r["verdict"] for r in by_truth[t])
             ok = sum(r["right"] for r in by_truth[t])
             cells = [str(cnt[c]) if cnt[c] else "." for c in cols]
-            lines.append(f"| {t} | " + " | ".join(cells) + f" | {ok}/{len(by_truth[t])} |")
+            strict = sum(r["strict"] for r in by_truth[t])
+            mim = Counter(m for r in by_truth[t] for m in r["mimics"].split("+") if m)
+            mimicked = ", ".join(f"{m} ({n})" for m, n in sorted(mim.items())) or "."
+            lines.append(f"| {t} | " + " | ".join(cells) + f" | {ok}/{len(by_truth[t])} | {strict}/{len(by_truth[t])} | {mimicked} |")
         lines.append("")
     lines.append("Columns: effect names are `effect` verdicts naming that candidate; words in italics are other verdicts.")
     errors = [r for r in rows if r["verdict"] == "error"]

@@ -34,6 +34,7 @@ pub mod noise;
 pub mod pairing;
 pub mod report;
 pub mod sensitivity;
+pub mod whiteness;
 
 use std::sync::Arc;
 
@@ -43,6 +44,7 @@ pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residua
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
+pub use whiteness::{Whiteness, whiteness};
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -240,6 +242,9 @@ pub fn diagnose(
                     frequency_p_value: Some(
                         noise::frequency_lack_of_fit(f, measured, f.estimates.len(), noise).2,
                     ),
+                    whiteness_p_value: Some(
+                        whiteness(f, measured, noise, estimate.working_floor).p_value,
+                    ),
                     summary: Some(ErrorSummary::of(f, measured)),
                     error: None,
                     excluded: implausible(c.as_ref(), &ctx, f, &theta),
@@ -259,6 +264,7 @@ pub fn diagnose(
                     criterion: None,
                     fit_p_value: None,
                     frequency_p_value: None,
+                    whiteness_p_value: None,
                     summary: None,
                     error: Some(e.to_string()),
                     excluded: None,
@@ -273,10 +279,12 @@ pub fn diagnose(
     let base_p = chi2_sf(base.chi2, base.dof as f64);
     let base_frequency_p =
         noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
-    let explains = |fit_p: Option<f64>, frequency_p: Option<f64>| {
+    let base_white_p = whiteness(&base, measured, noise, estimate.working_floor).p_value;
+    let explains = |fit_p: Option<f64>, frequency_p: Option<f64>, white_p: Option<f64>| {
         plausible_noise
             && fit_p.is_some_and(|p| p >= FIT_ALPHA)
             && frequency_p.is_some_and(|p| p >= FIT_ALPHA)
+            && white_p.is_some_and(|p| p >= FIT_ALPHA)
     };
     let reports: Vec<CandidateReport> = candidates.iter().map(|(c, _)| c.clone()).collect();
     let mut contenders = Vec::new();
@@ -287,7 +295,7 @@ pub fn diagnose(
     let (mut verdict, after, selected): (Verdict, &Fitted, Option<String>) = match select(&reports)
     {
         Some((b, close)) => match &candidates[b] {
-            (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value) => {
+            (c, Some(f)) if explains(c.fit_p_value, c.frequency_p_value, c.whiteness_p_value) => {
                 if close.is_empty() {
                     (Verdict::Effect, *f, Some(c.name.clone()))
                 } else {
@@ -300,7 +308,9 @@ pub fn diagnose(
             }
             _ => (Verdict::Unexplained, &base, None),
         },
-        None if explains(Some(base_p), Some(base_frequency_p)) => (Verdict::None, &base, None),
+        None if explains(Some(base_p), Some(base_frequency_p), Some(base_white_p)) => {
+            (Verdict::None, &base, None)
+        }
         None => (Verdict::Unexplained, &base, None),
     };
     let per_mode = settings

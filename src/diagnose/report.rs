@@ -423,6 +423,9 @@ pub struct CandidateReport {
     /// Lack of fit of the frequencies alone under the working noise, P(chi^2_dof > chi^2_f)
     /// (module `noise`).
     pub frequency_p_value: Option<f64>,
+    /// Structure of the shape residuals along the structure, P(N(0, 1) > Z) (module
+    /// `whiteness`): small when neighbouring residuals share their sign.
+    pub whiteness_p_value: Option<f64>,
     /// The fit's summary with the candidate.
     #[serde(skip)]
     pub summary: Option<ErrorSummary>,

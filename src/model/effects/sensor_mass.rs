@@ -1,18 +1,39 @@
-//! `sensor_mass`: accelerometers load the beam. One lumped mass m_s at every node where a
-//! translation is measured (the same sensor everywhere).
+//! `sensor_mass`: accelerometers load the beam. One lumped mass m_s at every point where a
+//! translation is measured (the same sensor everywhere), with its rotary inertia J_s about
+//! the beam's axis as a second parameter: a sensor glued on a face sits h/2 and more away
+//! from the neutral axis, so the section's rotation moves it and J_s is at least
+//! m_s (h/2)^2 = 3 m_s I/A for a rectangle, more with the sensor's own size; it is not tied
+//! to m_s because the sensor's shape and mounting are not known.
+//!
+//! ```text
+//!   M(m_s, J_s) - M(0) = sum_sensors m_s c_w c_w^T + J_s c_theta c_theta^T
+//! ```
+//!
+//! c_w reads the sensor's translation (a node's DOF, or the element shape functions between
+//! nodes), c_theta the section's rotation at the same point (the node's rotation, or the shape
+//! functions' slope). J_s is a parameter only where some sensor has a rotation to load.
+//! A rotary inertia whose radius of gyration sqrt(J_s / m_s) exceeds twice the section height
+//! is no sensor (a rotary inertia without its mass is another effect): not plausible.
+//!
+//! Size (in `jointid simulate --effect sensor_mass=size`): total sensor mass / mass of all
+//! beams, with J_s = 0.
 
 use super::{Effect, EffectContext, EffectParameter, linear_contribution};
-use crate::structure::SparseSym;
+use crate::structure::{Direction, DofMap, Observation, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct SensorMass;
 
-fn pattern(ctx: &EffectContext) -> SparseSym {
+/// Largest radius of gyration of a sensor about the beam's axis, in section heights.
+const LARGEST_GYRATION_HEIGHTS: f64 = 2.0;
+
+/// c c^T of every observation.
+fn outer(points: &[Observation]) -> SparseSym {
     let mut s = SparseSym::zero();
-    for sensor in &ctx.sensors {
-        for &(a, ca) in &sensor.terms {
-            for &(b, cb) in &sensor.terms {
+    for point in points {
+        for &(a, ca) in &point.terms {
+            for &(b, cb) in &point.terms {
                 s.push(a, b, ca * cb);
             }
         }
@@ -20,9 +41,45 @@ fn pattern(ctx: &EffectContext) -> SparseSym {
     s
 }
 
-/// dM/dm_s.
+/// The section's rotation where `sensor` reads a translation, if the model has one there.
+fn rotation_at(dofs: &DofMap, sensor: &Observation) -> Option<Observation> {
+    if let Some(d) = sensor.single_dof() {
+        let node = dofs.get(d).node?;
+        let theta = dofs.index(&DofMap::node_label(node, Direction::Theta))?;
+        return Some(Observation::dof(dofs, theta));
+    }
+    dofs.at_x(sensor.x, Direction::Theta).ok()
+}
+
+/// The rotations under the sensors.
+fn rotations(ctx: &EffectContext) -> Vec<Observation> {
+    ctx.sensors
+        .iter()
+        .filter_map(|s| rotation_at(&ctx.structure.dofs, s))
+        .collect()
+}
+
+/// dM/dm_s, and dM/dJ_s where the sensors have rotations.
 fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
-    vec![(SparseSym::zero(), pattern(ctx))]
+    let mut out = vec![(SparseSym::zero(), outer(&ctx.sensors))];
+    let rotations = rotations(ctx);
+    if !rotations.is_empty() {
+        out.push((SparseSym::zero(), outer(&rotations)));
+    }
+    out
+}
+
+/// Mean I / A of the beam elements (a 35 mm square section's where the model has none).
+fn gyration_squared(ctx: &EffectContext) -> f64 {
+    let elements = &ctx.structure.sites.elements;
+    if elements.is_empty() {
+        return 1e-4;
+    }
+    elements
+        .iter()
+        .map(|e| e.section.gyration_squared())
+        .sum::<f64>()
+        / elements.len() as f64
 }
 
 impl Effect for SensorMass {
@@ -31,17 +88,27 @@ impl Effect for SensorMass {
     }
 
     fn describe(&self) -> &'static str {
-        "one lumped mass at every node where a translation is measured; size = total sensor mass / mass of all beams"
+        "a lumped mass with its rotary inertia at every point where a translation is measured; size = total sensor mass / mass of all beams (J = 0 in simulate)"
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
         let sensors = ctx.sensors.len().max(1) as f64;
-        vec![EffectParameter {
+        let mass_scale = 0.01 * ctx.structure.sites.beam_mass / sensors;
+        let mut out = vec![EffectParameter {
             name: "sensor_mass.m".into(),
             unit: "kg",
-            scale: 0.01 * ctx.structure.sites.beam_mass / sensors,
+            scale: mass_scale,
             non_negative: true,
-        }]
+        }];
+        if !rotations(ctx).is_empty() {
+            out.push(EffectParameter {
+                name: "sensor_mass.J".into(),
+                unit: "kg m^2",
+                scale: 3.0 * mass_scale * gyration_squared(ctx),
+                non_negative: true,
+            });
+        }
+        out
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
@@ -53,14 +120,17 @@ impl Effect for SensorMass {
     }
 
     fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
-        vec![size * ctx.structure.sites.beam_mass / ctx.sensors.len().max(1) as f64]
+        let mut theta = vec![0.0; self.parameters(ctx).len()];
+        theta[0] = size * ctx.structure.sites.beam_mass / ctx.sensors.len().max(1) as f64;
+        theta
     }
 
     fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
         theta[0] * ctx.sensors.len().max(1) as f64 / ctx.structure.sites.beam_mass
     }
 
-    /// The sensors together are lighter than the beams they sit on.
+    /// The sensors together are lighter than the beams they sit on, and a sensor's radius of
+    /// gyration about the axis is within twice the section height.
     fn plausible(&self, ctx: &EffectContext, theta: &[f64]) -> Result<(), String> {
         let total = theta[0] * ctx.sensors.len().max(1) as f64;
         let beams = ctx.structure.sites.beam_mass;
@@ -69,6 +139,17 @@ impl Effect for SensorMass {
                 "the {} sensors weigh {total:.4e} kg together, not less than the mass of all beams {beams:.4e} kg",
                 ctx.sensors.len()
             ));
+        }
+        if let Some(&j) = theta.get(1) {
+            // A rectangle's height is sqrt(12 I / A).
+            let height = (12.0 * gyration_squared(ctx)).sqrt();
+            let largest = theta[0] * (LARGEST_GYRATION_HEIGHTS * height).powi(2);
+            if j > largest {
+                return Err(format!(
+                    "a sensor's rotary inertia {j:.4e} kg m^2 with its mass {:.4e} kg puts its radius of gyration beyond {LARGEST_GYRATION_HEIGHTS} section heights ({height:.4e} m): no sensor",
+                    theta[0]
+                ));
+            }
         }
         Ok(())
     }
