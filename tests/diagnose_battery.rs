@@ -11,7 +11,10 @@
 //!
 //! What a right verdict is: truth.json's `expected.right_verdicts` (bench/battery/run.py's
 //! RULES): clean -> `none`; a library effect named (when weak, `none` too); an effect outside
-//! the library -> `unexplained` (when weak, `none` too).
+//! the library -> `unexplained` (when weak, `none` too); and, by the mimicry rule, a library
+//! effect that the generator's own fit shows reproducing the truth's noise-free data within
+//! the detection limit (bench/battery/detect.py, `mimicry`: a lap behind a soft joint spring
+//! is, to the data, a joint mass).
 //!
 //! The goal is >= 90% right in every noise situation and clean `none` >= 95%.
 //! - `clean_and_strong_library_cases_are_right` (fast, 20 cases: per situation the 2 clean
@@ -30,13 +33,11 @@ use jointid::measured::MeasuredModes;
 
 /// Right verdicts required per noise situation (out of the situation's 20 cases).
 const FLOOR: [(&str, usize); 5] = [
-    ("as_stated", 16),
-    ("floor_x10", 18),
-    ("twice_stated", 18),
-    ("half_stated", 14),
-    // 18, was 19: case 090 (weak shear) is `ambiguous` between shear and sensor_mass, whose
-    // chi^2 differ by 0.9 (the margin is 6 in AIC); it was named shear by that 0.9.
-    ("heavy_tailed", 18),
+    ("as_stated", 20),
+    ("floor_x10", 19),
+    ("twice_stated", 19),
+    ("half_stated", 15),
+    ("heavy_tailed", 19),
 ];
 /// Clean cases (of all situations) required to be `none`.
 const CLEAN_FLOOR: usize = 10;

@@ -175,9 +175,17 @@ pub fn diagnose(
     // under the working noise (module `noise`).
     let first_base = fit::fit(&ctx, measured, &stated_calibration, &[])?;
     let first = fit_all(&ctx, measured, &stated_calibration, &library);
+    // The largest physical model: a fit outside its effect's plausible range absorbs misfit
+    // no physical effect explains, and would pass it off as noise.
+    let joint_count = first_base.estimates.len();
     let largest = first
         .iter()
-        .filter_map(|(c, r)| r.as_ref().ok().map(|f| (c.name(), f)))
+        .filter_map(|(c, r)| r.as_ref().ok().map(|f| (c, f)))
+        .filter(|(c, f)| {
+            let theta: Vec<f64> = f.estimates[joint_count..].iter().map(|e| e.value).collect();
+            implausible(c.as_ref(), &ctx, f, &theta).is_none()
+        })
+        .map(|(c, f)| (c.name(), f))
         .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
         .filter(|(_, f)| f.chi2 < first_base.chi2)
         .unwrap_or(("joint only", &first_base));
@@ -206,7 +214,6 @@ pub fn diagnose(
     }
     let tried = library.len() as f64;
     let fits = refit_all(&ctx, measured, &calibration, &first);
-    let joint_count = base.estimates.len();
     let candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
         .iter()
         .map(|(c, result)| match result {
