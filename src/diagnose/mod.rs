@@ -537,6 +537,7 @@ mod tests {
             criterion: Some((chi2_sf(lrt, k as f64) * 3.0).min(1.0)),
             fit_p_value: Some(0.5),
             frequency_p_value: Some(0.5),
+            whiteness_p_value: Some(0.5),
             summary: None,
             error: None,
             excluded: None,
