@@ -226,11 +226,15 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
                 format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
                 format!("{:.1}", c.lrt.unwrap_or(0.0)),
                 "excluded".into(),
+                String::new(),
+                String::new(),
                 c.excluded.clone().unwrap_or_default(),
             ],
             Some(e) => vec![
                 c.name.clone(),
                 "fit failed".into(),
+                String::new(),
+                String::new(),
                 String::new(),
                 String::new(),
                 String::new(),
@@ -247,6 +251,8 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
                 format!("{:.1}", c.lrt.unwrap_or(0.0)),
                 format!("{:.2e}", c.criterion.unwrap_or(1.0)),
                 format!("{:.2e}", c.fit_p_value.unwrap_or(0.0)),
+                format!("{:.2e}", c.frequency_p_value.unwrap_or(0.0)),
+                format!("{:.2e}", c.whiteness_p_value.unwrap_or(0.0)),
             ],
         })
         .collect();
@@ -259,6 +265,8 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             "LR stat",
             "p (adj.)",
             "P(fit)",
+            "P(freq)",
+            "P(white)",
         ],
         &rows,
     )?;

@@ -225,7 +225,7 @@ pub fn diagnose_figures(
         out.push(Figure {
             name: "candidates.svg".into(),
             caption: format!(
-                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} candidates, Bonferroni) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
+                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} candidates, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
                 report.candidates.len()
             ),
             svg: body,
