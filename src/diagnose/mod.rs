@@ -369,7 +369,7 @@ pub fn diagnose(
         pattern,
         trend,
         criterion: format!(
-            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2) >= {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
+            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2), its frequencies alone and the whiteness of its shape residuals along the structure are all >= {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
             estimate.from_model
         ),
         noise: stated,
