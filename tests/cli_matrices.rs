@@ -197,6 +197,29 @@ fn export_never_overwrites_and_leaves_nothing_on_error() {
 }
 
 /// The bad inputs of issue 12 through `identify`: exit 2, the message, no output file.
+/// `identify` on `case`'s model.toml and d.csv exits 2 with `message` and writes no out.csv.
+fn identify_is_refused(case: &Path, name: &str, message: &str) {
+    let out = case.join("out.csv");
+    let o = jointid(&[
+        "identify",
+        "--model",
+        s(&case.join("model.toml")),
+        "--measured",
+        s(&case.join("d.csv")),
+        "--n",
+        "2",
+        "--m",
+        "1",
+        "--weighting",
+        "equal",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{name}");
+    assert!(stderr(&o).contains(message), "{name}: {}", stderr(&o));
+    assert!(!out.exists(), "{name}");
+}
+
 #[test]
 fn bad_external_inputs_exit_2_and_write_nothing() {
     let dir = scratch("cli-matrices", "bad");
@@ -244,25 +267,7 @@ fn bad_external_inputs_exit_2_and_write_nothing() {
         std::fs::write(case.join("model.toml"), &model_text).unwrap();
         std::fs::write(case.join(file), text).unwrap();
         std::fs::write(case.join("d.csv"), good_measured).unwrap();
-        let out = case.join("out.csv");
-        let o = jointid(&[
-            "identify",
-            "--model",
-            s(&case.join("model.toml")),
-            "--measured",
-            s(&case.join("d.csv")),
-            "--n",
-            "2",
-            "--m",
-            "1",
-            "--weighting",
-            "equal",
-            "--out",
-            s(&out),
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{name}");
-        assert!(stderr(&o).contains(message), "{name}: {}", stderr(&o));
-        assert!(!out.exists(), "{name}");
+        identify_is_refused(&case, name, message);
     }
     // A DOF label the table does not have, in the measured file.
     let case = dir.join("symmetry");
@@ -272,29 +277,11 @@ fn bad_external_inputs_exit_2_and_write_nothing() {
         "mode,frequency_hz,label,value\n1,12.0,m1,1.0\n1,12.0,m3,0.6\n",
     )
     .unwrap();
-    let out = case.join("out.csv");
-    let o = jointid(&[
-        "identify",
-        "--model",
-        s(&case.join("model.toml")),
-        "--measured",
-        s(&case.join("d.csv")),
-        "--n",
-        "2",
-        "--m",
-        "1",
-        "--weighting",
-        "equal",
-        "--out",
-        s(&out),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("d.csv:3: label = `m3` is invalid: it is neither a DOF of the model nor a declared sensor"),
-        "{}",
-        stderr(&o)
+    identify_is_refused(
+        &case,
+        "label",
+        "d.csv:3: label = `m3` is invalid: it is neither a DOF of the model nor a declared sensor",
     );
-    assert!(!out.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

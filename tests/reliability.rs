@@ -115,40 +115,27 @@ fn a_model_without_parameters_is_refused_by_every_command() {
 #[test]
 fn per_mode_settings_that_cannot_hold_a_mode_are_refused_before_the_fit() {
     let dir = setup("per-mode");
-    refused(
-        &jointid(
-            &dir,
-            &[
-                "diagnose",
-                "--model",
-                "model.toml",
-                "--measured",
-                "meas.csv",
-                "--n",
-                "5",
-                "--m",
-                "2",
-            ],
+    for (n, m, message) in [
+        (
+            "5",
+            "2",
+            "mode 4 pairs with basis index 6 (1-based, after 2 rigid-body modes), beyond n = 5",
         ),
-        "mode 4 pairs with basis index 6 (1-based, after 2 rigid-body modes), beyond n = 5",
-    );
-    refused(
-        &jointid(
-            &dir,
-            &[
-                "diagnose",
-                "--model",
-                "model.toml",
-                "--measured",
-                "meas.csv",
-                "--n",
-                "0",
-                "--m",
-                "0",
-            ],
-        ),
-        "n = 0 is invalid: it must be from 3 to 38",
-    );
+        ("0", "0", "n = 0 is invalid: it must be from 3 to 38"),
+    ] {
+        let args = [
+            "diagnose",
+            "--model",
+            "model.toml",
+            "--measured",
+            "meas.csv",
+            "--n",
+            n,
+            "--m",
+            m,
+        ];
+        refused(&jointid(&dir, &args), message);
+    }
     // Two shape rows on one mode: the default per-mode basis is small; no panic, a report.
     let text = std::fs::read_to_string(dir.join("meas.csv")).unwrap();
     let mut kept = 0;

@@ -37,6 +37,11 @@ STRONG = 400.0
 FLOOR = 0.02  # README: the floor of the shape noise, a fraction of the mode's peak
 
 
+def log_stiffnesses(joints: list) -> np.ndarray:
+    """log k1, log k2 of every joint: the fits' joint parameters."""
+    return np.log([v for j in joints for v in (j.k1, j.k2)])
+
+
 class JointFit:
     """The nominal model with every joint's k1, k2 free (log parameters), against fixed data."""
 
@@ -51,7 +56,7 @@ class JointFit:
                 c = copy.deepcopy(free)
                 setattr(c.joints[ji], which, 1.0)
                 self.units.append(fe.assemble(c)[0] - self.k0)
-        self.start = np.log([v for j in nominal.joints for v in (j.k1, j.k2)])
+        self.start = log_stiffnesses(nominal.joints)
         self.dofs = 2 * np.asarray(sensors)
         self.count = count
         self.sf = frequency_noise

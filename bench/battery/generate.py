@@ -122,7 +122,7 @@ def noncentrality_of(name, size, geom, joints, sensors, params) -> tuple[float, 
     freqs, shapes, info = measure.truth_modes(built, MODES)
     ys = measure.at_sensors(shapes, sensors)
     fit = detect.JointFit(built.nominal, sensors, MODES, noise.STATED_FREQUENCY, noise.STATED_SHAPE)
-    start = np.log([v for j in joints for v in (j.k1, j.k2)])
+    start = detect.log_stiffnesses(joints)
     lam, _ = fit.noncentrality(freqs, ys, start)
     return lam, info
 
@@ -162,13 +162,13 @@ def make_case(spec: Spec, seed: int) -> dict:
     built = effects.build(spec.effect, size, geom, joints, sensors, params)
     freqs, shapes, info = measure.truth_modes(built, MODES)
     ys = measure.at_sensors(shapes, sensors)
+    start = detect.log_stiffnesses(joints)
     if spec.effect is None:
         fit = detect.JointFit(built.nominal, sensors, MODES, noise.STATED_FREQUENCY, noise.STATED_SHAPE)
-        lam, _ = fit.noncentrality(freqs, ys, np.log([v for j in joints for v in (j.k1, j.k2)]))
-    mimicry = {}
-    if spec.effect is not None:
-        mimicry = detect.mimicry(geom, built.nominal, sensors, freqs, ys, np.log([v for j in joints for v in (j.k1, j.k2)]),
-                                 noise.STATED_FREQUENCY, noise.STATED_SHAPE, skip=spec.effect)
+        lam, _ = fit.noncentrality(freqs, ys, start)
+        mimicry = {}
+    else:
+        mimicry = detect.mimicry(geom, built.nominal, sensors, freqs, ys, start, noise.STATED_FREQUENCY, noise.STATED_SHAPE, skip=spec.effect)
     f_noisy, y_noisy = noise.apply(spec.situation, freqs, ys, rng)
     kind = "clean" if spec.effect is None else effects.EFFECTS[spec.effect].kind
     truth = {

@@ -56,6 +56,10 @@ import time
 from collections import Counter, defaultdict
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import detect  # noqa: E402
+
 # (truth kind, size class) -> right verdict words; "{name}" is the truth's effect name.
 RULES = {
     ("clean", "none"): ["none"],
@@ -78,7 +82,7 @@ RULE_TEXT = {
 
 # noncentrality at the situation's true noise over that at the stated noise (module docs)
 TRUE_NOISE_POWER = {"as_stated": 1.0, "floor_x10": 1.0, "twice_stated": 0.25, "half_stated": 4.0, "heavy_tailed": 1.0}
-DETECTION_LIMIT = 16.0
+DETECTION_LIMIT = detect.WEAK
 
 
 def mimics(noncentrality: float | None, mimicry: dict | None, situation: str | None) -> list:
@@ -156,7 +160,7 @@ def run_case(jointid: str, case: Path, reports: Path) -> dict:
     right = expected(eff["name"], eff["kind"], eff["size_class"], eff.get("noncentrality"), eff.get("mimicry"), situation)["right_verdicts"]
     return {
         "case": case.name,
-        "situation": truth["noise"]["situation"],
+        "situation": situation,
         "truth": "clean" if eff["name"] is None else f"{eff['name']}/{eff['size_class']}",
         "kind": eff["kind"],
         "size_class": eff["size_class"],

@@ -181,10 +181,7 @@ pub fn diagnose(
     let largest = first
         .iter()
         .filter_map(|(c, r)| r.as_ref().ok().map(|f| (c, f)))
-        .filter(|(c, f)| {
-            let theta: Vec<f64> = f.estimates[joint_count..].iter().map(|e| e.value).collect();
-            implausible(c.as_ref(), &ctx, f, &theta).is_none()
-        })
+        .filter(|(c, f)| implausible(c.as_ref(), &ctx, f, &effect_theta(f, joint_count)).is_none())
         .map(|(c, f)| (c.name(), f))
         .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
         .filter(|(_, f)| f.chi2 < first_base.chi2)
@@ -221,7 +218,7 @@ pub fn diagnose(
                 let k = f.estimates.len() - joint_count;
                 let lrt = (base.chi2 - f.chi2).max(0.0);
                 let parameters = f.estimates[joint_count..].to_vec();
-                let theta: Vec<f64> = parameters.iter().map(|e| e.value).collect();
+                let theta = effect_theta(f, joint_count);
                 let size = c.size_of_theta(&ctx, &theta);
                 // Linear propagation of the parameters' standard errors to the size.
                 let size_se = parameters
@@ -420,6 +417,12 @@ pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
 fn aic(c: &CandidateReport) -> f64 {
     let k = c.parameters.len();
     c.chi2.unwrap_or(f64::INFINITY) + 2.0 * k as f64
+}
+
+/// The effect's fitted parameters theta of `fitted` (its estimates after the `joints` joint
+/// parameters).
+fn effect_theta(fitted: &Fitted, joints: usize) -> Vec<f64> {
+    fitted.estimates[joints..].iter().map(|e| e.value).collect()
 }
 
 /// Why the fitted theta of `effect` is not a physical explanation, if it is not: a negative

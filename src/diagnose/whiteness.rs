@@ -27,6 +27,7 @@ use serde::Serialize;
 use super::fit::{Fitted, Noise, residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::chi2_sf;
+use crate::structure::Direction;
 
 /// Below this mean square of the standardised residuals there is nothing to test.
 const NOTHING_TO_TEST: f64 = 1e-6;
@@ -54,13 +55,13 @@ pub fn whiteness(
     let mut shape = res.shape.iter();
     let mut sequences = Vec::new();
     for mode in measured.modes() {
-        let z: Vec<(usize, f64, f64)> = mode
+        let z: Vec<(Direction, f64, f64)> = mode
             .points
             .iter()
             .zip(shape.by_ref())
             .map(|(p, &(u, e))| {
                 let sigma = working.shape * (u * u + floor * floor).sqrt();
-                (p.direction as usize, p.x, e / sigma)
+                (p.direction, p.x, e / sigma)
             })
             .collect();
         let mut order: Vec<usize> = (0..z.len()).collect();
@@ -138,9 +139,10 @@ mod tests {
             });
             heavy += usize::from(of_sequences(&h).p_value < 0.01);
         }
-        // Binomial(2000, 0.01): mean 20, sd 4.5.
-        assert!((5..=38).contains(&gauss), "{gauss} of 2000 below 0.01");
-        assert!((3..=38).contains(&heavy), "{heavy} of 2000 below 0.01");
+        // Binomial(2000, 0.01): mean 20, sd 4.5; within 3 sd (both draw 13 with these seeds:
+        // the self-normalised statistic is slightly conservative at 114 pairs).
+        assert!((7..=33).contains(&gauss), "{gauss} of 2000 below 0.01");
+        assert!((7..=33).contains(&heavy), "{heavy} of 2000 below 0.01");
     }
 
     /// A smooth misfit (half a sine along the beam, the size of the noise) under the noise is

@@ -12,7 +12,7 @@
 //! Size (in `jointid simulate --effect end_mass=size`): the mass at every free end as a
 //! fraction of the mass of all beams.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution};
+use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_site_name};
 use crate::structure::SparseSym;
 
 /// See the module docs.
@@ -46,11 +46,7 @@ impl Effect for EndMass {
         let ends = ctx.structure.sites.free_ends.len();
         (0..ends)
             .map(|e| EffectParameter {
-                name: if ends == 1 {
-                    "end_mass.m".into()
-                } else {
-                    format!("end_mass.end{}.m", e + 1)
-                },
+                name: per_site_name(self.name(), "end", e, ends, "m"),
                 unit: "kg",
                 scale: 0.01 * ctx.structure.sites.beam_mass,
                 non_negative: true,

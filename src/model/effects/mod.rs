@@ -238,13 +238,25 @@ pub(crate) fn linear_contribution(
     (k, m)
 }
 
-/// `name` or `name.jointK.suffix` for an effect with one parameter per joint.
-pub(crate) fn per_joint_name(effect: &str, joint: usize, joints: usize, suffix: &str) -> String {
-    if joints == 1 {
+/// `effect.suffix`, or `effect.siteK.suffix` (K 1-based) for an effect with one parameter per
+/// site of a kind (`joint`, `end`) when there are several.
+pub(crate) fn per_site_name(
+    effect: &str,
+    site: &str,
+    index: usize,
+    count: usize,
+    suffix: &str,
+) -> String {
+    if count == 1 {
         format!("{effect}.{suffix}")
     } else {
-        format!("{effect}.joint{}.{suffix}", joint + 1)
+        format!("{effect}.{site}{}.{suffix}", index + 1)
     }
+}
+
+/// [`per_site_name`] of joint `joint` of `joints`.
+pub(crate) fn per_joint_name(effect: &str, joint: usize, joints: usize, suffix: &str) -> String {
+    per_site_name(effect, "joint", joint, joints, suffix)
 }
 
 /// Adds `value` at (a, b) and its mirror, skipping removed DOFs.

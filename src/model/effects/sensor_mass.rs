@@ -154,3 +154,71 @@ impl Effect for SensorMass {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::modal::ModalSolution;
+    use crate::model::fixtures::paper_model;
+
+    /// Sensors at node 3 (w) and at x = 0.05 m, between nodes 1 and 2 of the first beam
+    /// (element length 0.2 / 7 m).
+    fn context() -> EffectContext {
+        let structure = paper_model(1e7, 1e4);
+        let modal = ModalSolution::solve(&structure.assemble()).unwrap();
+        let node = structure
+            .dofs
+            .index(&DofMap::node_label(3, Direction::W))
+            .unwrap();
+        let points = [
+            Observation::dof(&structure.dofs, node),
+            structure.dofs.at_x(0.05, Direction::W).unwrap(),
+        ];
+        EffectContext::new(structure, &points, modal.frequency_hz(2))
+    }
+
+    /// dM/dJ_s is the sum of c_theta c_theta^T over the sensors: at node 3 its own rotation
+    /// DOF, between nodes the slope of the shape functions there.
+    #[test]
+    fn the_rotary_inertia_loads_the_rotation_under_each_sensor() {
+        let ctx = context();
+        let names: Vec<String> = SensorMass
+            .parameters(&ctx)
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        assert_eq!(names, ["sensor_mass.m", "sensor_mass.J"]);
+        let dofs = &ctx.structure.dofs;
+        let theta3 = dofs
+            .index(&DofMap::node_label(3, Direction::Theta))
+            .unwrap();
+        let between = dofs.at_x(0.05, Direction::Theta).unwrap();
+        let dm_dj = &SensorMass.derivatives(&ctx, &[0.0, 0.0])[1].1;
+        // a^T (dM/dJ) a = (c_theta3 . a)^2 + (c_between . a)^2 for any a.
+        let n = ctx.structure.dof_count();
+        for seed in 0..4 {
+            let a: Vec<f64> = (0..n)
+                .map(|i| ((i * 7 + seed * 3) % 11) as f64 - 5.0)
+                .collect();
+            let want = a[theta3].powi(2) + between.read(&a).powi(2);
+            let got = dm_dj.form(&a, &a);
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{got} vs {want}"
+            );
+        }
+    }
+
+    /// A sensor whose radius of gyration sqrt(J_s / m_s) reaches two section heights (the
+    /// paper's 40 mm bars: 80 mm) is not plausible; just inside it is, and J_s without m_s never.
+    #[test]
+    fn a_rotary_inertia_beyond_two_section_heights_is_no_sensor() {
+        let ctx = context();
+        let m = 0.01;
+        let limit = m * (2.0_f64 * 0.04).powi(2);
+        assert!(SensorMass.plausible(&ctx, &[m, limit * 0.999]).is_ok());
+        let reason = SensorMass.plausible(&ctx, &[m, limit * 1.001]).unwrap_err();
+        assert!(reason.contains("no sensor"), "{reason}");
+        assert!(SensorMass.plausible(&ctx, &[0.0, 1e-9]).is_err());
+    }
+}
