@@ -29,6 +29,7 @@
 //! - [`fit`]: the weighted nonlinear least squares (Levenberg-Marquardt);
 //! - [`report`]: summaries, per-mode corrections, the report.
 
+pub mod along;
 pub mod fit;
 pub mod noise;
 pub mod pairing;
@@ -50,7 +51,6 @@ use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Effect, EffectContext, candidates, extended};
-use crate::stats::chi2_sf;
 use crate::structure::{Structure, check_elastic};
 
 /// Family-wise false-alarm probability of the candidate search.
@@ -241,15 +241,17 @@ pub fn diagnose(
                     chi2: Some(f.chi2),
                     dof: Some(f.dof),
                     lrt: Some(lrt),
-                    criterion: Some((chi2_sf(lrt, k as f64) * tried).min(1.0)),
-                    fit_p_value: Some(chi2_sf(f.chi2, f.dof as f64)),
+                    criterion: Some((estimate.lrt_p_value(lrt, k) * tried).min(1.0)),
+                    fit_p_value: Some(estimate.fit_p_value(f.chi2, f.dof)),
                     frequency_p_value: Some(
-                        noise::frequency_lack_of_fit(f, measured, f.estimates.len(), noise).2,
+                        estimate
+                            .frequency_lack_of_fit(f, measured, f.estimates.len())
+                            .2,
                     ),
                     whiteness_p_value: Some(
                         whiteness(f, measured, noise, estimate.working_floor).p_value,
                     ),
-                    summary: Some(ErrorSummary::of(f, measured)),
+                    summary: Some(ErrorSummary::of(f, measured, &estimate)),
                     error: None,
                     excluded: implausible(c.as_ref(), &ctx, f, &theta),
                 };
@@ -280,9 +282,10 @@ pub fn diagnose(
     // A model explains the data when its whole fit and its frequencies alone pass under the
     // working noise, and that noise is within LARGEST_FACTOR of the stated.
     let plausible_noise = estimate.shape_factor <= noise::LARGEST_FACTOR;
-    let base_p = chi2_sf(base.chi2, base.dof as f64);
-    let base_frequency_p =
-        noise::frequency_lack_of_fit(&base, measured, base.estimates.len(), noise).2;
+    let base_p = estimate.fit_p_value(base.chi2, base.dof);
+    let base_frequency_p = estimate
+        .frequency_lack_of_fit(&base, measured, base.estimates.len())
+        .2;
     let base_white_p = whiteness(&base, measured, noise, estimate.working_floor).p_value;
     let explains = |fit_p: Option<f64>, frequency_p: Option<f64>, white_p: Option<f64>| {
         plausible_noise
@@ -370,11 +373,11 @@ pub fn diagnose(
             estimate.from_model
         ),
         noise: stated,
+        initial: ErrorSummary::of(&initial, measured, &estimate),
+        before: ErrorSummary::of(&base, measured, &estimate),
+        after: ErrorSummary::of(after, measured, &estimate),
         noise_estimate: estimate,
         warnings,
-        initial: ErrorSummary::of(&initial, measured),
-        before: ErrorSummary::of(&base, measured),
-        after: ErrorSummary::of(after, measured),
         candidates: candidates.into_iter().map(|(c, _)| c).collect(),
         flatness_before,
         flatness_after: report::flatness(&per_mode_after),
@@ -517,6 +520,7 @@ fn default_per_mode(model: &Structure, measured: &MeasuredModes) -> Settings {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::chi2_sf;
 
     /// A fitted candidate with `k` parameters, chi^2 `chi2` against the joint-only 100.
     fn fitted(name: &str, k: usize, chi2: f64) -> CandidateReport {

@@ -24,8 +24,10 @@
 
 use serde::Serialize;
 
+use super::along;
 use super::fit::{Fitted, Noise, residuals};
 use crate::measured::MeasuredModes;
+use crate::stats::{chi2_sf, f_isf, f_sf};
 
 /// Smallest relative shape noise the estimate returns, as a fraction of the stated (a fit
 /// that interpolates the shapes must not make the noise vanish).
@@ -42,9 +44,14 @@ pub struct NoiseEstimate {
     pub shape_floor_abs: f64,
     /// Relative frequency noise from the frequency residuals alone (the check).
     pub frequency_check: f64,
-    /// The working noise of the selection: shape a with floor b / a, frequency the stated
-    /// times a / sigma_s (stated).
+    /// Effective degrees of freedom of the shape-noise estimate (nu of the F tests).
+    pub dof: f64,
+    /// The working noise of the selection: shape a with floor b / a; frequency the stated,
+    /// times a / sigma_s (stated) when that exceeds 1.
     pub working: Noise,
+    /// Whether the working frequency noise was scaled by the estimate (else it is the
+    /// stated, known).
+    pub frequency_estimated: bool,
     /// Working floor b / a, as a fraction of the peak (at least half the stated floor: a
     /// vanishing floor would let components at a node of the mode dominate).
     pub working_floor: f64,
@@ -52,8 +59,10 @@ pub struct NoiseEstimate {
     pub shape_factor: f64,
     /// s_f / sigma_f (stated).
     pub frequency_factor: f64,
-    /// Shape values and frequencies used.
-    pub shape_values: usize,
+    /// Pseudo-residuals of dense sensor sequences used ([`pseudo_residuals`]).
+    pub from_differences: usize,
+    /// Shape values of sparse sequences used at their levels.
+    pub from_levels: usize,
     /// Frequencies used.
     pub frequency_values: usize,
 }
@@ -72,19 +81,36 @@ pub fn estimate(
     let n_s = res.shape.len() as f64;
     let n_f = res.frequency.len() as f64;
     let n = n_s + n_f;
-    // The model's parameters are shared between frequencies and shapes by their counts; the
-    // shape scales are the shapes' own.
-    let p_s = measured.modes().len() as f64 + unknowns as f64 * n_s / n;
-    let p_f = unknowns as f64 * n_f / n;
-    let (a2, b2) = variance_function(
-        &res.shape,
+    let start = (
         stated.shape * stated.shape,
         (stated.shape * stated_floor).powi(2),
     );
-    let dof_s = (n_s - p_s).max(1.0);
-    let correction = n_s / dof_s;
-    let a = (a2 * correction).sqrt().max(SMALLEST_FACTOR * stated.shape);
-    let b = (b2 * correction).sqrt();
+    // Dense sequences give pseudo-residuals (a smooth misfit cancels); sparse ones their
+    // levels, corrected for the unknowns the fit spent on them: the model's parameters are
+    // shared between frequencies and shapes by their counts, the shape scales are the
+    // shapes' own.
+    let (dense, sparse): (Vec<along::Sequence>, Vec<along::Sequence>) =
+        along::sequences(fitted, measured)
+            .into_iter()
+            .partition(along::Sequence::dense);
+    let mut rows = pseudo_residuals(&dense);
+    let from_differences = rows.len();
+    let from_levels: usize = sparse.iter().map(|s| s.e.len()).sum();
+    let p_s = measured.modes().len() as f64 + unknowns as f64 * n_s / n;
+    let spent = p_s * from_levels as f64 / n_s;
+    let correction = from_levels as f64 / (from_levels as f64 - spent).max(1.0);
+    rows.extend(sparse.iter().flat_map(|s| {
+        s.u.iter().zip(&s.e).map(|(u, e)| Row {
+            relative: u * u,
+            floor: 1.0,
+            square: e * e * correction,
+        })
+    }));
+    let (a2, b2) = variance_function(&rows, start.0, start.1);
+    let dof = (pseudo_dof(&dense, a2, b2) + (from_levels as f64 - spent) - 1.0).max(1.0);
+    let a = a2.sqrt().max(SMALLEST_FACTOR * stated.shape);
+    let b = b2.sqrt();
+    let p_f = unknowns as f64 * n_f / n;
     let dof_f = (n_f - p_f).max(1.0);
     let frequency_check = (res.frequency.iter().map(|e| e * e).sum::<f64>() / dof_f).sqrt();
     let shape_factor = a / stated.shape;
@@ -93,33 +119,138 @@ pub fn estimate(
         shape: a,
         shape_floor_abs: b,
         frequency_check,
+        dof,
         working: Noise {
-            frequency: stated.frequency * shape_factor,
+            frequency: stated.frequency * shape_factor.max(1.0),
             shape: a,
         },
+        frequency_estimated: shape_factor > 1.0,
         working_floor: (b / a).max(0.5 * stated_floor),
         shape_factor,
         frequency_factor: frequency_check / stated.frequency,
-        shape_values: res.shape.len(),
+        from_differences,
+        from_levels,
         frequency_values: res.frequency.len(),
     }
 }
 
-/// The variance function Var e = a^2 u^2 + b^2 fitted to the squared residuals e^2 of the
-/// pairs (u, e) by iteratively reweighted least squares (weights 1 / v^2), a^2, b^2 >= 0,
-/// from (a2, b2); no degrees-of-freedom correction. Returns (a^2, b^2).
-pub fn variance_function(pairs: &[(f64, f64)], mut a2: f64, mut b2: f64) -> (f64, f64) {
+/// One observation of the variance function: E[square] = a^2 relative + b^2 floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Row {
+    /// Coefficient of a^2.
+    pub relative: f64,
+    /// Coefficient of b^2.
+    pub floor: f64,
+    /// The squared residual observed.
+    pub square: f64,
+}
+
+/// The pseudo-residuals of every interior sensor of each sequence (Gasser, Sroka &
+/// Jennen-Steinmetz, "Residual variance and residual pattern in nonlinear regression",
+/// Biometrika 73, 1986): with neighbours at x_{j-1} < x_j < x_{j+1},
+///
+/// ```text
+///   r_j = alpha e_{j-1} + beta e_{j+1} - e_j,   alpha = (x_{j+1} - x_j) / (x_{j+1} - x_{j-1}),
+///                                               beta = 1 - alpha,
+/// ```
+///
+/// zero for any misfit linear in x over the three sensors, and under independent errors of
+/// variance v_j = a^2 u_j^2 + b^2
+///
+/// ```text
+///   E r_j^2 = a^2 (alpha^2 u_{j-1}^2 + beta^2 u_{j+1}^2 + u_j^2) + b^2 (alpha^2 + beta^2 + 1).
+/// ```
+///
+/// A wrong model leaves a smooth difference of shapes, which the pseudo-residuals mostly
+/// cancel: the noise estimate does not absorb it (the residuals' levels would). Neither do the
+/// smooth components the fit itself removes (shape scales, joint and effect parameters), so
+/// no degrees-of-freedom correction is applied.
+pub fn pseudo_residuals(sequences: &[along::Sequence]) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for s in sequences {
+        for j in 1..s.x.len().saturating_sub(1) {
+            let (alpha, beta) = stencil(&s.x, j);
+            let r = alpha * s.e[j - 1] + beta * s.e[j + 1] - s.e[j];
+            rows.push(Row {
+                relative: alpha * alpha * s.u[j - 1].powi(2)
+                    + beta * beta * s.u[j + 1].powi(2)
+                    + s.u[j].powi(2),
+                floor: alpha * alpha + beta * beta + 1.0,
+                square: r * r,
+            });
+        }
+    }
+    rows
+}
+
+/// The weights (alpha, beta) of the neighbours of interior sensor j at positions `x`: the
+/// line through the neighbours at x_j (equal halves for coincident neighbours).
+fn stencil(x: &[f64], j: usize) -> (f64, f64) {
+    let span = x[j + 1] - x[j - 1];
+    let alpha = if span > 0.0 {
+        (x[j + 1] - x[j]) / span
+    } else {
+        0.5
+    };
+    (alpha, 1.0 - alpha)
+}
+
+/// Effective degrees of freedom of the shape-noise scale estimated from the pseudo-residuals
+/// under the variance function (a^2, b^2): neighbouring pseudo-residuals share errors, so
+/// the normalised sum S = sum r_j^2 / V_j of M of them has E S = M and, for Gaussian errors,
+/// Var S = 2 sum_jk rho_jk^2 (rho the correlation of r_j and r_k, nonzero for |j - k| <= 2):
+/// nu = 2 (E S)^2 / Var S = M^2 / sum_jk rho_jk^2 (Satterthwaite).
+/// Evenly spaced sensors under a constant variance give nu ~ 0.51 M.
+pub fn pseudo_dof(sequences: &[along::Sequence], a2: f64, b2: f64) -> f64 {
+    let (mut count, mut sum_rho2) = (0.0, 0.0);
+    for s in sequences {
+        let m = s.x.len();
+        if m < 3 {
+            continue;
+        }
+        let v: Vec<f64> = s.u.iter().map(|u| (a2 * u * u + b2).max(1e-300)).collect();
+        let st: Vec<(f64, f64)> = (1..m - 1).map(|j| stencil(&s.x, j)).collect();
+        let var: Vec<f64> = (1..m - 1)
+            .map(|j| {
+                let (a, b) = st[j - 1];
+                a * a * v[j - 1] + v[j] + b * b * v[j + 1]
+            })
+            .collect();
+        for i in 0..var.len() {
+            count += 1.0;
+            sum_rho2 += 1.0;
+            // r_i and r_{i+1} share the errors at sensors i + 1 and i + 2; r_i and r_{i+2}
+            // the error at sensor i + 2 (sensor index = pseudo-residual index + 1).
+            if i + 1 < var.len() {
+                let cov = -st[i + 1].0 * v[i + 1] - st[i].1 * v[i + 2];
+                sum_rho2 += 2.0 * cov * cov / (var[i] * var[i + 1]);
+            }
+            if i + 2 < var.len() {
+                let cov = st[i].1 * st[i + 2].0 * v[i + 2];
+                sum_rho2 += 2.0 * cov * cov / (var[i] * var[i + 2]);
+            }
+        }
+    }
+    if sum_rho2 == 0.0 {
+        return 0.0;
+    }
+    count * count / sum_rho2
+}
+
+/// The variance function E[square] = a^2 relative + b^2 floor fitted to `rows` by iteratively
+/// reweighted least squares (weights 1 / v^2), a^2, b^2 >= 0, from (a2, b2); no
+/// degrees-of-freedom correction. Returns (a^2, b^2).
+pub fn variance_function(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
     for _ in 0..50 {
         let (mut s11, mut s12, mut s22, mut t1, mut t2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for &(u, e) in pairs {
-            let v = (a2 * u * u + b2).max(1e-300);
+        for r in rows {
+            let v = (a2 * r.relative + b2 * r.floor).max(1e-300);
             let w = 1.0 / (v * v);
-            let x1 = u * u;
-            s11 += w * x1 * x1;
-            s12 += w * x1;
-            s22 += w;
-            t1 += w * x1 * e * e;
-            t2 += w * e * e;
+            s11 += w * r.relative * r.relative;
+            s12 += w * r.relative * r.floor;
+            s22 += w * r.floor * r.floor;
+            t1 += w * r.relative * r.square;
+            t2 += w * r.floor * r.square;
         }
         let det = s11 * s22 - s12 * s12;
         let (mut na2, mut nb2) = if det > 1e-12 * s11 * s22 {
@@ -150,29 +281,69 @@ pub fn variance_function(pairs: &[(f64, f64)], mut a2: f64, mut b2: f64) -> (f64
 /// the data.
 pub const LARGEST_FACTOR: f64 = 4.0;
 
-/// The lack of fit of the frequencies of `fitted` (with `unknowns` model parameters) under
-/// the working frequency noise: sum of ((f_s - f_m) / (sigma_f f_m))^2, its degrees of
-/// freedom n_f - unknowns (at least 1: the joint parameters are fixed mostly by the
-/// frequencies, the most precise data), and P(chi^2_dof > it).
-pub fn frequency_lack_of_fit(
-    fitted: &Fitted,
-    measured: &MeasuredModes,
-    unknowns: usize,
-    working: Noise,
-) -> (f64, usize, f64) {
-    let res = residuals(fitted, measured);
-    let chi2: f64 = res
-        .frequency
-        .iter()
-        .map(|e| (e / working.frequency).powi(2))
-        .sum();
-    let dof = res.frequency.len().saturating_sub(unknowns).max(1);
-    (chi2, dof, crate::stats::chi2_sf(chi2, dof as f64))
+impl NoiseEstimate {
+    /// P(F(dof, nu) > chi^2 / dof): the goodness of fit of a chi^2 computed under the working
+    /// noise, whose scale was estimated on nu degrees of freedom.
+    pub fn fit_p_value(&self, chi2: f64, dof: usize) -> f64 {
+        let dof = dof.max(1) as f64;
+        f_sf(chi2 / dof, dof, self.dof)
+    }
+
+    /// P(F(k, nu) > D / k): the likelihood-ratio statistic D of k more unknowns under the
+    /// estimated scale.
+    pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
+        let k = k.max(1) as f64;
+        f_sf(lrt / k, k, self.dof)
+    }
+
+    /// The D with [`Self::lrt_p_value`] = p.
+    pub fn lrt_critical(&self, p: f64, k: usize) -> f64 {
+        let k = k.max(1) as f64;
+        k * f_isf(p, k, self.dof)
+    }
+
+    /// The lack of fit of the frequencies of `fitted` (with `unknowns` model parameters)
+    /// under the working frequency noise: chi^2 = sum of ((f_s - f_m) / (sigma_f f_m))^2, its
+    /// degrees of freedom n_f - unknowns (at least 1: the joint parameters are fixed mostly
+    /// by the frequencies, the most precise data), and its p-value (F(dof, nu) when the
+    /// working frequency noise was scaled by the estimate, chi^2 when it is the stated).
+    pub fn frequency_lack_of_fit(
+        &self,
+        fitted: &Fitted,
+        measured: &MeasuredModes,
+        unknowns: usize,
+    ) -> (f64, usize, f64) {
+        let res = residuals(fitted, measured);
+        let chi2: f64 = res
+            .frequency
+            .iter()
+            .map(|e| (e / self.working.frequency).powi(2))
+            .sum();
+        let dof = res.frequency.len().saturating_sub(unknowns).max(1);
+        let p = if self.frequency_estimated {
+            self.fit_p_value(chi2, dof)
+        } else {
+            chi2_sf(chi2, dof as f64)
+        };
+        (chi2, dof, p)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The rows of residuals (u, e) taken at their levels.
+    fn levels(pairs: &[(f64, f64)]) -> Vec<Row> {
+        pairs
+            .iter()
+            .map(|&(u, e)| Row {
+                relative: u * u,
+                floor: 1.0,
+                square: e * e,
+            })
+            .collect()
+    }
 
     /// Pairs whose squared residuals lie exactly on a^2 u^2 + b^2: the fit returns a^2, b^2
     /// to rounding, from any start.
@@ -186,7 +357,7 @@ mod tests {
             })
             .collect();
         for start in [(1e-4, 1e-8), (1e-2, 1e-2), (4e-4, 0.0)] {
-            let (a2, b2) = variance_function(&pairs, start.0, start.1);
+            let (a2, b2) = variance_function(&levels(&pairs), start.0, start.1);
             assert!(
                 (a2 - a * a).abs() <= 1e-12 * a * a,
                 "a^2 {a2} from {start:?}"
@@ -207,7 +378,7 @@ mod tests {
                 (u, 0.02 * u * if i % 2 == 0 { 0.9 } else { 1.1 })
             })
             .collect();
-        let (a2, b2) = variance_function(&pairs, 4e-4, 1e-6);
+        let (a2, b2) = variance_function(&levels(&pairs), 4e-4, 1e-6);
         assert!(b2 >= 0.0 && a2 > 0.0, "a^2 {a2}, b^2 {b2}");
         assert!((a2.sqrt() / 0.02 - 1.0).abs() < 0.05, "a {}", a2.sqrt());
     }

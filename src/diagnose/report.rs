@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use super::fit::{Estimate, Fitted, Noise};
+use super::noise::NoiseEstimate;
 use super::pairing::mac;
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings};
@@ -179,8 +180,9 @@ pub struct ErrorSummary {
 }
 
 impl ErrorSummary {
-    /// The summary of a fitted (or as-given) model.
-    pub fn of(fitted: &Fitted, measured: &MeasuredModes) -> Self {
+    /// The summary of a fitted (or as-given) model; its goodness of fit under the scale of
+    /// `noise`.
+    pub fn of(fitted: &Fitted, measured: &MeasuredModes, noise: &NoiseEstimate) -> Self {
         let y = fitted.modal.vectors();
         let modes: Vec<ModeError> = measured
             .modes()
@@ -226,7 +228,7 @@ impl ErrorSummary {
             chi2: fitted.chi2,
             dof: fitted.dof,
             chi2_per_dof: fitted.chi2 / fitted.dof as f64,
-            p_value: chi2_sf(fitted.chi2, fitted.dof as f64),
+            p_value: noise.fit_p_value(fitted.chi2, fitted.dof),
             parameters: fitted.estimates.clone(),
             modes,
         }

@@ -24,10 +24,10 @@
 
 use serde::Serialize;
 
-use super::fit::{Fitted, Noise, residuals};
+use super::along;
+use super::fit::{Fitted, Noise};
 use crate::measured::MeasuredModes;
 use crate::stats::chi2_sf;
-use crate::structure::Direction;
 
 /// Below this mean square of the standardised residuals there is nothing to test.
 const NOTHING_TO_TEST: f64 = 1e-6;
@@ -51,26 +51,15 @@ pub fn whiteness(
     working: Noise,
     floor: f64,
 ) -> Whiteness {
-    let res = residuals(fitted, measured);
-    let mut shape = res.shape.iter();
-    let mut sequences = Vec::new();
-    for mode in measured.modes() {
-        let z: Vec<(Direction, f64, f64)> = mode
-            .points
-            .iter()
-            .zip(shape.by_ref())
-            .map(|(p, &(u, e))| {
-                let sigma = working.shape * (u * u + floor * floor).sqrt();
-                (p.direction, p.x, e / sigma)
-            })
-            .collect();
-        let mut order: Vec<usize> = (0..z.len()).collect();
-        order.sort_by(|&a, &b| z[a].0.cmp(&z[b].0).then(z[a].1.total_cmp(&z[b].1)));
-        // One sequence per direction, along x.
-        for chunk in order.chunk_by(|&a, &b| z[a].0 == z[b].0) {
-            sequences.push(chunk.iter().map(|&i| z[i].2).collect());
-        }
-    }
+    let sequences: Vec<Vec<f64>> = along::sequences(fitted, measured)
+        .iter()
+        .map(|s| {
+            s.u.iter()
+                .zip(&s.e)
+                .map(|(u, e)| e / (working.shape * (u * u + floor * floor).sqrt()))
+                .collect()
+        })
+        .collect();
     of_sequences(&sequences)
 }
 

@@ -479,10 +479,54 @@ fn beam(
             },
         });
     }
+    let h = length / elements as f64;
+    section_terms(check, &format!("beam[{i}]"), &own, h)?;
+    for (k, g) in segments.iter().enumerate() {
+        // The elements of a segment are never longer than the beam's.
+        section_terms(
+            check,
+            &format!("beam[{i}].segment[{k}]"),
+            &g.section,
+            h.min(g.to - g.from),
+        )?;
+    }
     segments.sort_by(|a, b| a.from.total_cmp(&b.from));
     let mut beam = Beam::uniform(length, elements, own);
     beam.segments = segments;
     Ok(beam)
+}
+
+/// Refuses a section whose element terms on elements of length `h` (mass rho A h, bending
+/// stiffness E I / h^3, axial stiffness E A / h) are not finite, nonzero numbers: each field
+/// may be in range and their product still overflow (an area of 1e308 m^2).
+fn section_terms(check: &FieldCheck, at: &str, s: &Section, h: f64) -> Result<(), InputError> {
+    let terms = [
+        (
+            "density x area x element length",
+            s.density * s.area * h,
+            "kg",
+        ),
+        (
+            "youngs_modulus x second_moment / element length^3",
+            s.youngs_modulus * s.second_moment / h.powi(3),
+            "N/m",
+        ),
+        (
+            "youngs_modulus x area / element length",
+            s.youngs_modulus * s.area / h,
+            "N/m",
+        ),
+    ];
+    for (name, value, unit) in terms {
+        if !value.is_normal() {
+            return Err(check.invalid(
+                at.to_string(),
+                format!("{name} = {}", crate::input::Number(value)),
+                format!("the section's element terms must be finite and nonzero ({unit}): check the units and magnitudes of its fields"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn joint(j: &RawJoint, i: usize, check: &FieldCheck) -> Result<Joint, InputError> {
@@ -556,6 +600,24 @@ k2 = 1.0e4
         assert_eq!(
             error_of(&text),
             "m.toml: beam[1].length = -0.3 is invalid: it must be finite and > 0 (m)"
+        );
+    }
+
+    /// Fields each in range whose product overflows are refused with the section named.
+    #[test]
+    fn sections_whose_element_terms_overflow_are_rejected() {
+        let text = GOOD.replacen("area = 2.4e-3", "area = 1e308", 1);
+        let err = error_of(&text);
+        assert!(
+            err.starts_with("m.toml: beam[0] = density x area x element length = ")
+                && err.contains("must be finite and nonzero (kg)"),
+            "{err}"
+        );
+        let text = GOOD.replacen("second_moment = 3.2e-7", "second_moment = 1e300", 1);
+        let err = error_of(&text);
+        assert!(
+            err.contains("youngs_modulus x second_moment / element length^3"),
+            "{err}"
         );
     }
 
