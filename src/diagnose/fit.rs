@@ -161,7 +161,41 @@ struct Evaluation {
     residual: Vec<f64>,
 }
 
-impl Problem<'_> {
+impl<'a> Problem<'a> {
+    fn new(
+        ctx: &'a Arc<EffectContext>,
+        measured: &'a MeasuredModes,
+        calibration: &'a Calibration,
+        effects: &[Arc<dyn Effect>],
+    ) -> Self {
+        let noise = calibration.noise;
+        Problem {
+            ctx,
+            measured,
+            noise,
+            pairing: &calibration.pairing,
+            effects: effects
+                .iter()
+                .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
+                .collect(),
+            sigma: measured
+                .modes()
+                .iter()
+                .map(|m| {
+                    let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                    m.values
+                        .iter()
+                        .map(|v| {
+                            noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
+                        })
+                        .collect()
+                })
+                .collect(),
+            joint_p0: ctx.structure.identified().iter().map(|p| p.value).collect(),
+            covering: AtomicUsize::new(0),
+        }
+    }
+
     fn joint_count(&self) -> usize {
         self.joint_p0.len()
     }
@@ -422,6 +456,83 @@ pub fn refit(
     )
 }
 
+/// A joint-only fit linearised at its optimum: the weighted residuals and their derivatives.
+#[derive(Debug, Clone)]
+pub struct Linearisation {
+    /// Weighted residuals, per measured mode its frequency then its shape values.
+    pub residual: Vec<f64>,
+    /// d residual / d unknowns: the joints' x_j = ln(p_j / p_j0), then one shape scale per
+    /// measured mode.
+    pub jacobian: Mat<f64>,
+    /// Number of joint unknowns (the first columns).
+    pub joints: usize,
+    /// The measured mode of every row (index into the measured modes).
+    pub mode_of_row: Vec<usize>,
+    /// Standard deviation of every row, relative for a frequency (sigma_f), per unit peak for
+    /// a shape value: residual times it is the unweighted residual of [`residuals`].
+    pub sigma: Vec<f64>,
+}
+
+impl Linearisation {
+    /// The unweighted residuals (as [`residuals`] gives them) of weighted residuals `weighted`
+    /// in this linearisation's rows.
+    pub fn unweighted(&self, weighted: &[f64], measured: &MeasuredModes) -> Residuals {
+        let mut out = Residuals {
+            frequency: Vec::new(),
+            shape: Vec::new(),
+        };
+        let mut row = 0;
+        for m in measured.modes() {
+            out.frequency.push(weighted[row] * self.sigma[row]);
+            let peak = m
+                .values
+                .iter()
+                .fold(0.0_f64, |a, b| a.max(b.abs()))
+                .max(f64::MIN_POSITIVE);
+            for (k, v) in m.values.iter().enumerate() {
+                let i = row + 1 + k;
+                out.shape.push((v / peak, weighted[i] * self.sigma[i]));
+            }
+            row += 1 + m.values.len();
+        }
+        out
+    }
+}
+
+/// Linearises the joint-only fit `fitted` (made under `calibration`) at its optimum.
+pub fn linearise(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    fitted: &Fitted,
+) -> Result<Linearisation, FitError> {
+    let problem = Problem::new(ctx, measured, calibration, &[]);
+    let eval = problem.evaluate(&fitted.solution, &fitted.pairing)?;
+    let jacobian = problem.jacobian(&fitted.solution, &eval, &fitted.pairing);
+    let mut mode_of_row = Vec::new();
+    let mut sigma = Vec::new();
+    for (r, m) in measured.modes().iter().enumerate() {
+        let peak = m
+            .values
+            .iter()
+            .fold(0.0_f64, |a, b| a.max(b.abs()))
+            .max(f64::MIN_POSITIVE);
+        mode_of_row.push(r);
+        sigma.push(problem.noise.frequency);
+        for &s in &problem.sigma[r] {
+            mode_of_row.push(r);
+            sigma.push(s / peak);
+        }
+    }
+    Ok(Linearisation {
+        residual: eval.residual,
+        jacobian,
+        joints: problem.joint_count(),
+        mode_of_row,
+        sigma,
+    })
+}
+
 fn run(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
@@ -430,33 +541,7 @@ fn run(
     iterate: bool,
     from: Option<&[f64]>,
 ) -> Result<Fitted, FitError> {
-    let noise = calibration.noise;
-    let joint_p0: Vec<f64> = ctx.structure.identified().iter().map(|p| p.value).collect();
-    let problem = Problem {
-        ctx,
-        measured,
-        noise,
-        pairing: &calibration.pairing,
-        effects: effects
-            .iter()
-            .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
-            .collect(),
-        sigma: measured
-            .modes()
-            .iter()
-            .map(|m| {
-                let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
-                m.values
-                    .iter()
-                    .map(|v| {
-                        noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
-                    })
-                    .collect()
-            })
-            .collect(),
-        joint_p0,
-        covering: AtomicUsize::new(0),
-    };
+    let problem = Problem::new(ctx, measured, calibration, effects);
     let unknowns = problem.joint_count() + problem.effect_count() + measured.modes().len();
     let data: usize = measured.modes().iter().map(|m| 1 + m.points.len()).sum();
     if data <= unknowns {

@@ -25,7 +25,7 @@
 use serde::Serialize;
 
 use super::along;
-use super::fit::{Fitted, Noise, residuals};
+use super::fit::{Fitted, Noise, Residuals, residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::{chi2_sf, f_isf, f_sf};
 
@@ -302,18 +302,12 @@ impl NoiseEstimate {
         k * f_isf(p, k, self.dof)
     }
 
-    /// The lack of fit of the frequencies of `fitted` (with `unknowns` model parameters)
+    /// The lack of fit of the frequency residuals `res` of a fit (with `unknowns` model parameters)
     /// under the working frequency noise: chi^2 = sum of ((f_s - f_m) / (sigma_f f_m))^2, its
     /// degrees of freedom n_f - unknowns (at least 1: the joint parameters are fixed mostly
     /// by the frequencies, the most precise data), and its p-value (F(dof, nu) when the
     /// working frequency noise was scaled by the estimate, chi^2 when it is the stated).
-    pub fn frequency_lack_of_fit(
-        &self,
-        fitted: &Fitted,
-        measured: &MeasuredModes,
-        unknowns: usize,
-    ) -> (f64, usize, f64) {
-        let res = residuals(fitted, measured);
+    pub fn frequency_lack_of_fit(&self, res: &Residuals, unknowns: usize) -> (f64, usize, f64) {
         let chi2: f64 = res
             .frequency
             .iter()

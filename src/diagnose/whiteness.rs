@@ -25,7 +25,7 @@
 use serde::Serialize;
 
 use super::along;
-use super::fit::{Fitted, Noise};
+use super::fit::{Fitted, Noise, Residuals, residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::chi2_sf;
 
@@ -51,7 +51,12 @@ pub fn whiteness(
     working: Noise,
     floor: f64,
 ) -> Whiteness {
-    let sequences: Vec<Vec<f64>> = along::sequences(fitted, measured)
+    of_residuals(&residuals(fitted, measured), measured, working, floor)
+}
+
+/// The whiteness test of the shape residuals `res` of `measured` (module docs).
+pub fn of_residuals(res: &Residuals, measured: &MeasuredModes, working: Noise, floor: f64) -> Whiteness {
+    let sequences: Vec<Vec<f64>> = along::of_residuals(res, measured)
         .iter()
         .map(|s| {
             s.u.iter()
