@@ -33,11 +33,11 @@ use jointid::measured::MeasuredModes;
 
 /// Right verdicts required per noise situation (out of the situation's 20 cases).
 const FLOOR: [(&str, usize); 5] = [
-    ("as_stated", 20),
+    ("as_stated", 19),
     ("floor_x10", 19),
     ("twice_stated", 19),
     ("half_stated", 15),
-    ("heavy_tailed", 19),
+    ("heavy_tailed", 20),
 ];
 /// Clean cases (of all situations) required to be `none`.
 const CLEAN_FLOOR: usize = 10;

@@ -168,6 +168,8 @@ fn diagnose_plots_show_shapes_errors_corrections_and_candidates() {
         data.to_str().unwrap(),
         "--plots",
         plots.to_str().unwrap(),
+        "--json",
+        dir.join("report.json").to_str().unwrap(),
     ]);
     assert!(
         run.status.success(),
@@ -207,11 +209,18 @@ fn diagnose_plots_show_shapes_errors_corrections_and_candidates() {
         );
     }
     let texts = svg_texts(&plots.join("candidates.svg"));
+    // The line of the largest parameter count: sensor_mass has two (m_s, J_s); D / 2 is
+    // F(2, nu) under the scale estimated on nu degrees of freedom, its critical value at
+    // 0.01 / 6 (five static candidates and the frequency-dependent joint).
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let nu = report["noise_estimate"]["dof"].as_f64().unwrap();
+    let critical = format!(
+        "critical value {:.2}",
+        2.0 * jointid::stats::f_isf(0.01 / 6.0, 2.0, nu)
+    );
     assert!(
-        texts.contains(&"selected".to_string())
-            // the line of the largest parameter count: sensor_mass has two (m_s, J_s), and
-            // chi^2_2 exceeds 12.43 with probability 0.01 / 5
-            && texts.iter().any(|t| t.starts_with("critical value 12.43")),
+        texts.contains(&"selected".to_string()) && texts.iter().any(|t| t.starts_with(&critical)),
         "{texts:?}"
     );
     assert_eq!(

@@ -146,19 +146,24 @@ def find_size(noncentrality, target: float, guess: float, lower: float, upper: f
 #                squares of (nominal + e) against the noise-free data,
 #
 # the same yardstick as the detectability above. Knobs (the battery's own effects, with the
-# knobs a fit would free): joint_coupling s in [-0.95, 0.95]; joint_mass its mass and its
+# knobs a fit would free): joint_coupling s in [-0.95, 0.95] and joint_mass its mass, one per
+# joint as jointid's candidates free them, joint_mass also its
 # rotary inertia ratio c in [1, 9] (c = 1 is the coupled inertia of jointid's candidate, so
-# the mimic covers it); sensor_mass its mass (its cube inertia follows); suspension its bounce
+# the mimic covers it); sensor_mass its mass and its radius of gyration g in [0, 2] section
+# heights (jointid's plausible range of the sensor's free rotary inertia); suspension its bounce
 # ratio; shear a factor t in [0, 3] on the Timoshenko shear flexibility and rotary inertia of
 # the physical section (t = 1 the true Timoshenko beam).
 MIMICS = ["joint_coupling", "joint_mass", "sensor_mass", "suspension", "shear"]
+# effects whose size jointid's candidate frees at every joint separately (one k12, one mass per
+# joint): their mimics free one size per joint too
+PER_JOINT = ["joint_coupling", "joint_mass"]
 
 # knob bounds and starting points per library effect
 # (the first start is the nominal model: the effect absent)
 _KNOBS = {
     "joint_coupling": ([-0.95], [0.95], [[0.0], [0.05], [-0.05]]),
     "joint_mass": ([0.0, 1.0], [1.0, 9.0], [[0.0, 1.0], [0.01, 1.0], [0.01, 5.0]]),
-    "sensor_mass": ([0.0], [0.5], [[0.0], [0.005], [0.05]]),
+    "sensor_mass": ([0.0, 0.0], [0.5, 2.0], [[0.0, 0.6], [0.005, 0.6], [0.05, 0.6], [0.005, 1.5]]),
     "suspension": ([0.0], [0.5], [[0.0], [0.02], [0.2]]),
     "shear": ([0.0], [3.0], [[0.0], [0.5], [1.5]]),
 }
@@ -184,8 +189,25 @@ class Mimic:
             for b in c.beams:
                 b.timoshenko, b.shear_scale = True, float(knobs[0])
             return c
-        params = {"joint_coupling": {"sign": 1.0}, "joint_mass": {"inertia_ratio": float(knobs[-1])}}.get(self.name, {})
+        if self.name in PER_JOINT:
+            # one size per joint (the first knobs), as jointid's candidate frees them
+            sizes = [float(v) for v in knobs[: self.joints]]
+            params = {"sign": 1.0, "per_joint": sizes}
+            if self.name == "joint_mass":
+                params["inertia_ratio"] = float(knobs[-1])
+            return effects.build(self.name, 1.0, self.geom, joints, self.sensors, params, nominal=self.nominal).effect
+        params = {"gyration_heights": float(knobs[1])} if self.name == "sensor_mass" else {}
         return effects.build(self.name, float(knobs[0]), self.geom, joints, self.sensors, params, nominal=self.nominal).effect
+
+    def knobs(self) -> tuple[list, list, list]:
+        """Bounds and starts of the knobs: ``_KNOBS``, the size repeated per joint for the
+        per-joint effects."""
+        lower, upper, starts = _KNOBS[self.name]
+        if self.name not in PER_JOINT:
+            return lower, upper, starts
+        n = self.joints
+        return ([lower[0]] * n + lower[1:], [upper[0]] * n + upper[1:],
+                [[s[0]] * n + s[1:] for s in starts])
 
     def residuals(self, x: np.ndarray, freqs: np.ndarray, shapes: np.ndarray) -> np.ndarray:
         f, y = fe.elastic_modes(self.chain(x), self.count)
@@ -194,7 +216,7 @@ class Mimic:
     def noncentrality(self, freqs: np.ndarray, shapes: np.ndarray, joints_start: np.ndarray) -> tuple[float, list]:
         """min chi^2 over the joints and the knobs, from ``joints_start`` and each of the
         effect's knob starts; and the knobs at the minimum."""
-        lower, upper, starts = _KNOBS[self.name]
+        lower, upper, starts = self.knobs()
         lo = np.concatenate([np.full(2 * self.joints, -np.inf), lower])
         hi = np.concatenate([np.full(2 * self.joints, np.inf), upper])
         best = None

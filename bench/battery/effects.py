@@ -130,6 +130,13 @@ def draw_parameters(name: str, geom: Geometry, nominal: fe.Chain, sensors: list,
     return {}
 
 
+def per_joint(params: dict, joints: int) -> list:
+    """Factors on the size at each joint: ``params["per_joint"]`` when given (the mimicry fits,
+    which free one size per joint as a fit of jointid's per-joint candidates would), else 1 at
+    every joint (the truths: the same hardware at every joint)."""
+    return list(params.get("per_joint", [1.0] * joints))
+
+
 def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sensors: list, params: dict,
           nominal: fe.Chain | None = None) -> Built:
     """Nominal, base truth and effect truth chains of one case (see module docs). ``nominal``:
@@ -148,15 +155,16 @@ def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sen
         pass
     elif name == "joint_coupling":
         s = params["sign"] * size
-        for j in eff.joints:
-            j.k12 = s * math.sqrt(j.k1 * j.k2)
+        for j, per in zip(eff.joints, per_joint(params, len(eff.joints))):
+            j.k12 = s * per * math.sqrt(j.k1 * j.k2)
         desc = {"k12_over_sqrt_k1k2": s, "k12": [j.k12 for j in eff.joints]}
     elif name == "joint_mass":
-        m = size * mass
-        for ji in range(len(eff.joints)):
+        for ji, per in enumerate(per_joint(params, len(eff.joints))):
+            m = size * per * mass
             for node, beam in ((eff.last_node(ji), eff.beams[ji]), (eff.first_node(ji + 1), eff.beams[ji + 1])):
                 inertia = 0.5 * m * params["inertia_ratio"] * beam.second_moment / beam.area
                 eff.masses.append((node, 0.5 * m, inertia))
+        m = size * mass
         desc = {
             "mass_per_joint_kg": m,
             "fraction_of_beam_mass": size,
@@ -169,7 +177,11 @@ def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sen
         for node in sensors:
             beam = eff.beams[beam_of(eff, node)]
             e = 0.5 * height_of(beam) + 0.5 * side
-            eff.masses.append((node, ms, ms * (side**2 / 6.0 + e**2)))
+            if "gyration_heights" in params:  # the mimicry fits: rotary inertia free
+                inertia = ms * (params["gyration_heights"] * height_of(beam)) ** 2
+            else:  # a cube of side `side` on the face, its centre e off the axis
+                inertia = ms * (side**2 / 6.0 + e**2)
+            eff.masses.append((node, ms, inertia))
         desc = {"mass_per_sensor_kg": ms, "total_fraction_of_beam_mass": size, "cube_side_m": side, "rotary_inertia_kg_m2": eff.masses[0][2]}
     elif name == "suspension":
         f0, _ = fe.elastic_modes(base, 1)

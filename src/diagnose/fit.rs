@@ -819,7 +819,10 @@ mod tests {
             measured: &measured,
             noise,
             pairing: &rule,
-            effects: effects.iter().map(|e| (e.clone(), vec![0.0])).collect(),
+            effects: effects
+                .iter()
+                .map(|e| (e.clone(), vec![0.0; e.parameters(&ctx).len()]))
+                .collect(),
             joint_p0: vec![1e7, 1e4],
             sigma: measured
                 .modes()
@@ -833,6 +836,7 @@ mod tests {
                 .collect(),
             covering: AtomicUsize::new(0),
         };
+        // joints; joint_mass, shear, joint_coupling; four shape scales.
         let x = vec![0.1, -0.2, 2.0, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
         let pairing = pair(&nominal, &measured, 2, &rule).unwrap();
         let eval = problem.evaluate(&x, &pairing).unwrap();

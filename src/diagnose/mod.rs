@@ -1,28 +1,26 @@
-//! Diagnosis of measured data: calibrate the invariant joint on every measured mode, look at
-//! what the calibrated model still misses, try every candidate effect of the library, select
-//! by a likelihood-ratio test under the stated noise, and report before and after.
+//! Diagnosis of measured data: calibrate the invariant joint on every measured mode, estimate
+//! the noise from what the largest model leaves (module `noise`), try every candidate effect
+//! of the library and the frequency-dependent joint (module `frequency_dependence`), select by
+//! likelihood-ratio tests under the estimated scale, and report before and after.
 //!
 //! Selection, stated: with chi^2_0 the calibrated joint-only fit (dof_0) and chi^2_c the fit
 //! with candidate c (k_c more unknowns), the likelihood-ratio statistic
-//! D_c = chi^2_0 - chi^2_c is chi-square with k_c degrees of freedom when c is absent. A
-//! candidate is significant when P(chi^2_{k_c} > D_c), times the number of candidates tried
-//! (Bonferroni), is below [`ALPHA`]. Goodness of fit: P(chi^2_dof > chi^2) >= [`FIT_ALPHA`].
-//! A candidate whose fitted size is not physically plausible (a negative mass or spring, a
-//! joint or sensor mass above the beams' mass, an inadmissible theta: `Effect::plausible`,
-//! `Effect::admissible`, `EffectParameter::non_negative`) is excluded, with the reason.
+//! D_c = chi^2_0 - chi^2_c; with the noise scale estimated on nu degrees of freedom, D_c / k_c
+//! is F(k_c, nu) when c is absent. A candidate is significant when that p-value, times the
+//! number of candidates tried (Bonferroni), is below [`ALPHA`]. A model explains the data when
+//! P(F(dof, nu) > chi^2 / dof), its frequencies alone and the whiteness of its shape residuals
+//! are all >= [`FIT_ALPHA`] and the estimated noise is within `noise::LARGEST_FACTOR` of the
+//! stated. A candidate whose fitted size is not physically plausible (a negative mass or
+//! spring, a joint or sensor mass above the beams' mass, an inadmissible theta:
+//! `Effect::plausible`, `Effect::admissible`, `EffectParameter::non_negative`) is excluded,
+//! with the reason.
 //! - no significant candidate and the joint-only fit good: `none`;
-//! - the significant candidate with the largest D_c, if its fit is good: `effect` when every
-//!   other significant candidate is at least [`AMBIGUITY_MARGIN`] behind it in Akaike's
+//! - the significant candidate with the largest D_c, if its fit is good: `effect` (or
+//!   `frequency_dependent` when it is the frequency-dependent joint) when every other
+//!   significant candidate is at least [`AMBIGUITY_MARGIN`] behind it in Akaike's
 //!   information criterion (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model Selection
 //!   and Multimodel Inference", sec. 2.6), else `ambiguous` naming those within it;
-//! - if its fit is not good: `unexplained`;
-//! - no significant candidate (no static effect of the library even helps) and the
-//!   joint-only fit not good: `frequency_dependent` when a per-mode joint correction trends
-//!   with frequency beyond [`TREND_SIGMAS`] standard errors and the corrections of every
-//!   joint parameter follow a straight line in frequency (P(chi^2_{modes-2} > chi^2 about
-//!   the weighted line) >= [`FIT_ALPHA`], on at least [`MIN_TREND_MODES`] modes: the paper's
-//!   frequency-dependent joint), else
-//!   `unexplained`. Both report where the misfit sits ([`report::ResidualPattern`]).
+//! - otherwise `unexplained`, with where the misfit sits ([`report::ResidualPattern`]).
 //!
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
@@ -61,11 +59,8 @@ pub const FIT_ALPHA: f64 = 0.001;
 /// Smallest lead in AIC of the selected candidate over every other significant one.
 pub const AMBIGUITY_MARGIN: f64 = 6.0;
 /// A per-mode correction whose slope against frequency exceeds this many standard errors
-/// trends with frequency.
+/// is reported as a trend (`Report::trend`; shown, not the test).
 pub const TREND_SIGMAS: f64 = 3.0;
-/// Fewest modes with corrections for a `frequency-dependent` verdict: a line through them
-/// must be testable (at least one degree of freedom about it).
-pub const MIN_TREND_MODES: usize = 3;
 
 /// Why a diagnosis cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -378,10 +373,7 @@ pub fn diagnose(
     let flatness_before = report::flatness(&per_mode_before);
     let mut trend = Vec::new();
     let mut pattern = None;
-    if matches!(
-        verdict,
-        Verdict::Unexplained | Verdict::FrequencyDependent
-    ) {
+    if matches!(verdict, Verdict::Unexplained | Verdict::FrequencyDependent) {
         // The paper's view of the same question: the per-mode corrections that trend with
         // frequency (shown, not tested: the verdict stands on the score test above).
         trend = flatness_before
@@ -389,8 +381,7 @@ pub fn diagnose(
             .filter(|f| f.slope_per_khz.abs() > TREND_SIGMAS * f.slope_se_per_khz)
             .cloned()
             .collect();
-    }
-    if verdict == Verdict::Unexplained {
+        // Where the invariant joint misses.
         pattern = Some(report::ResidualPattern::of(
             &base,
             measured,
@@ -413,8 +404,8 @@ pub fn diagnose(
         pattern,
         trend,
         criterion: format!(
-            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when P(chi^2_dof > chi^2), its frequencies alone and the whiteness of its shape residuals along the structure are all >= {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
-            estimate.from_model
+            "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}, {:.0} degrees of freedom: F tests): a candidate is significant when its p-value times {tried} candidates is below {ALPHA}; a model explains the data when its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
+            estimate.from_model, estimate.dof
         ),
         noise: stated,
         initial: ErrorSummary::of(&initial, measured, &estimate),
@@ -494,15 +485,6 @@ fn implausible(
                 .err()
         })
         .or_else(|| effect.plausible(ctx, theta).err())
-}
-
-/// Whether the per-mode corrections of every parameter follow a straight line in frequency,
-/// testably: on at least [`MIN_TREND_MODES`] modes (any two lie on a line) and with
-/// P(chi^2 about the line) >= [`FIT_ALPHA`].
-pub fn on_lines(flatness: &[report::Flatness]) -> bool {
-    flatness
-        .iter()
-        .all(|f| f.dof + 1 >= MIN_TREND_MODES && f.line_p_value >= FIT_ALPHA)
 }
 
 /// A candidate with its fit (or why it failed).

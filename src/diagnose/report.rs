@@ -27,9 +27,9 @@ pub enum Verdict {
     /// The residual stays above the noise with every candidate: an effect outside the library
     /// ([`Report::pattern`] says where the residual sits).
     Unexplained,
-    /// No static model explains the data and the per-mode joint corrections trend with
-    /// frequency beyond [`super::TREND_SIGMAS`] standard errors along a straight line: the
-    /// paper's frequency-dependent joint ([`Report::trend`]).
+    /// The joint whose parameters scale as (f / f_ref)^alpha is the best explanation, and no
+    /// static candidate comes close: the paper's frequency-dependent joint (the candidate
+    /// `frequency_dependence`; [`Report::trend`] shows the per-mode corrections).
     #[serde(rename = "frequency_dependent")]
     FrequencyDependent,
 }
@@ -451,8 +451,8 @@ pub struct Report {
     /// When `unexplained` or `frequency-dependent`: where the misfit of the joint-only fit
     /// sits, under the working noise.
     pub pattern: Option<ResidualPattern>,
-    /// When `frequency-dependent`: the per-mode corrections (before) that trend with
-    /// frequency.
+    /// When `unexplained` or `frequency-dependent`: the per-mode corrections (before) that
+    /// trend with frequency.
     pub trend: Vec<Flatness>,
     /// The statistical criterion, in words.
     pub criterion: String,

@@ -55,7 +55,12 @@ pub fn whiteness(
 }
 
 /// The whiteness test of the shape residuals `res` of `measured` (module docs).
-pub fn of_residuals(res: &Residuals, measured: &MeasuredModes, working: Noise, floor: f64) -> Whiteness {
+pub fn of_residuals(
+    res: &Residuals,
+    measured: &MeasuredModes,
+    working: Noise,
+    floor: f64,
+) -> Whiteness {
     let sequences: Vec<Vec<f64>> = along::of_residuals(res, measured)
         .iter()
         .map(|s| {

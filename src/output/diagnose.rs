@@ -83,7 +83,7 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             r.contenders.join(", "),
             r.selected.as_deref().unwrap_or("")
         ),
-        (Verdict::FrequencyDependent, _) => "frequency-dependent: no static candidate explains the data and the per-mode joint corrections trend with frequency (the paper's frequency-dependent joint)".to_string(),
+        (Verdict::FrequencyDependent, _) => "frequency-dependent: a joint whose stiffness scales with frequency explains the data and no static candidate comes close (the paper's frequency-dependent joint; candidate frequency_dependence)".to_string(),
         _ => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".to_string(),
     };
     writeln!(out, "verdict: {verdict}")?;

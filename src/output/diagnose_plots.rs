@@ -14,7 +14,6 @@ use super::study_report::{Figure, unit_of};
 use crate::diagnose::report::ModeCorrection;
 use crate::diagnose::{ALPHA, Report};
 use crate::measured::MeasuredModes;
-use crate::stats::chi2_isf;
 use crate::structure::Direction;
 
 fn corrections_series(name: &str, list: &[ModeCorrection], param: &str) -> Series {
@@ -203,8 +202,10 @@ pub fn diagnose_figures(
     if !fitted.is_empty() {
         let labels: Vec<String> = fitted.iter().map(|c| c.name.clone()).collect();
         let values: Vec<f64> = fitted.iter().map(|c| c.lrt.unwrap_or(0.0)).collect();
-        let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1) as f64;
-        let critical = chi2_isf(ALPHA / report.candidates.len() as f64, k);
+        let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1);
+        let critical = report
+            .noise_estimate
+            .lrt_critical(ALPHA / report.candidates.len() as f64, k);
         let label = format!("critical value {critical:.2}");
         let selected = report
             .selected
