@@ -2,7 +2,7 @@
 //! per mode and direction, sorted by x. What a wrong model leaves in a mode shape is smooth
 //! along these sequences; measurement noise is not (modules `whiteness` and `noise`).
 
-use super::fit::{Fitted, Residuals, residuals};
+use super::fit::Residuals;
 use crate::measured::MeasuredModes;
 use crate::structure::Direction;
 
@@ -32,11 +32,6 @@ impl Sequence {
 
 /// Fewest sensor intervals per half-wave of a mode for [`Sequence::dense`].
 pub const INTERVALS_PER_HALF_WAVE: f64 = 2.0;
-
-/// The shape residuals of `fitted` on `measured`, one [`Sequence`] per mode and direction.
-pub fn sequences(fitted: &Fitted, measured: &MeasuredModes) -> Vec<Sequence> {
-    of_residuals(&residuals(fitted, measured), measured)
-}
 
 /// The shape residuals `res` of `measured`, one [`Sequence`] per mode and direction.
 pub fn of_residuals(res: &Residuals, measured: &MeasuredModes) -> Vec<Sequence> {

@@ -182,7 +182,7 @@ impl<'a> Problem<'a> {
                 .modes()
                 .iter()
                 .map(|m| {
-                    let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                    let peak = m.peak();
                     m.values
                         .iter()
                         .map(|v| {
@@ -399,11 +399,7 @@ pub fn residuals(fitted: &Fitted, measured: &MeasuredModes) -> Residuals {
         out.frequency
             .push((fitted.modal.frequency_hz(s) - m.frequency_hz) / m.frequency_hz);
         let sign = model_sign(&fitted.modal, s, m);
-        let peak = m
-            .values
-            .iter()
-            .fold(0.0_f64, |a, b| a.max(b.abs()))
-            .max(f64::MIN_POSITIVE);
+        let peak = m.peak().max(f64::MIN_POSITIVE);
         for (p, &v) in m.points.iter().zip(&m.values) {
             let e = fitted.scales[r] * sign * p.read_column(y, s) - v;
             out.shape.push((v / peak, e / peak));
@@ -484,11 +480,7 @@ impl Linearisation {
         let mut row = 0;
         for m in measured.modes() {
             out.frequency.push(weighted[row] * self.sigma[row]);
-            let peak = m
-                .values
-                .iter()
-                .fold(0.0_f64, |a, b| a.max(b.abs()))
-                .max(f64::MIN_POSITIVE);
+            let peak = m.peak().max(f64::MIN_POSITIVE);
             for (k, v) in m.values.iter().enumerate() {
                 let i = row + 1 + k;
                 out.shape.push((v / peak, weighted[i] * self.sigma[i]));
@@ -512,11 +504,7 @@ pub fn linearise(
     let mut mode_of_row = Vec::new();
     let mut sigma = Vec::new();
     for (r, m) in measured.modes().iter().enumerate() {
-        let peak = m
-            .values
-            .iter()
-            .fold(0.0_f64, |a, b| a.max(b.abs()))
-            .max(f64::MIN_POSITIVE);
+        let peak = m.peak().max(f64::MIN_POSITIVE);
         mode_of_row.push(r);
         sigma.push(problem.noise.frequency);
         for &s in &problem.sigma[r] {

@@ -44,7 +44,7 @@ pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residua
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
-pub use whiteness::{Whiteness, whiteness};
+pub use whiteness::Whiteness;
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -207,8 +207,16 @@ pub fn diagnose(
     }
     // The static candidates and the frequency-dependent joint.
     let tried = library.len() as f64 + 1.0;
+    // The lack of fit a model's residuals show in what is trustworthy (module `noise`): P of
+    // its frequencies alone and of the whiteness of its shape residuals.
+    let lack_of_fit = |res: &Residuals, unknowns: usize| {
+        (
+            estimate.frequency_lack_of_fit(res, unknowns).2,
+            whiteness::of_residuals(res, measured, noise, estimate.working_floor).p_value,
+        )
+    };
     let fits = refit_all(&ctx, measured, &calibration, &first);
-    let candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
+    let mut candidates: Vec<(CandidateReport, Option<&Fitted>)> = fits
         .iter()
         .map(|(c, result)| match result {
             Ok(f) => {
@@ -229,6 +237,8 @@ pub fn diagnose(
                     })
                     .sum::<f64>()
                     .sqrt();
+                let (frequency_p, white_p) =
+                    lack_of_fit(&residuals(f, measured), f.estimates.len());
                 let report = CandidateReport {
                     name: c.name().to_string(),
                     parameters,
@@ -240,14 +250,8 @@ pub fn diagnose(
                     lrt: Some(lrt),
                     criterion: Some((estimate.lrt_p_value(lrt, k) * tried).min(1.0)),
                     fit_p_value: Some(estimate.fit_p_value(f.chi2, f.dof)),
-                    frequency_p_value: Some(
-                        estimate
-                            .frequency_lack_of_fit(&residuals(f, measured), f.estimates.len())
-                            .2,
-                    ),
-                    whiteness_p_value: Some(
-                        whiteness(f, measured, noise, estimate.working_floor).p_value,
-                    ),
+                    frequency_p_value: Some(frequency_p),
+                    whiteness_p_value: Some(white_p),
                     summary: Some(ErrorSummary::of(f, measured, &estimate)),
                     error: None,
                     excluded: implausible(c.as_ref(), &ctx, f, &theta),
@@ -278,10 +282,12 @@ pub fn diagnose(
         .collect();
     let linearised = fit::linearise(&ctx, measured, &calibration, &base)?;
     let dependence = frequency_dependence::fit(&linearised, measured);
-    let mut candidates = candidates;
     if let Some(d) = &dependence {
-        let res = linearised.unweighted(&d.residual, measured);
         let dof = base.dof.saturating_sub(1).max(1);
+        let (frequency_p, white_p) = lack_of_fit(
+            &linearised.unweighted(&d.residual, measured),
+            base.estimates.len() + 1,
+        );
         candidates.push((
             CandidateReport {
                 name: frequency_dependence::NAME.to_string(),
@@ -302,14 +308,8 @@ pub fn diagnose(
                 lrt: Some(d.statistic),
                 criterion: Some((estimate.lrt_p_value(d.statistic, 1) * tried).min(1.0)),
                 fit_p_value: Some(estimate.fit_p_value(d.chi2, dof)),
-                frequency_p_value: Some(
-                    estimate
-                        .frequency_lack_of_fit(&res, base.estimates.len() + 1)
-                        .2,
-                ),
-                whiteness_p_value: Some(
-                    whiteness::of_residuals(&res, measured, noise, estimate.working_floor).p_value,
-                ),
+                frequency_p_value: Some(frequency_p),
+                whiteness_p_value: Some(white_p),
                 summary: None,
                 error: None,
                 excluded: None,
@@ -321,10 +321,8 @@ pub fn diagnose(
     // working noise, and that noise is within LARGEST_FACTOR of the stated.
     let plausible_noise = estimate.shape_factor <= noise::LARGEST_FACTOR;
     let base_p = estimate.fit_p_value(base.chi2, base.dof);
-    let base_frequency_p = estimate
-        .frequency_lack_of_fit(&residuals(&base, measured), base.estimates.len())
-        .2;
-    let base_white_p = whiteness(&base, measured, noise, estimate.working_floor).p_value;
+    let (base_frequency_p, base_white_p) =
+        lack_of_fit(&residuals(&base, measured), base.estimates.len());
     let explains = |fit_p: Option<f64>, frequency_p: Option<f64>, white_p: Option<f64>| {
         plausible_noise
             && fit_p.is_some_and(|p| p >= FIT_ALPHA)

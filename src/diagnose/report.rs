@@ -196,7 +196,7 @@ impl ErrorSummary {
                 } else {
                     1.0
                 };
-                let peak = m.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+                let peak = m.peak();
                 let ss: f64 = model
                     .iter()
                     .zip(&m.values)

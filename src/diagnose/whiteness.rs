@@ -25,7 +25,7 @@
 use serde::Serialize;
 
 use super::along;
-use super::fit::{Fitted, Noise, Residuals, residuals};
+use super::fit::{Noise, Residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::chi2_sf;
 
@@ -43,18 +43,8 @@ pub struct Whiteness {
     pub p_value: f64,
 }
 
-/// The whiteness test of the shape residuals of `fitted` on `measured`, standardised by the
-/// `working` noise with `floor` (a fraction of the peak).
-pub fn whiteness(
-    fitted: &Fitted,
-    measured: &MeasuredModes,
-    working: Noise,
-    floor: f64,
-) -> Whiteness {
-    of_residuals(&residuals(fitted, measured), measured, working, floor)
-}
-
-/// The whiteness test of the shape residuals `res` of `measured` (module docs).
+/// The whiteness test of the shape residuals `res` of `measured` (as [`super::residuals`] gives
+/// them), standardised by the `working` noise with `floor` (a fraction of the peak).
 pub fn of_residuals(
     res: &Residuals,
     measured: &MeasuredModes,

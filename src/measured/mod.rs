@@ -44,6 +44,11 @@ impl MeasuredMode {
         }
     }
 
+    /// The largest magnitude of its components (the unit of the shape noise's floor).
+    pub fn peak(&self) -> f64 {
+        self.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()))
+    }
+
     /// The measured eigenvalue lambda_r^m = (2 pi f_r)^2.
     pub fn lambda(&self) -> f64 {
         crate::modal::hz_to_lambda(self.frequency_hz)
