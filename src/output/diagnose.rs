@@ -212,24 +212,33 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         &rows,
     )?;
     writeln!(out, "\ncandidates ({})", r.criterion)?;
+    // Name, size, chi^2/dof and LR statistic of a fitted candidate.
+    let fitted_cells = |c: &crate::diagnose::CandidateReport| {
+        vec![
+            c.name.clone(),
+            format!(
+                "{} +- {}",
+                sci(c.size.unwrap_or(0.0)),
+                sci(c.size_se.unwrap_or(0.0))
+            ),
+            format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
+            format!("{:.1}", c.lrt.unwrap_or(0.0)),
+        ]
+    };
     let rows: Vec<Vec<String>> = r
         .candidates
         .iter()
         .map(|c| match &c.error {
-            None if c.excluded.is_some() => vec![
-                c.name.clone(),
-                format!(
-                    "{} +- {}",
-                    sci(c.size.unwrap_or(0.0)),
-                    sci(c.size_se.unwrap_or(0.0))
-                ),
-                format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
-                format!("{:.1}", c.lrt.unwrap_or(0.0)),
-                "excluded".into(),
-                String::new(),
-                String::new(),
-                c.excluded.clone().unwrap_or_default(),
-            ],
+            None if c.excluded.is_some() => [
+                fitted_cells(c),
+                vec![
+                    "excluded".into(),
+                    String::new(),
+                    String::new(),
+                    c.excluded.clone().unwrap_or_default(),
+                ],
+            ]
+            .concat(),
             Some(e) => vec![
                 c.name.clone(),
                 "fit failed".into(),
@@ -240,20 +249,16 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
                 String::new(),
                 e.clone(),
             ],
-            None => vec![
-                c.name.clone(),
-                format!(
-                    "{} +- {}",
-                    sci(c.size.unwrap_or(0.0)),
-                    sci(c.size_se.unwrap_or(0.0))
-                ),
-                format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
-                format!("{:.1}", c.lrt.unwrap_or(0.0)),
-                format!("{:.2e}", c.criterion.unwrap_or(1.0)),
-                format!("{:.2e}", c.fit_p_value.unwrap_or(0.0)),
-                format!("{:.2e}", c.frequency_p_value.unwrap_or(0.0)),
-                format!("{:.2e}", c.whiteness_p_value.unwrap_or(0.0)),
-            ],
+            None => [
+                fitted_cells(c),
+                vec![
+                    format!("{:.2e}", c.criterion.unwrap_or(1.0)),
+                    format!("{:.2e}", c.fit_p_value.unwrap_or(0.0)),
+                    format!("{:.2e}", c.frequency_p_value.unwrap_or(0.0)),
+                    format!("{:.2e}", c.whiteness_p_value.unwrap_or(0.0)),
+                ],
+            ]
+            .concat(),
         })
         .collect();
     write_table(

@@ -152,10 +152,10 @@ pub fn diagnose_figures(
         .collect();
     params.sort();
     params.dedup();
-    for param in params {
+    for param in &params {
         let series = [
-            corrections_series("joint calibrated", &report.per_mode_before, &param),
-            corrections_series("after", &report.per_mode_after, &param),
+            corrections_series("joint calibrated", &report.per_mode_before, param),
+            corrections_series("after", &report.per_mode_after, param),
         ];
         let title = format!(
             "Per-mode correction of {param} (paper's method, {})",
@@ -167,7 +167,7 @@ pub fn diagnose_figures(
                 &title,
                 &LineAxes {
                     x_desc: "measured frequency (Hz)".into(),
-                    y_desc: format!("Delta {param} ({})", unit_of(&param)),
+                    y_desc: format!("Delta {param} ({})", unit_of(param)),
                     log_x: true,
                     log_y: false,
                     reference: Some((0.0, "no correction".into())),
@@ -182,15 +182,8 @@ pub fn diagnose_figures(
             svg: body,
         });
     }
-    let mut params: Vec<String> = report
-        .per_mode_before
-        .iter()
-        .map(|c| c.param.clone())
-        .collect();
-    params.sort();
-    params.dedup();
-    for param in params {
-        if let Some(figure) = stiffness_figure(report, &param)? {
+    for param in &params {
+        if let Some(figure) = stiffness_figure(report, param)? {
             out.push(figure);
         }
     }
