@@ -28,6 +28,7 @@
 //! - [`report`]: summaries, per-mode corrections, the report.
 
 pub mod along;
+pub mod bounds;
 pub mod fit;
 pub mod frequency_dependence;
 pub mod noise;

@@ -255,10 +255,78 @@ pub fn pseudo_dof(sequences: &[along::Sequence], a2: f64, b2: f64) -> f64 {
     count * count / sum_rho2
 }
 
-/// The variance function E[square] = a^2 relative + b^2 floor fitted to `rows` by iteratively
-/// reweighted least squares (weights 1 / v^2), a^2, b^2 >= 0, from (a2, b2); no
-/// degrees-of-freedom correction. Returns (a^2, b^2).
-pub fn variance_function(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
+/// The variance function E[square] = a^2 relative + b^2 floor fitted to `rows`, a^2, b^2 >= 0,
+/// from (a2, b2); no degrees-of-freedom correction. Returns (a^2, b^2).
+///
+/// Iteratively reweighted least squares (weights 1 / v^2) finds the optimum of the Gaussian
+/// likelihood of the rows, sum ln v + square / v, from the start; where few rows lie near the
+/// modes' nodes that iteration can settle on the edge b^2 = 0 (the rows of small u then weigh
+/// 1 / (a^2 u^2)^2 and hold it there). The likelihood profiled over the ratio
+/// rho = b^2 / a^2 (a^2 in closed form for each rho) is searched as well, over a grid of
+/// ln rho refined by golden sections, and the better of the two optima is returned.
+pub fn variance_function(rows: &[Row], a2: f64, b2: f64) -> (f64, f64) {
+    let irls = reweighted(rows, a2, b2);
+    let profiled = profile(rows);
+    if negative_log_likelihood(rows, profiled) < negative_log_likelihood(rows, irls) {
+        profiled
+    } else {
+        irls
+    }
+}
+
+/// sum ln v + square / v of the rows under (a^2, b^2) (infinite where some v vanishes).
+fn negative_log_likelihood(rows: &[Row], (a2, b2): (f64, f64)) -> f64 {
+    rows.iter()
+        .map(|r| {
+            let v = a2 * r.relative + b2 * r.floor;
+            if v > 0.0 {
+                v.ln() + r.square / v
+            } else {
+                f64::INFINITY
+            }
+        })
+        .sum()
+}
+
+/// The likelihood's optimum over rho = b^2 / a^2 in [RHO_RANGE], a^2 = mean(square / (relative
+/// + rho floor)) for each rho: a grid of ln rho, then golden sections around its best point.
+fn profile(rows: &[Row]) -> (f64, f64) {
+    let at = |ln_rho: f64| {
+        let rho = ln_rho.exp();
+        let a2 = rows
+            .iter()
+            .map(|r| r.square / (r.relative + rho * r.floor).max(1e-300))
+            .sum::<f64>()
+            / rows.len().max(1) as f64;
+        let point = (a2, a2 * rho);
+        (negative_log_likelihood(rows, point), point)
+    };
+    let (lo, hi) = (RHO_RANGE.0.ln(), RHO_RANGE.1.ln());
+    const GRID: usize = 80;
+    let step = (hi - lo) / GRID as f64;
+    let best = (0..=GRID)
+        .map(|i| lo + step * i as f64)
+        .min_by(|a, b| at(*a).0.total_cmp(&at(*b).0))
+        .unwrap_or(lo);
+    let (mut a, mut b) = ((best - step).max(lo), (best + step).min(hi));
+    let phi = 0.5 * (5.0_f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (c, d) = (b - phi * (b - a), a + phi * (b - a));
+        if at(c).0 < at(d).0 {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    at(0.5 * (a + b)).1
+}
+
+/// Range of rho = b^2 / a^2 the profile searches: a floor from 1e-3 to 10 peaks times a.
+const RHO_RANGE: (f64, f64) = (1e-6, 1e2);
+
+/// Iteratively reweighted least squares of the variance function (weights 1 / v^2) from
+/// (a2, b2).
+fn reweighted(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
     for _ in 0..50 {
         let (mut s11, mut s12, mut s22, mut t1, mut t2) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for r in rows {

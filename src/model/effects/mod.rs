@@ -109,6 +109,14 @@ pub trait Effect: Send + Sync + std::fmt::Debug {
         Ok(())
     }
 
+    /// Linear inequalities sum_i c_i theta_i >= 0, as (index, c_i) pairs, that a fit keeps
+    /// besides the non-negative bounds: the part of the plausible range
+    /// ([`Effect::plausible`]) a fit can hold to, so that a size on its edge is fitted there
+    /// instead of overstepping it.
+    fn inequalities(&self, _ctx: &EffectContext) -> Vec<Vec<(usize, f64)>> {
+        Vec::new()
+    }
+
     /// Whether a fitted theta is a physically plausible size (beyond the bounds the fit keeps:
     /// [`EffectParameter::non_negative`] and [`Effect::admissible`]); the reason when not. A
     /// fitted size outside it is not an explanation of the data.

@@ -82,6 +82,12 @@ fn gyration_squared(ctx: &EffectContext) -> f64 {
         / elements.len() as f64
 }
 
+/// The square of the largest radius of gyration, LARGEST_GYRATION_HEIGHTS section heights (a
+/// rectangle's height is sqrt(12 I / A)).
+fn largest_gyration_squared(ctx: &EffectContext) -> f64 {
+    LARGEST_GYRATION_HEIGHTS.powi(2) * 12.0 * gyration_squared(ctx)
+}
+
 impl Effect for SensorMass {
     fn name(&self) -> &'static str {
         "sensor_mass"
@@ -129,6 +135,14 @@ impl Effect for SensorMass {
         theta[0] * ctx.sensors.len().max(1) as f64 / ctx.structure.sites.beam_mass
     }
 
+    /// J_s <= m_s (LARGEST_GYRATION_HEIGHTS h)^2 where the sensors load rotations.
+    fn inequalities(&self, ctx: &EffectContext) -> Vec<Vec<(usize, f64)>> {
+        if self.parameters(ctx).len() < 2 {
+            return Vec::new();
+        }
+        vec![vec![(0, largest_gyration_squared(ctx)), (1, -1.0)]]
+    }
+
     /// The sensors together are lighter than the beams they sit on, and a sensor's radius of
     /// gyration about the axis is within twice the section height.
     fn plausible(&self, ctx: &EffectContext, theta: &[f64]) -> Result<(), String> {
@@ -141,10 +155,10 @@ impl Effect for SensorMass {
             ));
         }
         if let Some(&j) = theta.get(1) {
-            // A rectangle's height is sqrt(12 I / A).
             let height = (12.0 * gyration_squared(ctx)).sqrt();
-            let largest = theta[0] * (LARGEST_GYRATION_HEIGHTS * height).powi(2);
-            if j > largest {
+            let largest = theta[0] * largest_gyration_squared(ctx);
+            // (a fit held to the bound may overstep it by round-off)
+            if j > largest * (1.0 + 1e-9) {
                 return Err(format!(
                     "a sensor's rotary inertia {j:.4e} kg m^2 with its mass {:.4e} kg puts its radius of gyration beyond {LARGEST_GYRATION_HEIGHTS} section heights ({height:.4e} m): no sensor",
                     theta[0]

@@ -1,0 +1,225 @@
+//! The feasible region of a calibration's unknowns: linear inequalities c . x >= 0 (a
+//! non-negative mass is c = e_i; a sensor whose radius of gyration stays within its bound is
+//! G^2 m - J >= 0), kept by the Levenberg-Marquardt iteration of module `fit` by an active set:
+//!
+//! - a constraint is active at x when c . x <= 0 (to round-off) and the descent direction -g
+//!   of chi^2 / 2 leaves the feasible side (c . g > 0); the step is taken in the null space of
+//!   the active constraints, by the projected system (P A P + I - P) s = -P g with
+//!   P = I - Q Q^T, Q an orthonormal basis of the active c (for coordinate constraints this
+//!   freezes those unknowns and nothing else);
+//! - a trial point that violates a constraint is projected back onto the feasible side by
+//!   cyclic orthogonal projections onto the violated hyperplanes (for a coordinate constraint,
+//!   clamping at 0).
+//!
+//! Fitting inside the plausible range, rather than fitting freely and excluding a fit that
+//! oversteps it, keeps an effect whose best plausible size lies on the bound: its fit there is
+//! the likelihood the test should judge.
+
+use faer::Mat;
+
+/// Largest number of passes of cyclic projections.
+const PROJECTION_PASSES: usize = 50;
+
+/// Linear inequalities sum_i c_i x_i >= 0 on the unknowns x (module docs).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Bounds {
+    rows: Vec<Vec<(usize, f64)>>,
+}
+
+impl Bounds {
+    /// The inequalities, each as (unknown, coefficient) pairs.
+    pub fn new(rows: Vec<Vec<(usize, f64)>>) -> Self {
+        Self { rows }
+    }
+
+    /// Whether there is no inequality.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    fn value(row: &[(usize, f64)], x: &[f64]) -> f64 {
+        row.iter().map(|&(i, c)| c * x[i]).sum()
+    }
+
+    fn norm(row: &[(usize, f64)]) -> f64 {
+        row.iter().map(|&(_, c)| c * c).sum::<f64>().sqrt()
+    }
+
+    /// Whether constraint `row` holds at x, within round-off.
+    fn holds(row: &[(usize, f64)], x: &[f64]) -> bool {
+        let scale = row
+            .iter()
+            .map(|&(i, c)| (c * x[i]).abs())
+            .fold(0.0, f64::max);
+        Self::value(row, x) >= -1e-12 * scale
+    }
+
+    /// Whether every inequality holds at x (within round-off).
+    pub fn feasible(&self, x: &[f64]) -> bool {
+        self.rows.iter().all(|row| Self::holds(row, x))
+    }
+
+    /// An orthonormal basis (columns of length n) of the constraints active at x under the
+    /// gradient g of chi^2 / 2 (module docs); empty when none is.
+    pub fn active_basis(&self, x: &[f64], g: &[f64]) -> Vec<Vec<f64>> {
+        let n = x.len();
+        let mut basis: Vec<Vec<f64>> = Vec::new();
+        for row in &self.rows {
+            let at_bound = Self::value(row, x) <= 1e-12 * Self::norm(row);
+            if !at_bound || Self::value(row, g) <= 0.0 {
+                continue;
+            }
+            let mut v = vec![0.0; n];
+            for &(i, c) in row {
+                v[i] += c;
+            }
+            let original = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+            // Gram-Schmidt against the basis so far, twice for stability.
+            for _ in 0..2 {
+                for q in &basis {
+                    let d: f64 = q.iter().zip(&v).map(|(a, b)| a * b).sum();
+                    for (vi, qi) in v.iter_mut().zip(q) {
+                        *vi -= d * qi;
+                    }
+                }
+            }
+            let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+            if norm > 1e-10 * original {
+                basis.push(v.into_iter().map(|a| a / norm).collect());
+            }
+        }
+        basis
+    }
+
+    /// x moved onto the feasible side (module docs); None when the projections do not reach it.
+    pub fn project(&self, mut x: Vec<f64>) -> Option<Vec<f64>> {
+        for _ in 0..PROJECTION_PASSES {
+            if self.feasible(&x) {
+                return Some(x);
+            }
+            for row in &self.rows {
+                let value = Self::value(row, &x);
+                if value < 0.0 {
+                    if let [(i, _)] = row.as_slice() {
+                        // A coordinate bound: clamp exactly.
+                        x[*i] = 0.0;
+                        continue;
+                    }
+                    let norm2: f64 = row.iter().map(|&(_, c)| c * c).sum();
+                    for &(i, c) in row {
+                        x[i] -= value / norm2 * c;
+                    }
+                }
+            }
+        }
+        self.feasible(&x).then_some(x)
+    }
+}
+
+/// P A P + I - P and P g for P = I - Q Q^T (module docs); with an empty basis, A and g as
+/// they are; with coordinate vectors, A and g with those rows and columns replaced by the
+/// identity and zero (bit for bit).
+pub fn projected(a: &Mat<f64>, g: &Mat<f64>, basis: &[Vec<f64>]) -> (Mat<f64>, Mat<f64>) {
+    let n = a.nrows();
+    if basis.is_empty() {
+        return (a.clone(), g.clone());
+    }
+    let coordinate: Option<Vec<usize>> = basis
+        .iter()
+        .map(|q| {
+            let nonzero: Vec<usize> = (0..n).filter(|&i| q[i] != 0.0).collect();
+            (nonzero.len() == 1 && q[nonzero[0]].abs() == 1.0).then_some(nonzero[0])
+        })
+        .collect();
+    if let Some(frozen) = coordinate {
+        let pa = Mat::from_fn(n, n, |i, j| {
+            if frozen.contains(&i) || frozen.contains(&j) {
+                if i == j { 1.0 } else { 0.0 }
+            } else {
+                a[(i, j)]
+            }
+        });
+        let pg = Mat::from_fn(
+            n,
+            1,
+            |i, _| if frozen.contains(&i) { 0.0 } else { g[(i, 0)] },
+        );
+        return (pa, pg);
+    }
+    let p = Mat::from_fn(n, n, |i, j| {
+        let qq: f64 = basis.iter().map(|q| q[i] * q[j]).sum();
+        if i == j { 1.0 - qq } else { -qq }
+    });
+    let pap = &p * a * &p;
+    let pa = Mat::from_fn(n, n, |i, j| {
+        pap[(i, j)] + if i == j { 1.0 } else { 0.0 } - p[(i, j)]
+    });
+    let pg = &p * g;
+    (pa, pg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cone of a mass and its rotary inertia: m >= 0, J >= 0, 4 m - J >= 0.
+    fn cone() -> Bounds {
+        Bounds::new(vec![
+            vec![(0, 1.0)],
+            vec![(1, 1.0)],
+            vec![(0, 4.0), (1, -1.0)],
+        ])
+    }
+
+    #[test]
+    fn projection_lands_on_the_violated_face_and_keeps_a_feasible_point() {
+        let b = cone();
+        assert_eq!(b.project(vec![1.0, 2.0]), Some(vec![1.0, 2.0]));
+        // Beyond the slanted face: the orthogonal projection onto 4 m = J.
+        let p = b.project(vec![1.0, 5.0]).unwrap();
+        assert!((4.0 * p[0] - p[1]).abs() < 1e-12, "{p:?}");
+        // (1, 5) - t (4, -1) with 4 (1 - 4t) = 5 + t: t = -1/17.
+        assert!((p[0] - (1.0 + 4.0 / 17.0)).abs() < 1e-12, "{p:?}");
+        // Negative mass with an inertia: ends at the apex or on a face, feasible.
+        let q = b.project(vec![-1.0, 0.5]).unwrap();
+        assert!(b.feasible(&q), "{q:?}");
+        // A coordinate bound clamps exactly.
+        assert_eq!(b.project(vec![0.5, -1.0]), Some(vec![0.5, 0.0]));
+    }
+
+    #[test]
+    fn a_face_is_active_only_where_the_descent_leaves_the_region() {
+        let b = cone();
+        // On the slanted face; the gradient g = (1, -1) descends towards larger J, smaller m.
+        let x = [1.0, 4.0];
+        let out = b.active_basis(&x, &[1.0, -1.0]);
+        assert_eq!(out.len(), 1);
+        let s = 17.0_f64.sqrt();
+        assert!((out[0][0] - 4.0 / s).abs() < 1e-15 && (out[0][1] + 1.0 / s).abs() < 1e-15);
+        // Descending into the region: nothing active.
+        assert!(b.active_basis(&x, &[-1.0, 1.0]).is_empty());
+        // At the apex with every face pushing out: at most two independent directions.
+        assert_eq!(b.active_basis(&[0.0, 0.0], &[1.0, 1.0]).len(), 2);
+    }
+
+    /// The projected step stays on the active face and solves the reduced problem.
+    #[test]
+    fn the_projected_step_moves_along_the_face() {
+        let basis = vec![vec![-4.0 / 17.0_f64.sqrt(), 1.0 / 17.0_f64.sqrt()]];
+        let a = Mat::from_fn(2, 2, |i, j| [[2.0, 0.5], [0.5, 1.0]][i][j]);
+        let g = Mat::from_fn(2, 1, |i, _| [-1.0, 1.0][i]);
+        let (pa, pg) = projected(&a, &g, &basis);
+        use faer::linalg::solvers::Solve;
+        let s = pa.llt(faer::Side::Lower).unwrap().solve(-&pg);
+        // Along the face direction d = (1, 4) / sqrt(17): s = t d, t = -(d.g) / (d.A d).
+        let d = [1.0 / 17.0_f64.sqrt(), 4.0 / 17.0_f64.sqrt()];
+        let dg = d[0] * -1.0 + d[1] * 1.0;
+        let dad = 2.0 * d[0] * d[0] + 2.0 * 0.5 * d[0] * d[1] + d[1] * d[1];
+        let t = -dg / dad;
+        assert!((s[(0, 0)] - t * d[0]).abs() < 1e-12 && (s[(1, 0)] - t * d[1]).abs() < 1e-12);
+        // Coordinate basis: the frozen row and column become the identity, the rest unchanged.
+        let (pa, pg) = projected(&a, &g, &[vec![1.0, 0.0]]);
+        assert_eq!((pa[(0, 0)], pa[(0, 1)], pa[(1, 1)]), (1.0, 0.0, 1.0));
+        assert_eq!((pg[(0, 0)], pg[(1, 0)]), (0.0, 1.0));
+    }
+}
