@@ -1,4 +1,5 @@
-//! The richer candidates (`lap`, `joint_inertia`, `end_mass`) recovered by `jointid diagnose`
+//! The richer candidates (`lap`, `joint_inertia`, `end_mass`, and `joint_mass` with the
+//! hardware's own rotary inertia, data made independently: see its section) recovered by `jointid diagnose`
 //! from data in which each one is hidden: the fitted size and every fitted parameter within
 //! their 3-sigma intervals of the truth, on noisy and on noise-free data.
 //!
@@ -11,6 +12,8 @@
 //! truth to far within its interval).
 
 mod common;
+#[path = "common/frf.rs"]
+mod frf;
 
 use common::paper_model;
 use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, Report, diagnose};
@@ -112,4 +115,123 @@ fn each_new_candidate_lands_on_the_truth_from_noise_free_data() {
     for (name, size) in HIDDEN {
         assert_recovered(&run(&data(name, size, false)), name, size, 0.01);
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// `joint_mass` with the hardware's own rotary inertia.
+//
+// Independence: the truth is the paper model's matrices with the hardware's mass and rotary
+// inertia added by hand at the joint's DOFs (the structure's joint site: two w, two theta),
+// solved by the dense eigensolver; the noise is this test's own generator (tests/common/frf.rs,
+// gaussian by Box-Muller), not `simulate`'s. The candidate's pattern code is not used to make
+// the data.
+
+/// Hardware of mass `m` with a radius of gyration `ratio` times the beam's sqrt(I/A): half of
+/// m on each joint node, half of the rotary inertia m ratio^2 I/A on each node's rotation.
+fn hardware_data(m: f64, ratio: f64, noise: Noise, seed: u64) -> MeasuredModes {
+    use jointid::measured::MeasuredMode;
+    use jointid::structure::SparseSym;
+    let model = paper_model(1e7, 1e4);
+    let site = &model.sites.joints[0];
+    let mut dm = SparseSym::zero();
+    for side in 0..2 {
+        let r2 = site.sections[side].gyration_squared();
+        dm.add(site.w[side].unwrap(), site.w[side].unwrap(), 0.5 * m);
+        let t = site.theta[side].unwrap();
+        dm.add(t, t, 0.5 * m * ratio * ratio * r2);
+    }
+    let truth = model.assemble().plus(&[(&SparseSym::zero(), &dm, 1.0)]);
+    let modal = ModalSolution::solve(&truth).unwrap();
+    let points = common::translations(&model);
+    let mut rng = frf::Rng::new(seed);
+    let modes = (1..=6)
+        .map(|r| {
+            let s = model.rigid + r - 1;
+            let f = modal.frequency_hz(s) * (1.0 + noise.frequency * rng.normal());
+            let values = points
+                .iter()
+                .map(|p| p.read_column(modal.vectors(), s) * (1.0 + noise.shape * rng.normal()))
+                .collect();
+            MeasuredMode::new(r, f, points.clone(), values)
+        })
+        .collect();
+    MeasuredModes::new(modes)
+}
+
+fn joint_mass_candidate(report: &Report) -> &jointid::diagnose::CandidateReport {
+    report
+        .candidates
+        .iter()
+        .find(|c| c.name == "joint_mass")
+        .unwrap()
+}
+
+#[test]
+fn joint_hardware_mass_and_rotary_inertia_are_recovered_within_3_sigma() {
+    let model = paper_model(1e7, 1e4);
+    let m = 0.02 * model.sites.beam_mass;
+    let ratio = 3.0_f64;
+    let r2 = {
+        let s = &model.sites.joints[0].sections;
+        0.5 * (s[0].gyration_squared() + s[1].gyration_squared())
+    };
+    // The candidate's J is the rotary inertia beyond m I/A.
+    let truth = [m, m * (ratio * ratio - 1.0) * r2];
+    let quiet = Noise {
+        frequency: 0.0,
+        shape: 0.0,
+    };
+    let exact = run(&hardware_data(m, ratio, quiet, 1));
+    let c = joint_mass_candidate(&exact);
+    assert!(c.excluded.is_none(), "{:?}", c.excluded);
+    for (e, t) in c.parameters.iter().zip(truth) {
+        assert!(
+            (e.value - t).abs() < 1e-3 * t,
+            "{} = {} against {t}",
+            e.name,
+            e.value
+        );
+    }
+    for seed in [3, 4, 5] {
+        let report = run(&hardware_data(m, ratio, NOISE, seed));
+        let c = joint_mass_candidate(&report);
+        assert_eq!(
+            report.selected.as_deref(),
+            Some("joint_mass"),
+            "seed {seed}"
+        );
+        for (e, t) in c.parameters.iter().zip(truth) {
+            assert!(
+                (e.value - t).abs() < 3.0 * e.se,
+                "seed {seed}: {} = {} +- {}, truth {t}",
+                e.name,
+                e.value,
+                e.se
+            );
+        }
+    }
+}
+
+/// Hardware whose rotary inertia would put its radius of gyration beyond two section heights
+/// (3 heights here): the fit is held on the plausible bound, J = m ((2 h)^2 - r^2), and the
+/// candidate is not excluded for overstepping it.
+#[test]
+fn a_rotary_inertia_beyond_the_plausible_gyration_is_fitted_on_the_bound() {
+    let model = paper_model(1e7, 1e4);
+    let m = 0.002 * model.sites.beam_mass;
+    // 3 section heights = 3 sqrt(12) r.
+    let report = run(&hardware_data(m, 3.0 * 12.0_f64.sqrt(), NOISE, 7));
+    let c = joint_mass_candidate(&report);
+    assert!(c.excluded.is_none(), "{:?}", c.excluded);
+    let r2 = {
+        let s = &model.sites.joints[0].sections;
+        0.5 * (s[0].gyration_squared() + s[1].gyration_squared())
+    };
+    let (fm, fj) = (c.parameters[0].value, c.parameters[1].value);
+    let bound = fm * 47.0 * r2;
+    assert!(fm > 0.0, "m {fm}");
+    assert!(
+        (fj - bound).abs() <= 1e-6 * bound,
+        "J {fj} against the bound {bound}"
+    );
 }

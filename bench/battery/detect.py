@@ -148,8 +148,9 @@ def find_size(noncentrality, target: float, guess: float, lower: float, upper: f
 # the same yardstick as the detectability above. Knobs (the battery's own effects, with the
 # knobs a fit would free): joint_coupling s in [-0.95, 0.95] and joint_mass its mass, one per
 # joint as jointid's candidates free them, joint_mass also its
-# rotary inertia ratio c in [1, 9] (c = 1 is the coupled inertia of jointid's candidate, so
-# the mimic covers it); sensor_mass its mass and its radius of gyration g in [0, 2] section
+# rotary inertia ratio c in [1, 48] (c = 1 is the coupled inertia m I/A; jointid's candidate
+# frees each joint's rotary inertia up to a radius of gyration of two section heights,
+# c = 48: the mimic, one c for all joints, covers less, the strict side); sensor_mass its mass and its radius of gyration g in [0, 2] section
 # heights (jointid's plausible range of the sensor's free rotary inertia); suspension its bounce
 # ratio; shear a factor t in [0, 3] on the Timoshenko shear flexibility and rotary inertia of
 # the physical section (t = 1 the true Timoshenko beam).
@@ -162,7 +163,7 @@ PER_JOINT = ["joint_coupling", "joint_mass"]
 # (the first start is the nominal model: the effect absent)
 _KNOBS = {
     "joint_coupling": ([-0.95], [0.95], [[0.0], [0.05], [-0.05]]),
-    "joint_mass": ([0.0, 1.0], [1.0, 9.0], [[0.0, 1.0], [0.01, 1.0], [0.01, 5.0]]),
+    "joint_mass": ([0.0, 1.0], [1.0, 48.0], [[0.0, 1.0], [0.01, 1.0], [0.01, 5.0], [0.01, 20.0]]),
     "sensor_mass": ([0.0, 0.0], [0.5, 2.0], [[0.0, 0.6], [0.005, 0.6], [0.05, 0.6], [0.005, 1.5]]),
     "suspension": ([0.0], [0.5], [[0.0], [0.02], [0.2]]),
     "shear": ([0.0], [3.0], [[0.0], [0.5], [1.5]]),

@@ -530,6 +530,79 @@ mod tests {
         }
     }
 
+    /// The rows of a case of the independent battery (fixture 025-floor_x10-joint_mass-strong:
+    /// six sensors, a true floor of 0.2 of the peak; 4 pseudo-residuals, 30 levels), rounded
+    /// to 5 digits: reweighting from the stated start settles on b = 0, where the components
+    /// near a node (u^2 ~ 1e-7 with squares ~ 5e-5) are impossible; the result is the
+    /// likelihood's optimum over a fine grid of (a^2, b^2) from every start.
+    #[test]
+    fn the_likelihood_optimum_is_found_where_reweighting_settles_on_no_floor() {
+        let rows: Vec<Row> = [
+            (3.1557e-01, 1.5556e+00, 1.9549e-07),
+            (1.6304e-01, 1.6250e+00, 6.0263e-05),
+            (5.2399e-01, 1.5001e+00, 1.5910e-04),
+            (3.1386e-01, 1.5213e+00, 2.3588e-04),
+            (5.3527e-01, 1.0000e+00, 2.2128e-05),
+            (5.2694e-03, 1.0000e+00, 5.4499e-05),
+            (6.0004e-02, 1.0000e+00, 2.5536e-04),
+            (1.0000e+00, 1.0000e+00, 9.6836e-04),
+            (5.6471e-01, 1.0000e+00, 1.2170e-04),
+            (1.3556e-01, 1.0000e+00, 1.5029e-06),
+            (2.5657e-02, 1.0000e+00, 1.5473e-04),
+            (1.1684e-03, 1.0000e+00, 2.6229e-05),
+            (1.0213e-02, 1.0000e+00, 6.7337e-05),
+            (2.1174e-04, 1.0000e+00, 1.4903e-05),
+            (9.0069e-03, 1.0000e+00, 1.5784e-05),
+            (1.0000e+00, 1.0000e+00, 1.9906e-04),
+            (1.0000e+00, 1.0000e+00, 1.9756e-03),
+            (5.7092e-02, 1.0000e+00, 6.7587e-05),
+            (3.0188e-01, 1.0000e+00, 2.0375e-06),
+            (1.3614e-01, 1.0000e+00, 6.0290e-05),
+            (2.8620e-04, 1.0000e+00, 1.8623e-06),
+            (9.8334e-04, 1.0000e+00, 4.7674e-07),
+            (1.3847e-04, 1.0000e+00, 1.4338e-05),
+            (2.8449e-07, 1.0000e+00, 4.7908e-05),
+            (9.3046e-05, 1.0000e+00, 3.0440e-05),
+            (4.1295e-05, 1.0000e+00, 6.5363e-08),
+            (1.0000e+00, 1.0000e+00, 2.9446e-04),
+            (1.1399e-04, 1.0000e+00, 1.9190e-11),
+            (1.0000e+00, 1.0000e+00, 7.1489e-05),
+            (4.4615e-01, 1.0000e+00, 1.6767e-04),
+            (1.3606e-01, 1.0000e+00, 1.8427e-05),
+            (4.9144e-03, 1.0000e+00, 8.8830e-06),
+            (1.1321e-05, 1.0000e+00, 1.2682e-06),
+            (2.7360e-05, 1.0000e+00, 7.7486e-05),
+        ]
+        .iter()
+        .map(|&(relative, floor, square)| Row {
+            relative,
+            floor,
+            square,
+        })
+        .collect();
+        let edge = reweighted(&rows, 4e-4, 1.6e-7);
+        assert_eq!(edge.1, 0.0, "{edge:?}");
+        let ln =
+            |lo: f64, hi: f64, i: u32| (lo.ln() + (hi.ln() - lo.ln()) * f64::from(i) / 400.0).exp();
+        let mut grid_best = f64::INFINITY;
+        for i in 0..=400 {
+            for j in 0..=400 {
+                let point = (ln(1e-6, 1e-2, i), ln(1e-9, 1e-3, j));
+                grid_best = grid_best.min(negative_log_likelihood(&rows, point));
+            }
+        }
+        for start in [(4e-4, 1.6e-7), (4e-4, 0.0), (1e-6, 1e-3)] {
+            let found = variance_function(&rows, start.0, start.1);
+            let l = negative_log_likelihood(&rows, found);
+            assert!(found.1 > 0.0, "from {start:?}: {found:?}");
+            assert!(
+                l <= grid_best + 1e-6,
+                "from {start:?}: {found:?}, {l} against {grid_best}"
+            );
+            assert!(l < negative_log_likelihood(&rows, edge) - 100.0);
+        }
+    }
+
     /// Residuals of a pure relative noise (b = 0): the floor is clamped at zero, not negative.
     #[test]
     fn floor_stays_non_negative() {
