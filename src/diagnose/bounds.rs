@@ -213,7 +213,7 @@ mod tests {
         let s = pa.llt(faer::Side::Lower).unwrap().solve(-&pg);
         // Along the face direction d = (1, 4) / sqrt(17): s = t d, t = -(d.g) / (d.A d).
         let d = [1.0 / 17.0_f64.sqrt(), 4.0 / 17.0_f64.sqrt()];
-        let dg = d[0] * -1.0 + d[1] * 1.0;
+        let dg = -d[0] + d[1];
         let dad = 2.0 * d[0] * d[0] + 2.0 * 0.5 * d[0] * d[1] + d[1] * d[1];
         let t = -dg / dad;
         assert!((s[(0, 0)] - t * d[0]).abs() < 1e-12 && (s[(1, 0)] - t * d[1]).abs() < 1e-12);
