@@ -1,8 +1,8 @@
 //! `joint_inertia`: the rotary inertia of the joint hardware as its own parameter. A joint's
 //! splice plates or bolt-and-washer sets sit away from the neutral axis, and their radius of
-//! gyration is several times the beam section's: `joint_mass` ties its rotary inertia to
-//! (m/2) I/A (a body of the beam's own gyration) and keeps that meaning; this candidate frees
-//! the rotary inertia J of every joint, half on each joint node's rotation:
+//! gyration is several times the beam section's: `joint_mass` frees it beside the hardware's
+//! mass, within a plausible radius of gyration (a rotary inertia needs a mass); this candidate
+//! is the rotary inertia J of every joint alone, half on each joint node's rotation:
 //!
 //! ```text
 //!   M(J) - M(0) = sum_j J_j / 2 (e_theta_a e_theta_a^T + e_theta_b e_theta_b^T)
