@@ -146,17 +146,16 @@ def find_size(noncentrality, target: float, guess: float, lower: float, upper: f
 #                squares of (nominal + e) against the noise-free data,
 #
 # the same yardstick as the detectability above. Knobs (the battery's own effects, with the
-# knobs a fit would free): joint_coupling s in [-0.95, 0.95] and joint_mass its mass, one per
-# joint as jointid's candidates free them, joint_mass also its
-# rotary inertia ratio c in [1, 48] (c = 1 is the coupled inertia m I/A; jointid's candidate
-# frees each joint's rotary inertia up to a radius of gyration of two section heights,
-# c = 48: the mimic, one c for all joints, covers less, the strict side); sensor_mass its mass and its radius of gyration g in [0, 2] section
+# knobs a fit would free): joint_coupling s in [-0.95, 0.95] and joint_mass its mass and its
+# rotary inertia ratio c in [1, 48], one of each per joint as jointid's candidates free them
+# (c = 1 is the coupled inertia m I/A; c = 48 a radius of gyration of two section heights,
+# jointid's plausible bound); sensor_mass its mass and its radius of gyration g in [0, 2] section
 # heights (jointid's plausible range of the sensor's free rotary inertia); suspension its bounce
 # ratio; shear a factor t in [0, 3] on the Timoshenko shear flexibility and rotary inertia of
 # the physical section (t = 1 the true Timoshenko beam).
 MIMICS = ["joint_coupling", "joint_mass", "sensor_mass", "suspension", "shear"]
-# effects whose size jointid's candidate frees at every joint separately (one k12, one mass per
-# joint): their mimics free one size per joint too
+# effects whose knobs jointid's candidate frees at every joint separately (one k12; one mass
+# and rotary inertia per joint): their mimics free every knob per joint too
 PER_JOINT = ["joint_coupling", "joint_mass"]
 
 # knob bounds and starting points per library effect
@@ -195,7 +194,7 @@ class Mimic:
             sizes = [float(v) for v in knobs[: self.joints]]
             params = {"sign": 1.0, "per_joint": sizes}
             if self.name == "joint_mass":
-                params["inertia_ratio"] = float(knobs[-1])
+                params["inertia_ratio"] = [float(v) for v in knobs[self.joints :]]
             return effects.build(self.name, 1.0, self.geom, joints, self.sensors, params, nominal=self.nominal).effect
         params = {"gyration_heights": float(knobs[1])} if self.name == "sensor_mass" else {}
         return effects.build(self.name, float(knobs[0]), self.geom, joints, self.sensors, params, nominal=self.nominal).effect
@@ -206,9 +205,10 @@ class Mimic:
         lower, upper, starts = _KNOBS[self.name]
         if self.name not in PER_JOINT:
             return lower, upper, starts
+        # every knob per joint: the size, and the joint mass's inertia ratio
         n = self.joints
-        return ([lower[0]] * n + lower[1:], [upper[0]] * n + upper[1:],
-                [[s[0]] * n + s[1:] for s in starts])
+        return ([v for v in lower for _ in range(n)], [v for v in upper for _ in range(n)],
+                [[v for v in s for _ in range(n)] for s in starts])
 
     def residuals(self, x: np.ndarray, freqs: np.ndarray, shapes: np.ndarray) -> np.ndarray:
         f, y = fe.elastic_modes(self.chain(x), self.count)

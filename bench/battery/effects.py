@@ -159,10 +159,14 @@ def build(name: str | None, size: float, geom: Geometry, truth_joints: list, sen
             j.k12 = s * per * math.sqrt(j.k1 * j.k2)
         desc = {"k12_over_sqrt_k1k2": s, "k12": [j.k12 for j in eff.joints]}
     elif name == "joint_mass":
+        # one ratio for every joint (the truths), or one per joint (the mimicry fits)
+        ratios = params["inertia_ratio"]
+        if not isinstance(ratios, list):
+            ratios = [ratios] * len(eff.joints)
         for ji, per in enumerate(per_joint(params, len(eff.joints))):
             m = size * per * mass
             for node, beam in ((eff.last_node(ji), eff.beams[ji]), (eff.first_node(ji + 1), eff.beams[ji + 1])):
-                inertia = 0.5 * m * params["inertia_ratio"] * beam.second_moment / beam.area
+                inertia = 0.5 * m * ratios[ji] * beam.second_moment / beam.area
                 eff.masses.append((node, 0.5 * m, inertia))
         m = size * mass
         desc = {

@@ -689,7 +689,12 @@ fn levenberg_marquardt(
                 mu *= 10.0;
                 continue;
             }
-            let candidate = problem.evaluate(&trial, pairing).map_err(LmError::Modal)?;
+            // A trial point without an eigensolution (a step into a structure the solver
+            // refuses) is a step too long, as an inadmissible one is.
+            let Ok(candidate) = problem.evaluate(&trial, pairing) else {
+                mu *= 10.0;
+                continue;
+            };
             let value = chi2(&candidate.residual);
             if value <= current {
                 x = trial;

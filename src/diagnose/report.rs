@@ -251,6 +251,11 @@ pub struct ModeCorrection {
     pub correction: Option<f64>,
     /// Standard deviation of Delta p_i, first order.
     pub std: Option<f64>,
+    /// Whether p_i + Delta p_i stays positive. The per-mode step is linear in Delta p: a
+    /// correction that would make a stiffness zero or negative is beyond its reach, a sign
+    /// that the mode disagrees with the model in more than the joint; it is shown as the
+    /// paper's method gives it, marked.
+    pub physical: Option<bool>,
 }
 
 /// Whether the per-mode corrections of one parameter are consistent with a constant.
@@ -329,6 +334,7 @@ pub fn per_mode_corrections(
                 relative,
                 correction: relative.map(|z| z * p.value),
                 std: std.as_ref().map(|s| s[i]),
+                physical: relative.map(|z| 1.0 + z > 0.0),
             });
         }
     }
@@ -497,6 +503,7 @@ mod tests {
             relative: Some(value),
             correction: Some(value),
             std: Some(std),
+            physical: Some(true),
         }
     }
 

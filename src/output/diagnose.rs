@@ -36,7 +36,12 @@ fn corrections(
                     .map(sci)
                     .unwrap_or_else(|| "rank-deficient".into()),
                 c.std.map(sci).unwrap_or_default(),
-                c.relative.map(|z| format!("{:+.4}", z)).unwrap_or_default(),
+                c.relative
+                    .map(|z| {
+                        let mark = if c.physical == Some(false) { " *" } else { "" };
+                        format!("{:+.4}{mark}", z)
+                    })
+                    .unwrap_or_default(),
             ]
         })
         .collect();
@@ -52,6 +57,12 @@ fn corrections(
         ],
         &rows,
     )?;
+    if list.iter().any(|c| c.physical == Some(false)) {
+        writeln!(
+            out,
+            "  * p + Delta p <= 0: beyond the reach of the per-mode linear step (the mode disagrees with the model in more than the joint)"
+        )?;
+    }
     for f in flat {
         writeln!(
             out,
