@@ -218,8 +218,11 @@ class Mimic:
         """min chi^2 over the joints and the knobs, from ``joints_start`` and each of the
         effect's knob starts; and the knobs at the minimum."""
         lower, upper, starts = self.knobs()
-        lo = np.concatenate([np.full(2 * self.joints, -np.inf), lower])
-        hi = np.concatenate([np.full(2 * self.joints, np.inf), upper])
+        # the joints' log-stiffnesses within a factor 1e6 of the start (a fit that runs
+        # beyond has left every physical joint, and exp() would overflow)
+        span = math.log(1e6)
+        lo = np.concatenate([np.asarray(joints_start) - span, lower])
+        hi = np.concatenate([np.asarray(joints_start) + span, upper])
         best = None
         for knobs in starts:
             x0 = np.concatenate([joints_start, knobs])
