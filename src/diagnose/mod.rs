@@ -10,10 +10,12 @@
 //! number of candidates tried (Bonferroni), is below [`ALPHA`]. A model explains the data when
 //! P(F(dof, nu) > chi^2 / dof), its frequencies alone and the whiteness of its shape residuals
 //! are all >= [`FIT_ALPHA`] and the estimated noise is within `noise::LARGEST_FACTOR` of the
-//! stated. A candidate whose fitted size is not physically plausible (a negative mass or
-//! spring, a joint or sensor mass above the beams' mass, an inadmissible theta:
-//! `Effect::plausible`, `Effect::admissible`, `EffectParameter::non_negative`) is excluded,
-//! with the reason.
+//! stated. The fits keep what of the plausible range is a linear inequality (non-negative
+//! masses and springs, a rotary inertia within its mass's largest gyration:
+//! `EffectParameter::non_negative`, `Effect::inequalities`, module [`bounds`]); a candidate
+//! whose fitted size is still not physically plausible (a joint or sensor mass above the
+//! beams' mass, an inadmissible theta: `Effect::plausible`, `Effect::admissible`) is
+//! excluded, with the reason.
 //! - no significant candidate and the joint-only fit good: `none`;
 //! - the significant candidate with the largest D_c, if its fit is good: `effect` (or
 //!   `frequency_dependent` when it is the frequency-dependent joint) when every other
@@ -25,6 +27,7 @@
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
 //! - [`fit`]: the weighted nonlinear least squares (Levenberg-Marquardt);
+//! - [`bounds`]: the fit's feasible region (linear inequalities, active set);
 //! - [`report`]: summaries, per-mode corrections, the report.
 
 pub mod along;
