@@ -140,7 +140,7 @@ pub fn estimate(
     }
 }
 
-/// One observation of the variance function: E[square] = a^2 relative + b^2 floor.
+/// One observation of the variance function: E(square) = a^2 relative + b^2 floor.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Row {
     /// Coefficient of a^2.
@@ -255,7 +255,7 @@ pub fn pseudo_dof(sequences: &[along::Sequence], a2: f64, b2: f64) -> f64 {
     count * count / sum_rho2
 }
 
-/// The variance function E[square] = a^2 relative + b^2 floor fitted to `rows`, a^2, b^2 >= 0,
+/// The variance function E(square) = a^2 relative + b^2 floor fitted to `rows`, a^2, b^2 >= 0,
 /// from (a2, b2); no degrees-of-freedom correction. Returns (a^2, b^2).
 ///
 /// Iteratively reweighted least squares (weights 1 / v^2) finds the optimum of the Gaussian
