@@ -90,10 +90,20 @@ fn assert_recovered(report: &Report, name: &str, size: f64, sigmas: f64) {
     );
     let theta = by_name(name).unwrap().theta_of_size(&ctx, size);
     assert_eq!(c.parameters.len(), theta.len());
-    for (e, t) in c.parameters.iter().zip(theta) {
+    assert_parameters_within(&c.parameters, &theta, sigmas, name);
+}
+
+/// Asserts that every fitted parameter lies within `sigmas` of its standard errors of `truth`.
+fn assert_parameters_within(
+    parameters: &[jointid::diagnose::Estimate],
+    truth: &[f64],
+    sigmas: f64,
+    label: &str,
+) {
+    for (e, t) in parameters.iter().zip(truth) {
         assert!(
             (e.value - t).abs() < sigmas * e.se,
-            "{name}: {} = {} +- {}, truth {t}",
+            "{label}: {} = {} +- {}, truth {t}",
             e.name,
             e.value,
             e.se
@@ -200,15 +210,7 @@ fn joint_hardware_mass_and_rotary_inertia_are_recovered_within_3_sigma() {
             Some("joint_mass"),
             "seed {seed}"
         );
-        for (e, t) in c.parameters.iter().zip(truth) {
-            assert!(
-                (e.value - t).abs() < 3.0 * e.se,
-                "seed {seed}: {} = {} +- {}, truth {t}",
-                e.name,
-                e.value,
-                e.se
-            );
-        }
+        assert_parameters_within(&c.parameters, &truth, 3.0, &format!("seed {seed}"));
     }
 }
 

@@ -12,26 +12,13 @@
 //! `$CARGO_MANIFEST_DIR/../shared/data/unesp-bert/`, and the test skips, saying so, where the
 //! folder is absent.
 
-use std::path::PathBuf;
+mod common;
 
 use jointid::extract::shapes::mac_real;
 use jointid::extract::{Extraction, Settings, extract, universal};
 use jointid::uff::{Record, read_path};
 
 const LEVELS: [&str; 6] = ["0p05", "0p10", "0p15", "0p20", "0p25", "0p30"];
-
-fn data_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/unesp-bert");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "skipped: {} is absent (UNESP-BERT data not shared here)",
-            dir.display()
-        );
-        None
-    }
-}
 
 fn extract_level(dir: &std::path::Path, level: &str) -> (Extraction, Vec<f64>) {
     let path = dir.join(format!("frf_{level}V.uff"));
@@ -58,7 +45,9 @@ fn extract_level(dir: &std::path::Path, level: &str) -> (Extraction, Vec<f64>) {
 
 #[test]
 fn unesp_bert_frequencies_shapes_and_softening() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::unesp_dir() else {
+        return;
+    };
     let all: Vec<(Extraction, Vec<f64>)> = LEVELS.iter().map(|l| extract_level(&dir, l)).collect();
     for (level, (ex, _)) in LEVELS.iter().zip(&all) {
         let row: Vec<String> = ex

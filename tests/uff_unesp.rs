@@ -10,24 +10,13 @@
 //! `$CARGO_MANIFEST_DIR/../shared/data/unesp-bert/`, and the tests skip, saying so, where the
 //! folder is absent.
 
+mod common;
+
 use std::path::PathBuf;
 
 use jointid::uff::{
     Abscissa, Encoding, FunctionType, NodeFormat, Precision, Record, Values, read_path,
 };
-
-fn data_dir() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/unesp-bert");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!(
-            "skipped: {} is absent (UNESP-BERT data not shared here)",
-            dir.display()
-        );
-        None
-    }
-}
 
 fn frf_files(dir: &PathBuf) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
@@ -64,7 +53,9 @@ fn data_starts(text: &str) -> Vec<usize> {
 
 #[test]
 fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::unesp_dir() else {
+        return;
+    };
     let files = frf_files(&dir);
     assert_eq!(files.len(), 6, "six excitation levels");
     for file in files {
@@ -135,7 +126,9 @@ fn every_frf_file_reads_as_four_frfs_and_four_coherences() {
 
 #[test]
 fn first_value_of_the_first_frf_is_the_files_text() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::unesp_dir() else {
+        return;
+    };
     let records = read_path(&dir.join("frf_0p05V.uff")).unwrap();
     let Record::Function(f) = &records[0] else {
         panic!("function expected")
@@ -151,7 +144,9 @@ fn first_value_of_the_first_frf_is_the_files_text() {
 
 #[test]
 fn geometry_holds_the_five_nodes_of_the_readme() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::unesp_dir() else {
+        return;
+    };
     let records = read_path(&dir.join("geometry.uff")).unwrap();
     assert_eq!(records.len(), 1);
     let Record::Nodes(nodes) = &records[0] else {

@@ -32,11 +32,6 @@ impl Bounds {
         Self { rows }
     }
 
-    /// Whether there is no inequality.
-    pub fn is_empty(&self) -> bool {
-        self.rows.is_empty()
-    }
-
     fn value(row: &[(usize, f64)], x: &[f64]) -> f64 {
         row.iter().map(|&(i, c)| c * x[i]).sum()
     }

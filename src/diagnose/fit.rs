@@ -805,37 +805,20 @@ mod tests {
             &dofs,
             nominal.frequency_hz(2),
         ));
-        let noise = Noise {
-            frequency: 0.001,
-            shape: 0.02,
+        let calibration = Calibration {
+            noise: Noise {
+                frequency: 0.001,
+                shape: 0.02,
+            },
+            pairing: PairingRule::default(),
+            shape_floor: 0.01,
         };
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
-        let rule = PairingRule::default();
-        let problem = Problem {
-            ctx: &ctx,
-            measured: &measured,
-            noise,
-            pairing: &rule,
-            effects: effects
-                .iter()
-                .map(|e| (e.clone(), vec![0.0; e.parameters(&ctx).len()]))
-                .collect(),
-            joint_p0: vec![1e7, 1e4],
-            sigma: measured
-                .modes()
-                .iter()
-                .map(|m| {
-                    m.values
-                        .iter()
-                        .map(|v| 0.02 * (v * v + 1e-4).sqrt())
-                        .collect()
-                })
-                .collect(),
-            covering: AtomicUsize::new(0),
-        };
+        let problem = Problem::new(&ctx, &measured, &calibration, &effects);
+        let rule = &calibration.pairing;
         // joints; joint_mass (m, J), shear, joint_coupling; four shape scales.
         let x = vec![0.1, -0.2, 2.0, 0.5, 0.4, 0.3, 0.9, 1.1, 1.0, 0.95];
-        let pairing = pair(&nominal, &measured, 2, &rule).unwrap();
+        let pairing = pair(&nominal, &measured, 2, rule).unwrap();
         let eval = problem.evaluate(&x, &pairing).unwrap();
         let jac = problem.jacobian(&x, &eval, &pairing);
         // Eigenvalues are accurate to about eps * lambda_max (2e-3 here) in absolute terms: the

@@ -306,8 +306,9 @@ fn profile(rows: &[Row]) -> (f64, f64) {
     let step = (hi - lo) / GRID as f64;
     let best = (0..=GRID)
         .map(|i| lo + step * i as f64)
-        .min_by(|a, b| at(*a).0.total_cmp(&at(*b).0))
-        .unwrap_or(lo);
+        .map(|ln_rho| (ln_rho, at(ln_rho).0))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(lo, |(ln_rho, _)| ln_rho);
     let (mut a, mut b) = ((best - step).max(lo), (best + step).min(hi));
     let phi = 0.5 * (5.0_f64.sqrt() - 1.0);
     for _ in 0..60 {

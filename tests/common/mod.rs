@@ -21,6 +21,18 @@ pub fn translations(model: &Structure) -> Vec<Observation> {
         .collect()
 }
 
+/// Runs the binary and asserts that it succeeded, showing its stderr when not.
+pub fn jointid_ok(args: &[&str]) -> std::process::Output {
+    let out = jointid(args);
+    assert!(
+        out.status.success(),
+        "jointid {}: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// A fresh scratch directory for one test.
 pub fn scratch(prefix: &str, name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("jointid-{prefix}-{name}-{}", std::process::id()));
@@ -35,4 +47,42 @@ pub fn jointid(args: &[&str]) -> std::process::Output {
         .args(args)
         .output()
         .unwrap()
+}
+
+/// The UNESP-BERT data folder (`../shared/data/unesp-bert`), or None, saying so, where it is
+/// absent (the data are never copied into the project).
+pub fn unesp_dir() -> Option<std::path::PathBuf> {
+    let dir =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/unesp-bert");
+    if dir.is_dir() {
+        Some(dir)
+    } else {
+        eprintln!(
+            "skipped: {} is absent (UNESP-BERT data not shared here)",
+            dir.display()
+        );
+        None
+    }
+}
+
+/// A JSON number, or a panic naming what was there instead.
+pub fn number(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// Every number anywhere in `v` is finite (JSON has no NaN or infinity: they would come out
+/// as null or be missing, which [`number`] refuses where a value is required).
+pub fn assert_finite(v: &serde_json::Value, path: &str) {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) => assert!(n.as_f64().is_some_and(f64::is_finite), "{path}: {n}"),
+        Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .for_each(|(i, x)| assert_finite(x, &format!("{path}[{i}]"))),
+        Value::Object(o) => o
+            .iter()
+            .for_each(|(k, x)| assert_finite(x, &format!("{path}.{k}"))),
+        _ => {}
+    }
 }

@@ -16,16 +16,14 @@
 //! no mass is no hardware). A rotary inertia alone is the separate candidate `joint_inertia`.
 
 use super::{
-    Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,
+    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, add_pair, beyond,
+    largest_gyration_squared, linear_contribution, per_joint_name,
 };
 use crate::structure::{JointSite, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct JointMass;
-
-/// Largest radius of gyration of joint hardware, in section heights.
-const LARGEST_GYRATION_HEIGHTS: f64 = 2.0;
 
 /// dM/dm of a joint.
 fn pattern(site: &JointSite) -> SparseSym {
@@ -83,7 +81,7 @@ fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
 
 /// (2 h)^2 - r^2 with h^2 = 12 r^2: the largest J / m beyond the coupled inertia.
 fn extra_gyration_squared(site: &JointSite) -> f64 {
-    (LARGEST_GYRATION_HEIGHTS.powi(2) * 12.0 - 1.0) * gyration_squared(site)
+    (largest_gyration_squared(1.0) - 1.0) * gyration_squared(site)
 }
 
 impl Effect for JointMass {
@@ -171,8 +169,7 @@ impl Effect for JointMass {
         {
             let (m, inertia) = (theta[row[0].0], theta[row[1].0]);
             let largest = m * extra_gyration_squared(site);
-            // (a fit held to the bound may overstep it by round-off)
-            if inertia > largest * (1.0 + 1e-9) {
+            if beyond(inertia, largest) {
                 return Err(format!(
                     "joint {}: a rotary inertia {inertia:.4e} kg m^2 beyond its mass's {m:.4e} kg puts the hardware's radius of gyration beyond {LARGEST_GYRATION_HEIGHTS} section heights",
                     j + 1

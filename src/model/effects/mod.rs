@@ -246,6 +246,21 @@ pub(crate) fn linear_contribution(
     (k, m)
 }
 
+/// Largest radius of gyration of a body attached to a beam (a sensor, joint hardware) about
+/// the beam's axis, in section heights.
+pub(crate) const LARGEST_GYRATION_HEIGHTS: f64 = 2.0;
+
+/// The square of [`LARGEST_GYRATION_HEIGHTS`] section heights of a rectangle whose I/A is
+/// `r2` (its height^2 is 12 I/A).
+pub(crate) fn largest_gyration_squared(r2: f64) -> f64 {
+    LARGEST_GYRATION_HEIGHTS.powi(2) * 12.0 * r2
+}
+
+/// Whether `value` exceeds `bound` beyond the round-off of a fit held on that bound.
+pub(crate) fn beyond(value: f64, bound: f64) -> bool {
+    value > bound * (1.0 + 1e-9)
+}
+
 /// `effect.suffix`, or `effect.siteK.suffix` (K 1-based) for an effect with one parameter per
 /// site of a kind (`joint`, `end`) when there are several.
 pub(crate) fn per_site_name(

@@ -18,15 +18,14 @@
 //! Size (in `jointid simulate --effect sensor_mass=size`): total sensor mass / mass of all
 //! beams, with J_s = 0.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution};
+use super::{
+    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, beyond, linear_contribution,
+};
 use crate::structure::{Direction, DofMap, Observation, SparseSym};
 
 /// See the module docs.
 #[derive(Debug, Clone, Copy)]
 pub struct SensorMass;
-
-/// Largest radius of gyration of a sensor about the beam's axis, in section heights.
-const LARGEST_GYRATION_HEIGHTS: f64 = 2.0;
 
 /// c c^T of every observation.
 fn outer(points: &[Observation]) -> SparseSym {
@@ -82,10 +81,9 @@ fn gyration_squared(ctx: &EffectContext) -> f64 {
         / elements.len() as f64
 }
 
-/// The square of the largest radius of gyration, LARGEST_GYRATION_HEIGHTS section heights (a
-/// rectangle's height is sqrt(12 I / A)).
+/// The square of a sensor's largest radius of gyration (of the mean section).
 fn largest_gyration_squared(ctx: &EffectContext) -> f64 {
-    LARGEST_GYRATION_HEIGHTS.powi(2) * 12.0 * gyration_squared(ctx)
+    super::largest_gyration_squared(gyration_squared(ctx))
 }
 
 impl Effect for SensorMass {
@@ -157,8 +155,7 @@ impl Effect for SensorMass {
         if let Some(&j) = theta.get(1) {
             let height = (12.0 * gyration_squared(ctx)).sqrt();
             let largest = theta[0] * largest_gyration_squared(ctx);
-            // (a fit held to the bound may overstep it by round-off)
-            if j > largest * (1.0 + 1e-9) {
+            if beyond(j, largest) {
                 return Err(format!(
                     "a sensor's rotary inertia {j:.4e} kg m^2 with its mass {:.4e} kg puts its radius of gyration beyond {LARGEST_GYRATION_HEIGHTS} section heights ({height:.4e} m): no sensor",
                     theta[0]
