@@ -196,7 +196,7 @@ fn joint_hardware_mass_and_rotary_inertia_are_recovered_within_3_sigma() {
     assert!(c.excluded.is_none(), "{:?}", c.excluded);
     for (e, t) in c.parameters.iter().zip(truth) {
         assert!(
-            (e.value - t).abs() < 1e-3 * t,
+            (e.value - t).abs() < 1e-6 * t,
             "{} = {} against {t}",
             e.name,
             e.value
@@ -233,7 +233,7 @@ fn a_rotary_inertia_beyond_the_plausible_gyration_is_fitted_on_the_bound() {
     let bound = fm * 47.0 * r2;
     assert!(fm > 0.0, "m {fm}");
     assert!(
-        (fj - bound).abs() <= 1e-6 * bound,
+        (fj - bound).abs() <= 1e-9 * bound,
         "J {fj} against the bound {bound}"
     );
 }

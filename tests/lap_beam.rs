@@ -108,10 +108,11 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
         let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         assert_finite(&r, "report");
         assert_eq!(r["verdict"], "unexplained", "seed {seed}");
-        // The remaining error of the calibrated joint: the symmetric modes' 3.5%.
+        // The remaining error of the calibrated joint: the symmetric modes' 3.4-3.9% (five
+        // seeds), the antisymmetric ones within 3 sigma of the 0.1% frequency noise.
         let after = &r["after"];
         let rms = number(&after["frequency_rms_pct"]);
-        assert!((2.0..5.0).contains(&rms), "seed {seed}: RMS {rms}%");
+        assert!((2.5..3.2).contains(&rms), "seed {seed}: RMS {rms}%");
         for m in after["modes"].as_array().unwrap() {
             let (mode, err) = (
                 m["mode"].as_u64().unwrap(),
@@ -119,11 +120,11 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
             );
             if mode % 2 == 1 {
                 assert!(
-                    err.abs() > 2.5 && err.abs() < 5.0,
+                    err.abs() > 3.0 && err.abs() < 4.5,
                     "seed {seed}: mode {mode} {err}%"
                 );
             } else {
-                assert!(err.abs() < 0.5, "seed {seed}: mode {mode} {err}%");
+                assert!(err.abs() < 0.3, "seed {seed}: mode {mode} {err}%");
             }
         }
         // Joint parameters: finite, within the fit's range of the nominal.
