@@ -22,7 +22,9 @@ pub mod sparse;
 pub use dofs::{Direction, DofInfo, DofMap, LineElement};
 pub use matrix::SymMatrix;
 pub use observation::{LocateError, Observation, observe};
-pub use sites::{ElementSite, EndSite, JointSite, Section, Sites};
+pub use sites::{
+    ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite, Section, Sites, SupportSite,
+};
 pub use sparse::SparseSym;
 
 use crate::modal::{ModalError, ModalSolution};

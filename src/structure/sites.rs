@@ -3,7 +3,7 @@
 //! fills what it knows; an external model may know none of it, and the effects that need a
 //! site then do not apply.
 
-use super::dofs::LineElement;
+use super::dofs::{Direction, LineElement};
 
 /// The section of a beam element, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +79,38 @@ pub struct EndSite {
     pub theta: usize,
 }
 
+/// A support that holds motions of the chain rigidly (clamped, pinned, guided): the builder
+/// removed their DOFs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SupportSite {
+    /// Abscissa, m.
+    pub x: f64,
+    /// Section of the beam there.
+    pub section: Section,
+    /// The motions it holds (w before theta), in [`HeldMotions`] order.
+    pub held: Vec<Direction>,
+}
+
+/// The beam's stiffness or mass on the motions the rigid supports hold: what their removed
+/// DOFs would carry were the supports not rigid.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HeldCoupling {
+    /// Among the held motions, n_h x n_h (row by row).
+    pub own: Vec<Vec<f64>>,
+    /// Of each held motion with the DOFs of the structure: (DOF, value), one entry per DOF.
+    pub free: Vec<Vec<(usize, f64)>>,
+}
+
+/// The motions held by the rigid supports, in support order (w before theta at each), with
+/// the beam's stiffness and mass on them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HeldMotions {
+    /// Stiffness.
+    pub stiffness: HeldCoupling,
+    /// Mass.
+    pub mass: HeldCoupling,
+}
+
 /// The sites of a structure.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Sites {
@@ -92,4 +124,9 @@ pub struct Sites {
     pub elements: Vec<ElementSite>,
     /// Free ends.
     pub free_ends: Vec<EndSite>,
+    /// Rigid supports away from joints (a support at a joint holds both joint nodes and stays
+    /// rigid).
+    pub supports: Vec<SupportSite>,
+    /// The motions those supports hold.
+    pub held: HeldMotions,
 }

@@ -15,8 +15,8 @@ use super::mesh::Mesh;
 use super::setup::rigid_body_modes;
 use super::{Chain, SupportKind};
 use crate::structure::{
-    Direction, DofInfo, DofMap, ElementSite, EndSite, JointSite, LineElement, Matrices, Parameter,
-    Role, Sites, SparseSym, Structure, SymMatrix,
+    Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite,
+    LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite, SymMatrix,
 };
 
 /// Abscissae closer than this fraction of the chain's length are one position.
@@ -93,16 +93,58 @@ impl Chain {
                 }
             })
             .collect();
+        // The motions the rigid supports hold, where one node is held (not at a joint).
+        let mut supports = Vec::new();
+        let mut node_held: Vec<[Option<usize>; 2]> = vec![[None, None]; mesh.nodes.len()];
+        let mut held_count = 0;
+        for s in &self.supports {
+            let mut at = mesh
+                .nodes
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| same(n.x, s.x));
+            let (Some((node, _)), None) = (at.next(), at.next()) else {
+                continue;
+            };
+            let held: Vec<Direction> = [Direction::W, Direction::Theta]
+                .into_iter()
+                .filter(|&d| s.kind.removes(d))
+                .collect();
+            if held.is_empty() {
+                continue;
+            }
+            for &d in &held {
+                node_held[node][usize::from(d == Direction::Theta)] = Some(held_count);
+                held_count += 1;
+            }
+            let section = mesh
+                .elements
+                .iter()
+                .find(|e| e.nodes.contains(&node))
+                .expect("every node is on an element")
+                .section;
+            supports.push(SupportSite {
+                x: mesh.nodes[node].x,
+                section,
+                held,
+            });
+        }
+        let mut held = HeldRecorder::new(held_count);
         // Base matrices.
         let (mut k, mut m) = (Vec::new(), Vec::new());
         for (e, line) in mesh.elements.iter().zip(&lines) {
             let ke = element_stiffness(&e.section, e.length);
             let me = element_mass(&e.section, e.length);
+            let local_held: [Option<usize>; 4] =
+                std::array::from_fn(|i| node_held[e.nodes[i / 2]][i % 2]);
             for i in 0..4 {
                 for j in 0..4 {
                     if let (Some(di), Some(dj)) = (line.dofs[i], line.dofs[j]) {
                         k.push((di, dj, ke[i][j]));
                         m.push((di, dj, me[i][j]));
+                    }
+                    if let Some(h) = local_held[i] {
+                        held.record(h, line.dofs[j], local_held[j], ke[i][j], me[i][j]);
                     }
                 }
             }
@@ -280,6 +322,62 @@ impl Chain {
                 joints,
                 elements,
                 free_ends,
+                supports,
+                held: held.finish(),
+            },
+        }
+    }
+}
+
+/// Collects the beam's stiffness and mass on the held motions, element entry by entry.
+struct HeldRecorder {
+    stiffness_own: Vec<Vec<f64>>,
+    mass_own: Vec<Vec<f64>>,
+    // (held motion, DOF) -> (stiffness, mass)
+    free: std::collections::BTreeMap<(usize, usize), (f64, f64)>,
+}
+
+impl HeldRecorder {
+    fn new(count: usize) -> Self {
+        Self {
+            stiffness_own: vec![vec![0.0; count]; count],
+            mass_own: vec![vec![0.0; count]; count],
+            free: std::collections::BTreeMap::new(),
+        }
+    }
+
+    /// The element entry (k, m) between held motion `h` and a DOF or another held motion.
+    fn record(&mut self, h: usize, dof: Option<usize>, other: Option<usize>, k: f64, m: f64) {
+        match (dof, other) {
+            (Some(d), _) => {
+                let e = self.free.entry((h, d)).or_insert((0.0, 0.0));
+                e.0 += k;
+                e.1 += m;
+            }
+            (None, Some(g)) => {
+                self.stiffness_own[h][g] += k;
+                self.mass_own[h][g] += m;
+            }
+            // A DOF removed by a support that stays rigid: ground.
+            (None, None) => {}
+        }
+    }
+
+    fn finish(self) -> HeldMotions {
+        let count = self.stiffness_own.len();
+        let (mut kf, mut mf) = (vec![Vec::new(); count], vec![Vec::new(); count]);
+        for ((h, d), (k, m)) in self.free {
+            kf[h].push((d, k));
+            mf[h].push((d, m));
+        }
+        HeldMotions {
+            stiffness: HeldCoupling {
+                own: self.stiffness_own,
+                free: kf,
+            },
+            mass: HeldCoupling {
+                own: self.mass_own,
+                free: mf,
             },
         }
     }

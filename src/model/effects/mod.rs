@@ -6,7 +6,7 @@
 //! `jointid simulate` can put into data to test the diagnosis, that the diagnosis does not
 //! know). Every effect is zero at theta = 0: the nominal model is nested in every candidate.
 //! Effects act on the sites of a structure ([`crate::structure::Sites`]: joints, beam
-//! elements, free ends) and on its measured points; an effect with no site to act on does not
+//! elements, free ends, rigid supports) and on its measured points; an effect with no site to act on does not
 //! apply to that structure.
 
 mod element_damage;
@@ -18,6 +18,7 @@ mod lap;
 mod local_stiffness;
 mod sensor_mass;
 mod shear;
+mod support_flexibility;
 mod suspension;
 
 pub use element_damage::ElementDamage;
@@ -29,6 +30,7 @@ pub use lap::Lap;
 pub use local_stiffness::{LocalStiffness, scan};
 pub use sensor_mass::SensorMass;
 pub use shear::Shear;
+pub use support_flexibility::SupportFlexibility;
 pub use suspension::Suspension;
 
 use std::sync::Arc;
@@ -144,6 +146,7 @@ pub fn candidates() -> Vec<Arc<dyn Effect>> {
         Arc::new(JointMass),
         Arc::new(SensorMass),
         Arc::new(Suspension),
+        Arc::new(SupportFlexibility),
         Arc::new(Shear),
     ]
 }
@@ -305,11 +308,16 @@ mod tests {
     }
 
     /// Every effect's dK/dtheta and dM/dtheta against central differences of its
-    /// contribution, at theta away from zero.
+    /// contribution, at theta away from zero (the free-free context: `support_flexibility`
+    /// has its own tests on supported chains).
     #[test]
     fn every_effect_derivative_matches_central_differences() {
         let ctx = context();
-        for effect in candidates().into_iter().chain(outside_library()) {
+        for effect in candidates()
+            .into_iter()
+            .chain(outside_library())
+            .filter(|e| e.applies(&ctx))
+        {
             let theta = effect.theta_of_size(&ctx, 0.3);
             let derivs = effect.derivatives(&ctx, &theta);
             assert_eq!(derivs.len(), theta.len());
@@ -353,7 +361,11 @@ mod tests {
     #[test]
     fn every_effect_vanishes_at_zero_and_round_trips_its_size() {
         let ctx = context();
-        for effect in candidates().into_iter().chain(outside_library()) {
+        for effect in candidates()
+            .into_iter()
+            .chain(outside_library())
+            .filter(|e| e.applies(&ctx))
+        {
             let zero = vec![0.0; effect.parameters(&ctx).len()];
             let (k, m) = effect.contribution(&ctx, &zero);
             let (mut kd, mut md) = (
