@@ -29,7 +29,7 @@ the noise, in that order.
 
 Usage:
   generate.py small [--out tests/fixtures/battery] [--seed 1]
-  generate.py large [--out target/battery/large] [--seed 2] [--jobs 2]
+  generate.py large [--out target/battery/large-s<seed>] [--seed 2] [--jobs 2]
 """
 
 from __future__ import annotations
@@ -268,8 +268,8 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--only", type=int, nargs="*", default=None, help="case indices to (re)generate")
     args = ap.parse_args(argv)
-    out = args.out or Path({"small": "tests/fixtures/battery", "large": "target/battery/large"}[args.battery])
     seed = args.seed if args.seed is not None else {"small": 1, "large": 2}[args.battery]
+    out = args.out or Path({"small": "tests/fixtures/battery", "large": f"target/battery/large-s{seed}"}[args.battery])
     specs = plan(args.battery)
     if args.only is not None:
         specs = [s for s in specs if s.index in set(args.only)]

@@ -3,7 +3,7 @@
 Runs, for every case folder (model.toml, measured.csv, truth.json) of a battery, 2 at a time:
 
     jointid diagnose --model model.toml --measured measured.csv \
-        --frequency-noise <stated> --shape-noise <stated> --json <reports>/<case>.json
+        --frequency-noise <stated> --shape-noise <stated> --json <reports>/<battery>/<case>.json
 
 reads each report's `verdict` and `selected`, and prints (markdown) per noise situation the
 confusion matrix truth class x verdict and the fraction of right verdicts, then a summary.
@@ -40,8 +40,11 @@ half_stated and x1/4 for twice_stated; floor_x10 and heavy_tailed keep the state
 floor_x10 that overstates lambda_e: the strict side). The tables give both scores: `right`
 with the mimicry rule, `strict` without it.
 
-Usage: run.py BATTERY_DIR [--jointid target/release/jointid] [--jobs 2] [--reports DIR]
-       [--markdown FILE] [--csv FILE]
+Several battery folders (the same design drawn with other seeds) are scored together: the
+tables pool their cases, and a first table gives each folder's score per situation.
+
+Usage: run.py BATTERY_DIR [BATTERY_DIR ...] [--jointid target/release/jointid] [--jobs 2]
+       [--reports DIR] [--markdown FILE] [--csv FILE]
 """
 
 from __future__ import annotations
@@ -128,6 +131,8 @@ def verdict_word(report: dict) -> str:
 
 def run_case(jointid: str, case: Path, reports: Path) -> dict:
     truth = json.loads((case / "truth.json").read_text())
+    reports = reports / case.parent.name
+    reports.mkdir(parents=True, exist_ok=True)
     stated = truth["noise"]["stated"]
     out = reports / f"{case.name}.json"
     if out.exists():
@@ -159,6 +164,7 @@ def run_case(jointid: str, case: Path, reports: Path) -> dict:
     situation = truth["noise"]["situation"]
     right = expected(eff["name"], eff["kind"], eff["size_class"], eff.get("noncentrality"), eff.get("mimicry"), situation)["right_verdicts"]
     return {
+        "battery": case.parent.name,
         "case": case.name,
         "situation": situation,
         "truth": "clean" if eff["name"] is None else f"{eff['name']}/{eff['size_class']}",
@@ -211,6 +217,20 @@ def markdown(rows: list, wall: float, battery: str) -> str:
 
     for s in situations + ["all"]:
         lines.append(summary(s, [r for r in rows if s == "all" or r["situation"] == s]))
+    batteries = list(dict.fromkeys(r["battery"] for r in rows))
+    if len(batteries) > 1:
+        lines += ["", "Per battery folder (right verdicts per situation):", "",
+                  "| battery | " + " | ".join(situations) + " | all | clean -> none |",
+                  "|---" * (len(situations) + 3) + "|"]
+        for b in batteries:
+            rb = [r for r in rows if r["battery"] == b]
+            cells = []
+            for s in situations + ["all"]:
+                rs = [r for r in rb if s == "all" or r["situation"] == s]
+                cells.append(f"{sum(r['right'] for r in rs)}/{len(rs)}")
+            clean = [r for r in rb if r["kind"] == "clean"]
+            cells.append(f"{sum(r['verdict'] == 'none' for r in clean)}/{len(clean)}")
+            lines.append(f"| {b} | " + " | ".join(cells) + " |")
     layouts = sorted({r["sensors"] for r in rows})
     if len(layouts) > 1:
         lines += ["", "By sensor layout (all: w at every node; subset: w at 3-6 nodes):", "", lines[2], lines[3]]
@@ -249,27 +269,32 @@ def markdown(rows: list, wall: float, battery: str) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("battery", type=Path)
+    ap.add_argument("battery", type=Path, nargs="+")
     ap.add_argument("--jointid", default="target/release/jointid")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--reports", type=Path, default=None, help="where the JSON reports go (default target/battery-reports/<battery name>)")
+    ap.add_argument("--reports", type=Path, default=None, help="where the JSON reports go, a folder per battery (default target/battery-reports)")
     ap.add_argument("--markdown", type=Path, default=None, help="also write the tables here")
     ap.add_argument("--csv", type=Path, default=None, help="one row per case")
     args = ap.parse_args(argv)
-    cases = sorted(p for p in args.battery.iterdir() if (p / "truth.json").exists())
-    if not cases:
-        print(f"{args.battery}: no case folders (with truth.json)", file=sys.stderr)
+    if len({b.resolve().name for b in args.battery}) < len(args.battery):
+        print("battery folders must have distinct names (their reports go under them)", file=sys.stderr)
         return 2
+    cases = []
+    for battery in args.battery:
+        found = sorted(p for p in battery.iterdir() if (p / "truth.json").exists())
+        if not found:
+            print(f"{battery}: no case folders (with truth.json)", file=sys.stderr)
+            return 2
+        cases += found
     if not Path(args.jointid).exists():
         print(f"{args.jointid}: no such binary; build it with `cargo build --release`", file=sys.stderr)
         return 2
-    reports = args.reports or Path("target/battery-reports") / args.battery.resolve().name
-    reports.mkdir(parents=True, exist_ok=True)
+    reports = args.reports or Path("target/battery-reports")
     t0 = time.perf_counter()
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda c: run_case(args.jointid, c, reports), cases))
     wall = time.perf_counter() - t0
-    text = markdown(rows, wall, args.battery.name)
+    text = markdown(rows, wall, " + ".join(b.name for b in args.battery))
     print(text)
     if args.markdown:
         args.markdown.write_text(text)
