@@ -27,6 +27,11 @@ const NOISE: Noise = Noise {
     frequency: 0.001,
     shape: 0.02,
 };
+/// No noise (the data exact; diagnosed with the stated [`NOISE`]).
+const QUIET: Noise = Noise {
+    frequency: 0.0,
+    shape: 0.0,
+};
 
 /// The new candidates with a size each that moves the first six modes clearly.
 const HIDDEN: [(&str, f64); 3] = [("lap", 0.01), ("joint_inertia", 0.1), ("end_mass", 0.02)];
@@ -76,7 +81,7 @@ fn assert_recovered(report: &Report, name: &str, size: f64, sigmas: f64) {
         .unwrap()
         .frequency_hz(2);
     let ctx = EffectContext::new(model.clone(), &common::translations(&model), first);
-    let c = report.candidates.iter().find(|c| c.name == name).unwrap();
+    let c = candidate(report, name);
     assert!(c.error.is_none(), "{name}: {:?}", c.error);
     let (fitted, se) = (c.size.unwrap(), c.size_se.unwrap());
     eprintln!(
@@ -168,12 +173,29 @@ fn hardware_data(m: f64, ratio: f64, noise: Noise, seed: u64) -> MeasuredModes {
     MeasuredModes::new(modes)
 }
 
-fn joint_mass_candidate(report: &Report) -> &jointid::diagnose::CandidateReport {
+/// The candidate `name` of `report`.
+fn candidate<'a>(report: &'a Report, name: &str) -> &'a jointid::diagnose::CandidateReport {
     report
         .candidates
         .iter()
-        .find(|c| c.name == "joint_mass")
-        .unwrap()
+        .find(|c| c.name == name)
+        .unwrap_or_else(|| panic!("no candidate {name}"))
+}
+
+/// Asserts that every fitted parameter lies within `relative` of its `truth`.
+fn assert_parameters_relative(
+    parameters: &[jointid::diagnose::Estimate],
+    truth: &[f64],
+    relative: f64,
+) {
+    for (e, t) in parameters.iter().zip(truth) {
+        assert!(
+            (e.value - t).abs() < relative * t,
+            "{} = {} against {t}",
+            e.name,
+            e.value
+        );
+    }
 }
 
 #[test]
@@ -187,24 +209,13 @@ fn joint_hardware_mass_and_rotary_inertia_are_recovered_within_3_sigma() {
     };
     // The candidate's J is the rotary inertia beyond m I/A.
     let truth = [m, m * (ratio * ratio - 1.0) * r2];
-    let quiet = Noise {
-        frequency: 0.0,
-        shape: 0.0,
-    };
-    let exact = run(&hardware_data(m, ratio, quiet, 1));
-    let c = joint_mass_candidate(&exact);
+    let exact = run(&hardware_data(m, ratio, QUIET, 1));
+    let c = candidate(&exact, "joint_mass");
     assert!(c.excluded.is_none(), "{:?}", c.excluded);
-    for (e, t) in c.parameters.iter().zip(truth) {
-        assert!(
-            (e.value - t).abs() < 1e-6 * t,
-            "{} = {} against {t}",
-            e.name,
-            e.value
-        );
-    }
+    assert_parameters_relative(&c.parameters, &truth, 1e-6);
     for seed in [3, 4, 5] {
         let report = run(&hardware_data(m, ratio, NOISE, seed));
-        let c = joint_mass_candidate(&report);
+        let c = candidate(&report, "joint_mass");
         assert_eq!(
             report.selected.as_deref(),
             Some("joint_mass"),
@@ -223,7 +234,7 @@ fn a_rotary_inertia_beyond_the_plausible_gyration_is_fitted_on_the_bound() {
     let m = 0.002 * model.sites.beam_mass;
     // 3 section heights = 3 sqrt(12) r.
     let report = run(&hardware_data(m, 3.0 * 12.0_f64.sqrt(), NOISE, 7));
-    let c = joint_mass_candidate(&report);
+    let c = candidate(&report, "joint_mass");
     assert!(c.excluded.is_none(), "{:?}", c.excluded);
     let r2 = {
         let s = &model.sites.joints[0].sections;
@@ -315,38 +326,19 @@ fn run_clamped(data: &MeasuredModes) -> Report {
     .unwrap()
 }
 
-fn support_candidate(report: &Report) -> &jointid::diagnose::CandidateReport {
-    report
-        .candidates
-        .iter()
-        .find(|c| c.name == "support_flexibility")
-        .unwrap()
-}
-
 #[test]
 fn a_flexible_clamp_is_named_and_its_compliances_recovered_within_3_sigma() {
     let truth = clamp_compliances();
-    let quiet = Noise {
-        frequency: 0.0,
-        shape: 0.0,
-    };
-    let exact = run_clamped(&clamp_data(quiet, 1));
-    let c = support_candidate(&exact);
+    let exact = run_clamped(&clamp_data(QUIET, 1));
+    let c = candidate(&exact, "support_flexibility");
     assert_eq!(exact.selected.as_deref(), Some("support_flexibility"));
     // Noise-free: the truth up to the two discretisations' difference (the reduction against
     // the spring support's own DOFs): measured 3e-4 (c_w) and 7e-5 (c_theta), 0.16 and 0.003
     // of the 2%-noise standard errors.
-    for (e, t) in c.parameters.iter().zip(truth) {
-        assert!(
-            (e.value - t).abs() < 1e-3 * t,
-            "{} = {} against {t}",
-            e.name,
-            e.value
-        );
-    }
+    assert_parameters_relative(&c.parameters, &truth, 1e-3);
     for seed in [3, 4, 5] {
         let report = run_clamped(&clamp_data(NOISE, seed));
-        let c = support_candidate(&report);
+        let c = candidate(&report, "support_flexibility");
         assert_eq!(
             report.selected.as_deref(),
             Some("support_flexibility"),

@@ -21,7 +21,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::{assert_finite, jointid_ok, number, scratch};
+use common::{assert_finite, assert_within_fit_range, jointid_ok, number, scratch};
 use serde_json::Value;
 
 #[test]
@@ -101,15 +101,7 @@ fn unesp_bert_gets_a_verdict_its_errors_and_the_joint_trend() {
                 assert!((0.0..=1.0).contains(&mac), "{level}: {m}");
             }
         }
-        for (p, nominal) in before["parameters"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip([1e7, 3e2])
-        {
-            let v = number(&p["value"]);
-            assert!(v > nominal / 1e3 && v < nominal * 1e3, "{level}: {p}");
-        }
+        assert_within_fit_range(&before["parameters"], &[1e7, 3e2], level);
         if verdict == "unexplained" || verdict == "frequency_dependent" {
             assert!(
                 r["pattern"]["modes"]

@@ -86,3 +86,13 @@ pub fn assert_finite(v: &serde_json::Value, path: &str) {
         _ => {}
     }
 }
+
+/// Every `parameters[i].value` of a report's JSON lies within the fit's range
+/// (`fit::RANGE_FACTOR`) of `nominals[i]`.
+pub fn assert_within_fit_range(parameters: &serde_json::Value, nominals: &[f64], label: &str) {
+    let range = jointid::diagnose::fit::RANGE_FACTOR;
+    for (p, nominal) in parameters.as_array().unwrap().iter().zip(nominals) {
+        let v = number(&p["value"]);
+        assert!(v > nominal / range && v < nominal * range, "{label}: {p}");
+    }
+}

@@ -294,17 +294,65 @@ pub(crate) fn add_pair(s: &mut SparseSym, a: Option<usize>, b: Option<usize>, va
 
 #[cfg(test)]
 mod tests {
+    use faer::Mat;
+
     use super::*;
     use crate::modal::ModalSolution;
     use crate::model::fixtures::paper_model;
 
     pub(crate) fn context() -> EffectContext {
-        let structure = paper_model(1e7, 1e4);
+        context_of(paper_model(1e7, 1e4))
+    }
+
+    /// The context of `structure` measured at every DOF.
+    pub(crate) fn context_of(structure: Structure) -> EffectContext {
         let modal = ModalSolution::solve(&structure.assemble()).unwrap();
         let points: Vec<Observation> = (0..structure.dof_count())
             .map(|d| Observation::dof(&structure.dofs, d))
             .collect();
-        EffectContext::new(structure, &points, modal.frequency_hz(2))
+        let first_elastic = modal.frequency_hz(structure.rigid);
+        EffectContext::new(structure, &points, first_elastic)
+    }
+
+    /// K and M of a contribution or derivative as dense n x n matrices.
+    pub(crate) fn dense(n: usize, (k, m): &(SparseSym, SparseSym)) -> (Mat<f64>, Mat<f64>) {
+        let (mut kd, mut md) = (Mat::zeros(n, n), Mat::zeros(n, n));
+        k.add_to(&mut kd, 1.0);
+        m.add_to(&mut md, 1.0);
+        (kd, md)
+    }
+
+    /// Asserts that dK/dtheta_i and dM/dtheta_i of `effect` at `theta` match central
+    /// differences of its contribution with step `h` to 1e-6 of their largest entries; returns
+    /// the analytic derivative.
+    pub(crate) fn assert_central_differences(
+        effect: &dyn Effect,
+        ctx: &EffectContext,
+        theta: &[f64],
+        i: usize,
+        h: f64,
+    ) -> (Mat<f64>, Mat<f64>) {
+        let n = ctx.structure.dof_count();
+        let (ka, ma) = dense(n, &effect.derivatives(ctx, theta)[i]);
+        let at = |sign: f64| {
+            let mut t = theta.to_vec();
+            t[i] += sign * h;
+            dense(n, &effect.contribution(ctx, &t))
+        };
+        let ((kp, mp), (km, mm)) = (at(1.0), at(-1.0));
+        let fd_k = (&kp - &km) * faer::Scale(1.0 / (2.0 * h));
+        let fd_m = (&mp - &mm) * faer::Scale(1.0 / (2.0 * h));
+        let (sk, sm) = (ka.norm_max().max(1e-300), ma.norm_max().max(1e-300));
+        let name = effect.name();
+        assert!(
+            (&fd_k - &ka).norm_max() <= 1e-6 * sk,
+            "{name}: dK/dtheta{i} at {theta:?}"
+        );
+        assert!(
+            (&fd_m - &ma).norm_max() <= 1e-6 * sm,
+            "{name}: dM/dtheta{i} at {theta:?}"
+        );
+        (ka, ma)
     }
 
     /// Every effect's dK/dtheta and dM/dtheta against central differences of its
@@ -319,36 +367,10 @@ mod tests {
             .filter(|e| e.applies(&ctx))
         {
             let theta = effect.theta_of_size(&ctx, 0.3);
-            let derivs = effect.derivatives(&ctx, &theta);
-            assert_eq!(derivs.len(), theta.len());
-            for (i, (dk, dm)) in derivs.iter().enumerate() {
+            assert_eq!(effect.derivatives(&ctx, &theta).len(), theta.len());
+            for i in 0..theta.len() {
                 let h = 1e-6 * theta[i].abs().max(effect.parameters(&ctx)[i].scale);
-                let at = |sign: f64| {
-                    let mut t = theta.clone();
-                    t[i] += sign * h;
-                    let (k, m) = effect.contribution(&ctx, &t);
-                    let (mut kd, mut md) = (faer::Mat::zeros(38, 38), faer::Mat::zeros(38, 38));
-                    k.add_to(&mut kd, 1.0);
-                    m.add_to(&mut md, 1.0);
-                    (kd, md)
-                };
-                let ((kp, mp), (km, mm)) = (at(1.0), at(-1.0));
-                let (mut ka, mut ma) = (faer::Mat::zeros(38, 38), faer::Mat::zeros(38, 38));
-                dk.add_to(&mut ka, 1.0);
-                dm.add_to(&mut ma, 1.0);
-                let fd_k = (&kp - &km) * faer::Scale(1.0 / (2.0 * h));
-                let fd_m = (&mp - &mm) * faer::Scale(1.0 / (2.0 * h));
-                let (sk, sm) = (ka.norm_max().max(1e-300), ma.norm_max().max(1e-300));
-                assert!(
-                    (&fd_k - &ka).norm_max() <= 1e-6 * sk,
-                    "{}: dK/dtheta{i}",
-                    effect.name()
-                );
-                assert!(
-                    (&fd_m - &ma).norm_max() <= 1e-6 * sm,
-                    "{}: dM/dtheta{i}",
-                    effect.name()
-                );
+                let (ka, ma) = assert_central_differences(effect.as_ref(), &ctx, &theta, i, h);
                 assert!(
                     ka.norm_max() > 0.0 || ma.norm_max() > 0.0,
                     "{}: zero derivative",
@@ -367,13 +389,7 @@ mod tests {
             .filter(|e| e.applies(&ctx))
         {
             let zero = vec![0.0; effect.parameters(&ctx).len()];
-            let (k, m) = effect.contribution(&ctx, &zero);
-            let (mut kd, mut md) = (
-                faer::Mat::<f64>::zeros(38, 38),
-                faer::Mat::<f64>::zeros(38, 38),
-            );
-            k.add_to(&mut kd, 1.0);
-            m.add_to(&mut md, 1.0);
+            let (kd, md) = dense(38, &effect.contribution(&ctx, &zero));
             assert_eq!(kd.norm_max(), 0.0, "{}", effect.name());
             assert_eq!(md.norm_max(), 0.0, "{}", effect.name());
             let size = 0.07;
