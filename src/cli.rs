@@ -242,9 +242,8 @@ pub struct SimulateArgs {
     /// Error distribution: gaussian or uniform.
     #[arg(long, default_value = "gaussian")]
     pub noise: String,
-    /// An effect the model lacks, `name=size` (repeatable): joint_coupling, joint_mass,
-    /// sensor_mass, suspension, shear, element_damage, rising_joint (see README for sizes).
-    #[arg(long = "effect", value_parser = parse_effect)]
+    /// An effect the model lacks, `name=size` (repeatable; the names come from the registry).
+    #[arg(long = "effect", value_parser = parse_effect, help = effect_help())]
     pub effects: Vec<(String, f64)>,
     /// Measured DOFs.
     #[arg(long, value_enum, default_value_t = Measure::All)]
@@ -369,10 +368,34 @@ pub struct DiagnoseArgs {
     /// comma-separated; the other modes pair by MAC within the window.
     #[arg(long, value_delimiter = ',', value_parser = parse_pair)]
     pub pair: Vec<(usize, usize)>,
-    /// Also search the richer candidates: lap (a splice region at each joint), joint_inertia
-    /// (joint rotary inertia alone), end_mass (masses at the free ends).
-    #[arg(long)]
+    /// Also search the candidates of the extended tier (listed from the registry).
+    #[arg(long, help = extended_help())]
     pub extended: bool,
+}
+
+/// simulate's `--effect` help: every name it accepts, from the registries.
+fn effect_help() -> String {
+    let names: Vec<String> = jointid::simulate::effect_catalogue()
+        .into_iter()
+        .map(|(name, _)| name)
+        .collect();
+    format!(
+        "An effect the model lacks, `name=size` (repeatable): {} (see README's candidate table for what each size means)",
+        names.join(", ")
+    )
+}
+
+/// diagnose's `--extended` help: the candidates of the extended tier, from the registry.
+fn extended_help() -> String {
+    let names: Vec<&str> = jointid::diagnose::registry()
+        .iter()
+        .filter(|c| c.tier() == jointid::diagnose::Tier::Extended)
+        .map(|c| c.name())
+        .collect();
+    format!(
+        "Also search the candidates of the extended tier: {} (see README's candidate table)",
+        names.join(", ")
+    )
 }
 
 fn parse_pair(s: &str) -> Result<(usize, usize), String> {

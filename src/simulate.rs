@@ -7,9 +7,7 @@ use std::sync::Arc;
 use crate::input::Number;
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
-use crate::model::effects::{
-    Configured, EffectContext, by_name, candidates, extended, outside_library,
-};
+use crate::model::effects::{Configured, EffectContext, by_name, registry};
 use crate::structure::{Observation, Structure, check_elastic};
 use crate::study::noise::{NoiseKind, TrialRng};
 
@@ -95,6 +93,13 @@ pub fn measured_modes(
 /// Name of the per-mode joint trend `jointid simulate` accepts beside the effects.
 pub const RISING_JOINT: &str = "rising_joint";
 
+/// The names `jointid simulate --effect` accepts beside the registered effects, with what
+/// their size means.
+pub const NOT_EFFECTS: [(&str, &str); 1] = [(
+    RISING_JOINT,
+    "joint stiffnesses that rise with the mode (outside the candidate library): mode r is simulated with every k1, k2 times (1 + size (r - 1))",
+)];
+
 /// An effect `simulate` does not know.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulateError {
@@ -134,12 +139,11 @@ pub enum SimulateError {
 
 /// Every name `--effect` accepts, with what its size means.
 pub fn effect_catalogue() -> Vec<(String, String)> {
-    candidates()
-        .into_iter()
-        .chain(extended())
-        .chain(outside_library())
-        .map(|e| (e.name().to_string(), e.describe().to_string()))
-        .chain([(RISING_JOINT.to_string(), "joint stiffnesses that rise with the mode (outside the candidate library): mode r is simulated with every k1, k2 times (1 + size (r - 1))".to_string())])
+    registry()
+        .iter()
+        .map(|e| (e.name(), e.describe()))
+        .chain(NOT_EFFECTS)
+        .map(|(name, describe)| (name.to_string(), describe.to_string()))
         .collect()
 }
 

@@ -404,17 +404,16 @@ fn simulate_then_diagnose_writes_the_json_report() {
     assert!(v["before"]["frequency_rms_pct"].as_f64().unwrap() > 10.0);
     assert!(v["after"]["frequency_rms_pct"].as_f64().unwrap() < 0.2);
     let candidates = v["candidates"].as_array().unwrap();
-    // The library but support_flexibility (the chain is free-free), and the
-    // frequency-dependent joint.
+    // The default library but support_flexibility (the chain is free-free).
     let names: Vec<&str> = candidates
         .iter()
         .map(|c| c["name"].as_str().unwrap())
         .collect();
-    let expected: Vec<&str> = jointid::model::effects::candidates()
+    let expected: Vec<&str> = jointid::diagnose::registry()
         .iter()
+        .filter(|c| c.tier() == jointid::diagnose::Tier::Default)
         .map(|c| c.name())
         .filter(|&n| n != "support_flexibility")
-        .chain(["frequency_dependence"])
         .collect();
     assert_eq!(names, expected);
     for c in candidates {

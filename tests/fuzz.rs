@@ -74,6 +74,15 @@ fn mutate_toml(text: &'static str) -> impl Strategy<Value = String> {
 }
 
 /// A valid measured-modes CSV of the paper model (exact modes 1-4, every DOF).
+/// Every name `simulate --effect` accepts (from the registries), and one it does not.
+fn effect_names() -> Vec<String> {
+    jointid::simulate::effect_catalogue()
+        .into_iter()
+        .map(|(name, _)| name)
+        .chain(["bogus".to_string()])
+        .collect()
+}
+
 fn measured_csv() -> String {
     let model = paper_model(1e7, 1e4);
     let points = common::all_dofs(&model);
@@ -240,10 +249,7 @@ proptest! {
         shape in prop_oneof![Just(0.0), Just(1e-160), Just(0.02), Just(0.99), Just(1.5), Just(-0.1)],
         effect in prop_oneof![
             Just(None),
-            (prop_oneof![
-                Just("joint_mass"), Just("joint_coupling"), Just("sensor_mass"), Just("suspension"),
-                Just("shear"), Just("element_damage"), Just("rising_joint"), Just("bogus")
-            ], -2.0f64..2.0).prop_map(Some),
+            (prop::sample::select(effect_names()), -2.0f64..2.0).prop_map(Some),
         ],
     ) {
         let dir = workdir("simulate");

@@ -3,7 +3,7 @@
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
-use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
+use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, Setting, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_plots::diagnose_figures;
@@ -12,23 +12,6 @@ use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 use crate::commands::report::stage_figures;
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
-    for (name, v) in [
-        ("--frequency-noise", args.frequency_noise),
-        ("--shape-noise", args.shape_noise),
-    ] {
-        if !(v.is_finite() && v > 0.0 && v < 1.0) {
-            bail!(
-                "{name} {v} is invalid: the stated noise is a relative standard deviation, above 0 and below 1"
-            );
-        }
-    }
-    let inputs = [args.model.as_path(), args.measured.as_path()];
-    let mut outputs: Vec<&std::path::Path> = args.json.iter().map(|p| p.as_path()).collect();
-    let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
-    outputs.extend(index.as_deref());
-    check_outputs(&outputs, &inputs)?;
-    let model = jointid::model::from_path(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let per_mode = match (args.n, args.m) {
         (None, None) => None,
         (Some(n), Some(m)) => Some(Settings {
@@ -38,15 +21,6 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         }),
         _ => bail!("--n and --m go together (or leave both out for the defaults)"),
     };
-    if !(args.pairing_window.is_finite()
-        && args.pairing_window > 0.0
-        && args.pairing_window <= 10.0)
-    {
-        bail!(
-            "--pairing-window {} is invalid: it is a relative half-width above 0 and at most 10",
-            args.pairing_window
-        );
-    }
     let settings = DiagnoseSettings {
         noise: Noise {
             frequency: args.frequency_noise,
@@ -59,6 +33,21 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         per_mode,
         extended: args.extended,
     };
+    if let Err(e) = settings.check() {
+        let flag = match e.setting {
+            Setting::FrequencyNoise => "--frequency-noise",
+            Setting::ShapeNoise => "--shape-noise",
+            Setting::PairingWindow => "--pairing-window",
+        };
+        bail!("{flag} {} is invalid: {}", e.value, e.allowed);
+    }
+    let inputs = [args.model.as_path(), args.measured.as_path()];
+    let mut outputs: Vec<&std::path::Path> = args.json.iter().map(|p| p.as_path()).collect();
+    let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
+    outputs.extend(index.as_deref());
+    check_outputs(&outputs, &inputs)?;
+    let model = jointid::model::from_path(&args.model)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let report = diagnose(&model, &measured, settings)
         .with_context(|| format!("{}", args.measured.display()))?;
     let mut staged = Vec::new();
@@ -75,14 +64,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         let title = format!(
             "Diagnosis of {}: verdict {}",
             args.measured.display(),
-            match report.verdict {
-                jointid::diagnose::Verdict::None => "none".to_string(),
-                jointid::diagnose::Verdict::Effect => report.selected.clone().unwrap_or_default(),
-                jointid::diagnose::Verdict::Ambiguous =>
-                    format!("ambiguous ({})", report.contenders.join(", ")),
-                jointid::diagnose::Verdict::Unexplained => "unexplained".to_string(),
-                jointid::diagnose::Verdict::FrequencyDependent => "frequency-dependent".to_string(),
-            }
+            out::verdict_text(&report, false)
         );
         staged.extend(stage_figures(dir, &title, &figures, &inputs)?);
     }

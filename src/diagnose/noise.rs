@@ -33,7 +33,8 @@
 use serde::Serialize;
 
 use super::along;
-use super::fit::{Fitted, Noise, Residuals, residuals};
+use super::candidate::Tried;
+use super::fit::{Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::{chi2_sf, f_isf, f_sf};
 
@@ -73,6 +74,36 @@ pub struct NoiseEstimate {
     pub from_levels: usize,
     /// Frequencies used.
     pub frequency_values: usize,
+}
+
+/// The noise estimated from the largest physical model fitted under the `stated` noise: among
+/// the candidates `tried` that have a model of their own and a physical size, the one with
+/// the smallest chi^2 when below the joint-only fit `base`'s, else `base` (a fit outside its
+/// effect's plausible range absorbs misfit no physical effect explains, and would pass it off
+/// as noise).
+pub fn from_largest(
+    tried: &[Tried],
+    base: &Fitted,
+    measured: &MeasuredModes,
+    stated: Noise,
+) -> NoiseEstimate {
+    let (name, largest) = tried
+        .iter()
+        .filter_map(|(c, outcome)| {
+            let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
+            Some((c.name(), fit.model.as_ref()?))
+        })
+        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
+        .filter(|(_, f)| f.chi2 < base.chi2)
+        .unwrap_or(("joint only", base));
+    estimate(
+        largest,
+        measured,
+        largest.estimates.len(),
+        stated,
+        SHAPE_FLOOR,
+        name,
+    )
 }
 
 /// Estimates the noise from `fitted` (with `unknowns` model parameters besides the shape

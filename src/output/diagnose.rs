@@ -3,6 +3,7 @@
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
+use crate::diagnose::candidate::Profile;
 use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
 
@@ -84,19 +85,52 @@ fn corrections(
     Ok(())
 }
 
+/// The verdict of `r` in words: a sentence for the text report when `long`, else a title
+/// (the name of the selected candidate, `ambiguous (a, b)`, `none`, ...).
+pub fn verdict_text(r: &Report, long: bool) -> String {
+    let selected = r.selected.as_deref().unwrap_or("");
+    let contenders = r.contenders.join(", ");
+    match (r.verdict, long) {
+        (Verdict::None, false) => "none".into(),
+        (Verdict::None, true) => "none: the calibrated model explains the data within the noise (the working noise below)".into(),
+        (Verdict::Effect, false) => selected.into(),
+        (Verdict::Effect, true) => format!("effect: {selected}"),
+        (Verdict::Ambiguous, false) => format!("ambiguous ({contenders})"),
+        (Verdict::Ambiguous, true) => format!(
+            "ambiguous: {contenders} explain the data about equally well (AIC within {AMBIGUITY_MARGIN} of the best); 'after' is the best, {selected}"
+        ),
+        (Verdict::FrequencyDependent, false) => "frequency-dependent".into(),
+        (Verdict::FrequencyDependent, true) => "frequency-dependent: a joint whose stiffness scales with frequency explains the data and no static candidate comes close (the paper's frequency-dependent joint; candidate frequency_dependence)".into(),
+        (Verdict::Unexplained, false) => "unexplained".into(),
+        (Verdict::Unexplained, true) => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".into(),
+    }
+}
+
+/// One line of a scan's chi^2 along its coordinate.
+fn profile(out: &mut dyn Write, name: &str, p: &Profile) -> io::Result<()> {
+    let points: Vec<String> = p
+        .points
+        .iter()
+        .map(|(x, chi2)| match chi2 {
+            Some(c) => format!("{x:.4} {c:.1}"),
+            None => format!("{x:.4} -"),
+        })
+        .collect();
+    writeln!(
+        out,
+        "  {name}: chi^2 along {} ({}): {}; best {:.4}, chi^2 within 1 of the least from {:.4} to {:.4} (- : failed or not physical)",
+        p.coordinate,
+        p.unit,
+        points.join(", "),
+        p.best,
+        p.interval.0,
+        p.interval.1
+    )
+}
+
 /// Writes the report as text.
 pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
-    let verdict = match (r.verdict, &r.selected) {
-        (Verdict::Effect, Some(name)) => format!("effect: {name}"),
-        (Verdict::None, _) => "none: the calibrated model explains the data within the noise (the working noise below)".to_string(),
-        (Verdict::Ambiguous, _) => format!(
-            "ambiguous: {} explain the data about equally well (AIC within {AMBIGUITY_MARGIN} of the best); 'after' is the best, {}",
-            r.contenders.join(", "),
-            r.selected.as_deref().unwrap_or("")
-        ),
-        (Verdict::FrequencyDependent, _) => "frequency-dependent: a joint whose stiffness scales with frequency explains the data and no static candidate comes close (the paper's frequency-dependent joint; candidate frequency_dependence)".to_string(),
-        _ => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".to_string(),
-    };
+    let verdict = verdict_text(r, true);
     writeln!(out, "verdict: {verdict}")?;
     for f in &r.trend {
         writeln!(
@@ -286,6 +320,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         ],
         &rows,
     )?;
+    for c in &r.candidates {
+        if let Some(p) = &c.profile {
+            profile(out, &c.name, p)?;
+        }
+    }
     writeln!(out, "\nfitted parameters after:")?;
     for e in &r.after.parameters {
         writeln!(

@@ -2,6 +2,7 @@
 //! file writer that puts them on disk whole or not at all.
 
 pub mod atomic;
+pub mod catalogue;
 pub mod diagnose;
 pub mod diagnose_plots;
 pub mod guard;

@@ -2,7 +2,7 @@
 //! beam loses a fraction of its bending stiffness, as a crack or a weld defect would. No
 //! candidate models it; simulated data with it must come out `unexplained`.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution};
+use super::{Effect, EffectContext, EffectParameter, Tier, linear_contribution};
 use crate::model::chain::beam::element_stiffness;
 use crate::structure::{ElementSite, SparseSym};
 
@@ -40,6 +40,10 @@ fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
 impl Effect for ElementDamage {
     fn name(&self) -> &'static str {
         "element_damage"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Outside
     }
 
     fn describe(&self) -> &'static str {

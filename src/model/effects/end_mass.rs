@@ -12,7 +12,7 @@
 //! Size (in `jointid simulate --effect end_mass=size`): the mass at every free end as a
 //! fraction of the mass of all beams.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution, per_site_name};
+use super::{Effect, EffectContext, EffectParameter, Tier, linear_contribution, per_site_name};
 use crate::structure::SparseSym;
 
 /// See the module docs.
@@ -36,6 +36,10 @@ fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
 impl Effect for EndMass {
     fn name(&self) -> &'static str {
         "end_mass"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Extended
     }
 
     fn describe(&self) -> &'static str {

@@ -4,7 +4,7 @@
 //! positive semidefinite while k12^2 <= k1 k2.
 
 use super::{
-    Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,
+    Effect, EffectContext, EffectParameter, Tier, add_pair, linear_contribution, per_joint_name,
 };
 use crate::structure::{JointSite, SparseSym, Structure};
 
@@ -42,6 +42,10 @@ fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
 impl Effect for JointCoupling {
     fn name(&self) -> &'static str {
         "joint_coupling"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

@@ -16,7 +16,7 @@
 //! first joint's left section).
 
 use super::{
-    Effect, EffectContext, EffectParameter, add_pair, linear_contribution, per_joint_name,
+    Effect, EffectContext, EffectParameter, Tier, add_pair, linear_contribution, per_joint_name,
 };
 use crate::structure::{JointSite, SparseSym};
 
@@ -56,6 +56,10 @@ fn unit_inertia(ctx: &EffectContext) -> f64 {
 impl Effect for JointInertia {
     fn name(&self) -> &'static str {
         "joint_inertia"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Extended
     }
 
     fn describe(&self) -> &'static str {

@@ -16,7 +16,7 @@
 //! no mass is no hardware). A rotary inertia alone is the separate candidate `joint_inertia`.
 
 use super::{
-    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, add_pair, beyond,
+    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, Tier, add_pair, beyond,
     largest_gyration_squared, linear_contribution, per_joint_name,
 };
 use crate::structure::{JointSite, SparseSym};
@@ -87,6 +87,10 @@ fn extra_gyration_squared(site: &JointSite) -> f64 {
 impl Effect for JointMass {
     fn name(&self) -> &'static str {
         "joint_mass"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

@@ -28,7 +28,7 @@
 //!
 //! Size (in `jointid simulate --effect lap=size`): s = t / h, the same at every joint.
 
-use super::{Effect, EffectContext, EffectParameter, per_joint_name};
+use super::{Effect, EffectContext, EffectParameter, Tier, per_joint_name};
 use crate::model::chain::beam::{element_mass, element_stiffness};
 use crate::structure::{ElementSite, SparseSym, Structure};
 
@@ -39,16 +39,7 @@ pub struct Lap;
 /// The element of beam `joint` ending at the joint and the element of beam `joint + 1`
 /// starting there (absent when the structure's sites do not list them).
 fn region(ctx: &EffectContext, joint: usize) -> Vec<&ElementSite> {
-    let elements = &ctx.structure.sites.elements;
-    let left = elements
-        .iter()
-        .filter(|e| e.beam == joint)
-        .max_by(|a, b| a.line.x[1].total_cmp(&b.line.x[1]));
-    let right = elements
-        .iter()
-        .filter(|e| e.beam == joint + 1)
-        .min_by(|a, b| a.line.x[0].total_cmp(&b.line.x[0]));
-    left.into_iter().chain(right).collect()
+    super::joint_region::region(ctx, joint, 1)
 }
 
 /// sum k_e and sum m_e over the lap region of every joint.
@@ -104,6 +95,10 @@ fn fraction_of_size(s: f64) -> f64 {
 impl Effect for Lap {
     fn name(&self) -> &'static str {
         "lap"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Extended
     }
 
     fn describe(&self) -> &'static str {

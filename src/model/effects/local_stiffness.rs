@@ -12,7 +12,7 @@
 //! e.g. a Bonferroni factor N over the positions), which is the selection's business
 //! (`crate::diagnose`). Size: d.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution};
+use super::{Effect, EffectContext, EffectParameter, Tier, linear_contribution};
 use crate::model::chain::beam::element_stiffness;
 use crate::structure::{SparseSym, Structure};
 
@@ -55,6 +55,10 @@ impl LocalStiffness {
 impl Effect for LocalStiffness {
     fn name(&self) -> &'static str {
         "local_stiffness"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Extended
     }
 
     fn describe(&self) -> &'static str {

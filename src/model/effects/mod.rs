@@ -1,19 +1,27 @@
 //! Physical effects a model may lack, each one or a few parameters theta with their
 //! contribution to K and M and the derivatives dK/dtheta, dM/dtheta.
 //!
-//! The library is open: an effect is one small type implementing [`Effect`], listed once in
-//! [`candidates`] (the library `jointid diagnose` searches) or [`outside_library`] (effects
-//! `jointid simulate` can put into data to test the diagnosis, that the diagnosis does not
-//! know). Every effect is zero at theta = 0: the nominal model is nested in every candidate.
-//! Effects act on the sites of a structure ([`crate::structure::Sites`]: joints, beam
-//! elements, free ends, rigid supports) and on its measured points; an effect with no site to act on does not
-//! apply to that structure.
+//! The library is open: an effect is one small type implementing [`Effect`] in its own file,
+//! which declares there its name, its [`Tier`] and its description, and is listed once in
+//! [`registry`]. The tier says what the diagnosis does with it: [`Tier::Default`] effects are
+//! the candidates every `jointid diagnose` searches, [`Tier::Extended`] ones are searched with
+//! `--extended`, and [`Tier::Outside`] ones only `jointid simulate` puts into data, to test the
+//! diagnosis on what it does not know. Every list of effects (the CLI's help, simulate's
+//! catalogue, the README's table, the tests' lists) reads the registry. Every effect is zero
+//! at theta = 0: the nominal model is nested in every candidate. Effects act on the sites of a
+//! structure ([`crate::structure::Sites`]: joints, beam elements, free ends, rigid supports)
+//! and on its measured points; an effect with no site to act on does not apply to that
+//! structure.
+//!
+//! Layer: a model module; imports `crate::structure` and the chain builder's element matrices
+//! (`crate::model::chain`), nothing above the model.
 
 mod element_damage;
 mod end_mass;
 mod joint_coupling;
 mod joint_inertia;
 mod joint_mass;
+mod joint_region;
 mod lap;
 mod local_stiffness;
 mod sensor_mass;
@@ -26,6 +34,7 @@ pub use end_mass::EndMass;
 pub use joint_coupling::JointCoupling;
 pub use joint_inertia::JointInertia;
 pub use joint_mass::JointMass;
+pub use joint_region::{JointRegion, lengths as region_lengths};
 pub use lap::Lap;
 pub use local_stiffness::{LocalStiffness, scan};
 pub use sensor_mass::SensorMass;
@@ -76,10 +85,25 @@ pub struct EffectParameter {
     pub non_negative: bool,
 }
 
+/// What the diagnosis does with an effect (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Tier {
+    /// A candidate of every diagnosis.
+    Default,
+    /// A candidate of `jointid diagnose --extended`.
+    Extended,
+    /// Never a candidate: `jointid simulate` puts it into data the diagnosis does not know.
+    Outside,
+}
+
 /// A physical effect: see the module docs.
 pub trait Effect: Send + Sync + std::fmt::Debug {
     /// Name on the command line and in reports.
     fn name(&self) -> &'static str;
+
+    /// What the diagnosis does with the effect.
+    fn tier(&self) -> Tier;
 
     /// What the effect is and what `size` means in `jointid simulate --effect name=size`.
     fn describe(&self) -> &'static str;
@@ -139,8 +163,9 @@ pub trait Effect: Send + Sync + std::fmt::Debug {
     }
 }
 
-/// The candidate library searched by `jointid diagnose`, in report order.
-pub fn candidates() -> Vec<Arc<dyn Effect>> {
+/// Every effect that can be named, in report order: the registry (see the module docs). An
+/// effect is registered by one line here.
+pub fn registry() -> Vec<Arc<dyn Effect>> {
     vec![
         Arc::new(JointCoupling),
         Arc::new(JointMass),
@@ -148,30 +173,44 @@ pub fn candidates() -> Vec<Arc<dyn Effect>> {
         Arc::new(Suspension),
         Arc::new(SupportFlexibility),
         Arc::new(Shear),
+        Arc::new(Lap),
+        Arc::new(JointInertia),
+        Arc::new(EndMass),
+        Arc::new(ElementDamage),
     ]
 }
 
-/// The richer candidates `jointid diagnose --extended` adds to the library: a lap region,
-/// joint rotary inertia alone, masses at the free ends. Not searched by default: on the
-/// independent battery they take 6 right verdicts of 100 from the library (a strong joint
-/// mass read as a lap, weak trends and shear absorbed by end masses) and gain none
+/// The registered effects of `tier`, in report order.
+pub fn of_tier(tier: Tier) -> Vec<Arc<dyn Effect>> {
+    registry()
+        .into_iter()
+        .filter(|e| e.tier() == tier)
+        .collect()
+}
+
+/// The candidate library searched by every `jointid diagnose` ([`Tier::Default`]).
+pub fn candidates() -> Vec<Arc<dyn Effect>> {
+    of_tier(Tier::Default)
+}
+
+/// The richer candidates `jointid diagnose --extended` adds to the library
+/// ([`Tier::Extended`]). Not searched by default: on the independent battery the effects
+/// lap, joint_inertia and end_mass take 6 right verdicts of 100 from the library (a strong
+/// joint mass read as a lap, weak trends and shear absorbed by end masses) and gain none
 /// (bench/battery/results/small-candidates.md).
 pub fn extended() -> Vec<Arc<dyn Effect>> {
-    vec![Arc::new(Lap), Arc::new(JointInertia), Arc::new(EndMass)]
+    of_tier(Tier::Extended)
 }
 
-/// Effects outside the library: for simulated data that no candidate explains.
+/// Effects outside the library ([`Tier::Outside`]): for simulated data that no candidate
+/// explains.
 pub fn outside_library() -> Vec<Arc<dyn Effect>> {
-    vec![Arc::new(ElementDamage)]
+    of_tier(Tier::Outside)
 }
 
-/// The effect named `name`, candidate or outside the library.
+/// The registered effect named `name`.
 pub fn by_name(name: &str) -> Option<Arc<dyn Effect>> {
-    candidates()
-        .into_iter()
-        .chain(extended())
-        .chain(outside_library())
-        .find(|e| e.name() == name)
+    registry().into_iter().find(|e| e.name() == name)
 }
 
 /// A structure with effects at given parameter values.

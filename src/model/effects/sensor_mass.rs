@@ -19,7 +19,8 @@
 //! beams, with J_s = 0.
 
 use super::{
-    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, beyond, linear_contribution,
+    Effect, EffectContext, EffectParameter, LARGEST_GYRATION_HEIGHTS, Tier, beyond,
+    linear_contribution,
 };
 use crate::structure::{Direction, DofMap, Observation, SparseSym};
 
@@ -89,6 +90,10 @@ fn largest_gyration_squared(ctx: &EffectContext) -> f64 {
 impl Effect for SensorMass {
     fn name(&self) -> &'static str {
         "sensor_mass"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

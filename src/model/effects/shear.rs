@@ -14,7 +14,7 @@
 //! [-36, -3l, 36, -3l], [3l, -l^2, -3l, 4l^2]]; the change of the translational mass with phi
 //! is left out.
 
-use super::{Effect, EffectContext, EffectParameter};
+use super::{Effect, EffectContext, EffectParameter, Tier};
 use crate::model::chain::beam::{ElementMatrix, element_stiffness};
 use crate::structure::{ElementSite, Section, SparseSym};
 
@@ -72,6 +72,10 @@ fn every_element(ctx: &EffectContext, f: impl Fn(&ElementSite) -> ElementMatrix)
 impl Effect for Shear {
     fn name(&self) -> &'static str {
         "shear"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

@@ -25,7 +25,7 @@
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
-use super::{Effect, EffectContext, EffectParameter, per_site_name};
+use super::{Effect, EffectContext, EffectParameter, Tier, per_site_name};
 use crate::structure::{Direction, HeldCoupling, SparseSym};
 
 /// See the module docs.
@@ -160,6 +160,10 @@ impl Reduction {
 impl Effect for SupportFlexibility {
     fn name(&self) -> &'static str {
         "support_flexibility"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

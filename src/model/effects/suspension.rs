@@ -2,7 +2,7 @@
 //! stiffness k_s at the free ends of the chain. It applies to structures with rigid-body modes
 //! (a suspended test), whose free ends are known.
 
-use super::{Effect, EffectContext, EffectParameter, linear_contribution};
+use super::{Effect, EffectContext, EffectParameter, Tier, linear_contribution};
 use crate::structure::SparseSym;
 
 /// See the module docs.
@@ -32,6 +32,10 @@ fn patterns(ctx: &EffectContext) -> Vec<(SparseSym, SparseSym)> {
 impl Effect for Suspension {
     fn name(&self) -> &'static str {
         "suspension"
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
     }
 
     fn describe(&self) -> &'static str {

@@ -29,15 +29,78 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use serde::Serialize;
 
-use super::fit::Linearisation;
+use super::{Candidate, CandidateError, Fit, Stage, Tier};
+use crate::diagnose::fit::{self, Estimate, Linearisation};
+use crate::diagnose::report::Verdict;
 use crate::measured::MeasuredModes;
+use crate::model::effects::EffectContext;
 
 /// Name of the frequency-dependent joint among the candidates.
 pub const NAME: &str = "frequency_dependence";
 
+/// The frequency-dependent joint as a candidate (see the module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct FrequencyDependence;
+
+impl Candidate for FrequencyDependence {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
+    }
+
+    fn describe(&self) -> &'static str {
+        "every joint parameter scales as (f / f_ref)^alpha, f_ref the geometric mean of the measured frequencies (linearised at the calibrated joint: a score test); size = alpha"
+    }
+
+    fn applies(&self, ctx: &EffectContext) -> bool {
+        !ctx.structure.identified().is_empty()
+    }
+
+    fn verdict(&self) -> Verdict {
+        Verdict::FrequencyDependent
+    }
+
+    /// The score test at the stage's joint-only fit (nothing to start from: `earlier` is not
+    /// used); no refitted model of its own.
+    fn fit(&self, stage: &Stage, _earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+        let base = stage.base;
+        let lin = fit::linearise(stage.ctx, stage.measured, stage.calibration, base)?;
+        let d = dependence(&lin, stage.measured).ok_or_else(|| {
+            CandidateError::Undetermined(
+                "alpha is not determined (the joint's unknowns and the shape scales absorb a trend with frequency)".into(),
+            )
+        })?;
+        Ok(Fit {
+            parameters: vec![Estimate {
+                name: format!("{NAME}.alpha"),
+                unit: "1",
+                value: d.exponent,
+                se: d.exponent_se,
+            }],
+            size: (d.exponent, d.exponent_se),
+            describe: format!(
+                "every joint parameter scales as (f / {:.4e} Hz)^alpha (linearised at the calibrated joint: a score test)",
+                d.reference_hz
+            ),
+            chi2: d.chi2,
+            dof: base.dof.saturating_sub(1).max(1),
+            lrt: d.statistic,
+            added: 1,
+            unknowns: base.estimates.len() + 1,
+            residuals: lin.unweighted(&d.residual, stage.measured),
+            model: None,
+            excluded: None,
+            profile: None,
+        })
+    }
+}
+
 /// The frequency-dependent joint fitted to first order at the calibrated invariant joint.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FrequencyDependence {
+pub struct Dependence {
     /// alpha: every joint parameter scales as (f / f_ref)^alpha.
     pub exponent: f64,
     /// Its standard error under the working noise.
@@ -56,7 +119,7 @@ pub struct FrequencyDependence {
 
 /// The frequency-dependent joint at the calibration `lin` of `measured`; `None` when the
 /// normal matrix is singular (alpha not determined: a single mode, or no joint unknown).
-pub fn fit(lin: &Linearisation, measured: &MeasuredModes) -> Option<FrequencyDependence> {
+pub fn dependence(lin: &Linearisation, measured: &MeasuredModes) -> Option<Dependence> {
     let modes = measured.modes();
     let log_mean =
         modes.iter().map(|m| m.frequency_hz.ln()).sum::<f64>() / modes.len().max(1) as f64;
@@ -88,7 +151,7 @@ pub fn fit(lin: &Linearisation, measured: &MeasuredModes) -> Option<FrequencyDep
     let residual: Vec<f64> = (0..rows).map(|i| after[(i, 0)]).collect();
     let chi2_before: f64 = lin.residual.iter().map(|v| v * v).sum();
     let chi2: f64 = residual.iter().map(|v| v * v).sum();
-    Some(FrequencyDependence {
+    Some(Dependence {
         exponent: step[(columns, 0)],
         exponent_se: variance.sqrt(),
         reference_hz: log_mean.exp(),

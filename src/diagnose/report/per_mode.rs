@@ -1,0 +1,253 @@
+//! The paper's per-mode corrections (eq. (13)) of the joint on a calibrated model, with their
+//! first-order standard deviations, and whether they are constant across the modes (the
+//! paper's question: does the joint's stiffness change with frequency?).
+
+use serde::Serialize;
+
+use crate::diagnose::fit::{Fitted, Noise};
+use crate::identify::propagation::{jacobian, propagated_std};
+use crate::identify::{Identifier, Projector, Settings, Weighting};
+use crate::measured::MeasuredModes;
+use crate::stats::chi2_sf;
+use crate::structure::{Structure, observe};
+
+/// The paper's per-mode correction of one joint parameter on one mode (eq. (13)) on a
+/// calibrated model, with its standard deviation from the stated noise.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModeCorrection {
+    /// Measured mode r.
+    pub mode: usize,
+    /// Measured frequency, Hz.
+    pub frequency_hz: f64,
+    /// Parameter name.
+    pub param: String,
+    /// Delta p_i / p_i (None when S_r is rank deficient).
+    pub relative: Option<f64>,
+    /// Delta p_i.
+    pub correction: Option<f64>,
+    /// Standard deviation of Delta p_i, first order.
+    pub std: Option<f64>,
+    /// Whether p_i + Delta p_i stays positive. The per-mode step is linear in Delta p: a
+    /// correction that would make a stiffness zero or negative is beyond its reach, a sign
+    /// that the mode disagrees with the model in more than the joint; it is shown as the
+    /// paper's method gives it, marked.
+    pub physical: Option<bool>,
+}
+
+/// Whether the per-mode corrections of one parameter are consistent with a constant.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Flatness {
+    /// Parameter name.
+    pub param: String,
+    /// Weighted mean of Delta p_i over the modes.
+    pub mean: f64,
+    /// chi^2 of the deviations from that mean (dof = modes - 1).
+    pub chi2: f64,
+    /// Its degrees of freedom.
+    pub dof: usize,
+    /// P(chi^2_dof > chi2): small when the corrections really change from mode to mode.
+    pub p_value: f64,
+    /// Weighted least-squares slope of Delta p_i against the mode's frequency, per kHz.
+    pub slope_per_khz: f64,
+    /// Standard error of the slope: a slope beyond 3 of them is a trend with frequency.
+    pub slope_se_per_khz: f64,
+    /// chi^2 of the deviations from the weighted straight line in frequency (dof = modes - 2).
+    pub line_chi2: f64,
+    /// P(chi^2_{modes - 2} > line_chi2) (1 with two modes): small when a straight line does
+    /// not carry the corrections either.
+    pub line_p_value: f64,
+}
+
+/// The per-mode corrections of every joint parameter on the calibrated `fitted` model.
+pub fn per_mode_corrections(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    noise: Noise,
+    settings: Settings,
+) -> Vec<ModeCorrection> {
+    let structure = &fitted.configured.structure;
+    let params = structure.identified();
+    let values: Vec<f64> = params.iter().map(|p| p.value).collect();
+    let Ok(identifier) = Identifier::new(&fitted.modal, params.clone(), structure.rigid, settings)
+    else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for (r, m) in measured.modes().iter().enumerate() {
+        let s = fitted.pairing.model_index[r];
+        let outcome = identifier.identify_paired(m, s).ok();
+        // A mode paired beyond the basis (fewer sensors than the mode's index) has no
+        // per-mode system: its correction is absent, not a panic.
+        let std = Projector::new(&observe(identifier.basis(), &m.points))
+            .ok()
+            .filter(|_| s < settings.n)
+            .and_then(|projector| {
+                let jac = jacobian(
+                    &projector,
+                    &identifier.mode_system(s),
+                    &m.values,
+                    m.lambda(),
+                )?;
+                let shape_variance = noise.shape * noise.shape;
+                Some(propagated_std(
+                    &jac,
+                    &m.values,
+                    m.lambda(),
+                    &values,
+                    shape_variance,
+                    noise.frequency * noise.frequency,
+                ))
+            });
+        for (i, p) in params.iter().enumerate() {
+            let relative = outcome
+                .as_ref()
+                .and_then(|o| o.relative.as_ref().ok())
+                .map(|z| z[i]);
+            out.push(ModeCorrection {
+                mode: m.mode,
+                frequency_hz: m.frequency_hz,
+                param: p.name.clone(),
+                relative,
+                correction: relative.map(|z| z * p.value),
+                std: std.as_ref().map(|s| s[i]),
+                physical: relative.map(|z| 1.0 + z > 0.0),
+            });
+        }
+    }
+    out
+}
+
+/// Flatness of the per-mode corrections of every parameter.
+pub fn flatness(corrections: &[ModeCorrection]) -> Vec<Flatness> {
+    let mut names: Vec<&str> = corrections.iter().map(|c| c.param.as_str()).collect();
+    names.sort_unstable();
+    names.dedup();
+    names
+        .into_iter()
+        .filter_map(|name| {
+            let points: Vec<(f64, f64, f64)> = corrections
+                .iter()
+                .filter(|c| c.param == name)
+                .filter_map(|c| {
+                    Some((
+                        c.frequency_hz / 1000.0,
+                        c.correction?,
+                        c.std.filter(|s| *s > 0.0)?,
+                    ))
+                })
+                .collect();
+            if points.len() < 2 {
+                return None;
+            }
+            let wsum: f64 = points.iter().map(|(_, _, s)| 1.0 / (s * s)).sum();
+            let mean = points.iter().map(|(_, x, s)| x / (s * s)).sum::<f64>() / wsum;
+            let chi2: f64 = points
+                .iter()
+                .map(|(_, x, s)| ((x - mean) / s).powi(2))
+                .sum();
+            let fbar = points.iter().map(|(f, _, s)| f / (s * s)).sum::<f64>() / wsum;
+            let sxx: f64 = points
+                .iter()
+                .map(|(f, _, s)| (f - fbar).powi(2) / (s * s))
+                .sum();
+            let sxy: f64 = points
+                .iter()
+                .map(|(f, x, s)| (f - fbar) * (x - mean) / (s * s))
+                .sum();
+            let dof = points.len() - 1;
+            let (slope, slope_se) = if sxx > 0.0 {
+                (sxy / sxx, 1.0 / sxx.sqrt())
+            } else {
+                (0.0, f64::INFINITY)
+            };
+            let line_chi2 = (chi2 - slope * slope * sxx).max(0.0);
+            Some(Flatness {
+                param: name.to_string(),
+                mean,
+                chi2,
+                dof,
+                p_value: chi2_sf(chi2, dof as f64),
+                slope_per_khz: slope,
+                slope_se_per_khz: slope_se,
+                line_chi2,
+                line_p_value: if dof > 1 {
+                    chi2_sf(line_chi2, (dof - 1) as f64)
+                } else {
+                    1.0
+                },
+            })
+        })
+        .collect()
+}
+
+/// The per-mode settings of a diagnosis when none are given: n = the fewest measured DOFs of
+/// a mode (at least the rigid-body modes plus 2, at most the model's DOFs), m = min(n - rigid,
+/// 6), inverse weighting.
+pub fn default_settings(model: &Structure, measured: &MeasuredModes) -> Settings {
+    let fewest = measured
+        .modes()
+        .iter()
+        .map(|m| m.points.len())
+        .min()
+        .unwrap_or(0);
+    let rigid = model.rigid;
+    let n = fewest.min(model.dof_count()).max(rigid + 2);
+    Settings {
+        n,
+        m: (n - rigid).min(6),
+        weighting: Weighting::Inverse,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn correction(mode: usize, f_hz: f64, value: f64, std: f64) -> ModeCorrection {
+        ModeCorrection {
+            mode,
+            frequency_hz: f_hz,
+            param: "k1".into(),
+            relative: Some(value),
+            correction: Some(value),
+            std: Some(std),
+            physical: Some(true),
+        }
+    }
+
+    #[test]
+    fn corrections_on_a_line_have_its_slope_and_no_chi2_about_it() {
+        // 2 + 3 f (f in kHz) at 0.5, 1, 2, 4 kHz, std 0.1.
+        let list: Vec<ModeCorrection> = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .enumerate()
+            .map(|(r, f)| correction(r + 1, 1000.0 * f, 2.0 + 3.0 * f, 0.1))
+            .collect();
+        let f = &flatness(&list)[0];
+        assert!((f.slope_per_khz - 3.0).abs() < 1e-12, "{f:?}");
+        assert!(f.line_chi2 < 1e-18, "{f:?}");
+        assert!((f.line_p_value - 1.0).abs() < 1e-12);
+        // Mean 2 + 3 * 1.875 = 7.625; chi^2 about it sum (3 (f - 1.875) / 0.1)^2.
+        assert!((f.mean - 7.625).abs() < 1e-12);
+        let expected: f64 = [0.5, 1.0, 2.0, 4.0]
+            .iter()
+            .map(|x: &f64| (30.0 * (x - 1.875)).powi(2))
+            .sum();
+        assert!((f.chi2 - expected).abs() < 1e-9 * expected);
+    }
+
+    #[test]
+    fn a_zigzag_about_a_constant_has_no_slope_and_all_its_chi2_about_the_line() {
+        // +1, -1, -1, +1 about 5 at symmetric frequencies: slope 0, chi^2 4 about both.
+        let list = vec![
+            correction(1, 1000.0, 6.0, 1.0),
+            correction(2, 2000.0, 4.0, 1.0),
+            correction(3, 3000.0, 4.0, 1.0),
+            correction(4, 4000.0, 6.0, 1.0),
+        ];
+        let f = &flatness(&list)[0];
+        assert!(f.slope_per_khz.abs() < 1e-12);
+        assert!((f.chi2 - 4.0).abs() < 1e-12 && (f.line_chi2 - 4.0).abs() < 1e-12);
+        assert!((f.line_p_value - chi2_sf(4.0, 2.0)).abs() < 1e-15);
+    }
+}
