@@ -19,6 +19,10 @@
 //! The goal is >= 90% right in every noise situation and clean `none` >= 95%.
 //! - `clean_and_strong_library_cases_are_right` (fast, 20 cases: per situation the 2 clean
 //!   cases, the strong joint coupling and the strong joint mass) asserts every verdict right;
+//! - `stated_noise_verdicts_are_those_recorded` (the 20 cases of the noise as stated, in the
+//!   default `cargo test`) asserts every verdict equal to the one recorded in `AS_STATED`, right
+//!   or wrong: a new default candidate or a changed rule that moves a verdict fails here, and
+//!   the change must say why by updating the table;
 //! - `verdicts_per_noise_situation_reach_their_floors` (all 100 cases, ~4 min in a debug
 //!   build, so `#[ignore]`: run it with `cargo test --release --test diagnose_battery --
 //!   --ignored`) asserts the right verdicts reached today in each situation (`FLOOR`), so
@@ -46,6 +50,32 @@ const FAST: [&str; 3] = [
     "-clean-none",
     "-joint_coupling-strong",
     "-joint_mass-strong",
+];
+
+/// The verdicts of the 20 cases of the noise as stated, as jointid gives them today: 19 right
+/// (the laps 014 and 015 are, to the data, joint masses: the generator's own fit shows the
+/// mimicry); 019, a strong point mass off the joint, is named joint_mass.
+const AS_STATED: [(&str, &str); 20] = [
+    ("000-as_stated-clean-none", "none"),
+    ("001-as_stated-clean-none", "none"),
+    ("002-as_stated-joint_coupling-weak", "effect:joint_coupling"),
+    ("003-as_stated-joint_coupling-strong", "effect:joint_coupling"),
+    ("004-as_stated-joint_mass-weak", "none"),
+    ("005-as_stated-joint_mass-strong", "effect:joint_mass"),
+    ("006-as_stated-sensor_mass-weak", "none"),
+    ("007-as_stated-sensor_mass-strong", "effect:sensor_mass"),
+    ("008-as_stated-suspension-weak", "none"),
+    ("009-as_stated-suspension-strong", "effect:suspension"),
+    ("010-as_stated-shear-weak", "none"),
+    ("011-as_stated-shear-strong", "effect:shear"),
+    ("012-as_stated-element_damage-weak", "none"),
+    ("013-as_stated-element_damage-strong", "unexplained"),
+    ("014-as_stated-lap_joint-weak", "effect:joint_mass"),
+    ("015-as_stated-lap_joint-strong", "effect:joint_mass"),
+    ("016-as_stated-frequency_joint-weak", "none"),
+    ("017-as_stated-frequency_joint-strong", "frequency_dependent"),
+    ("018-as_stated-point_mass-weak", "none"),
+    ("019-as_stated-point_mass-strong", "effect:joint_mass"),
 ];
 
 fn battery() -> PathBuf {
@@ -116,16 +146,49 @@ fn clean_and_strong_library_cases_are_right() {
         })
         .collect();
     assert_eq!(cases.len(), 20, "4 cases per noise situation");
-    let wrong: Vec<String> = cases
-        .iter()
-        .filter_map(|case| {
-            let truth = truth_of(case);
-            let word = verdict_word(case, &truth);
-            (!is_right(&word, &truth))
-                .then(|| format!("{} -> {word}", case.file_name().unwrap().to_string_lossy()))
-        })
+    let wrong: Vec<String> = verdicts(&cases)
+        .into_iter()
+        .filter(|(_, word, truth)| !is_right(word, truth))
+        .map(|(name, word, _)| format!("{name} -> {word}"))
         .collect();
     assert!(wrong.is_empty(), "wrong verdicts:\n{}", wrong.join("\n"));
+}
+
+/// Every case's verdict, diagnosed in parallel (the cases are independent).
+fn verdicts(cases: &[PathBuf]) -> Vec<(String, String, serde_json::Value)> {
+    use rayon::prelude::*;
+    cases
+        .par_iter()
+        .map(|case| {
+            let truth = truth_of(case);
+            let name = case.file_name().unwrap().to_string_lossy().to_string();
+            (name, verdict_word(case, &truth), truth)
+        })
+        .collect()
+}
+
+#[test]
+fn stated_noise_verdicts_are_those_recorded() {
+    let cases: Vec<PathBuf> = all_cases()
+        .into_iter()
+        .filter(|c| c.to_string_lossy().contains("-as_stated-"))
+        .collect();
+    assert_eq!(cases.len(), AS_STATED.len());
+    let found = verdicts(&cases);
+    let changed: Vec<String> = found
+        .iter()
+        .zip(AS_STATED)
+        .filter(|((name, word, _), (case, recorded))| name != case || word != recorded)
+        .map(|((name, word, _), (_, recorded))| format!("{name}: {recorded} -> {word}"))
+        .collect();
+    assert!(
+        changed.is_empty(),
+        "verdicts on the independent battery changed (a change of the candidate library or of the rules of module decide does this: if intended, update AS_STATED and say why):\n{}",
+        changed.join("\n")
+    );
+    let right = found.iter().filter(|(_, w, t)| is_right(w, t)).count();
+    let floor = FLOOR[0].1;
+    assert!(right >= floor, "{right}/20 right, floor {floor}");
 }
 
 #[test]
