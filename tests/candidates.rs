@@ -438,7 +438,17 @@ fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
         assert!((d.value + 0.4).abs() < sigmas * d.se, "{label}: {d:?}");
         assert_eq!(report.selected.as_deref(), Some("joint_region"), "{label}");
     };
-    check(&run_bars(&bars_data(&truth, QUIET, 1)), 1e-3, "noise-free");
+    let exact = run_bars(&bars_data(&truth, QUIET, 1));
+    check(&exact, 1e-3, "noise-free");
+    // The text report shows the profile along the length, its best and its interval.
+    let mut text = Vec::new();
+    jointid::output::diagnose::write_text(&mut text, &exact).unwrap();
+    let text = String::from_utf8(text).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.contains("joint_region: chi^2 along length (m):"))
+        .unwrap_or_else(|| panic!("no profile line in\n{text}"));
+    assert!(line.contains("best 0.1200"), "{line}");
     for seed in [3, 4, 5] {
         check(
             &run_bars(&bars_data(&truth, NOISE, seed)),
@@ -464,7 +474,11 @@ fn a_local_loss_of_stiffness_is_found_at_its_element() {
         );
         assert!((x.value - 0.41).abs() < 1e-9, "{label}: {x:?}");
         assert!((d.value + 0.5).abs() < sigmas * d.se, "{label}: {d:?}");
-        assert_eq!(report.selected.as_deref(), Some("local_stiffness"), "{label}");
+        assert_eq!(
+            report.selected.as_deref(),
+            Some("local_stiffness"),
+            "{label}"
+        );
     };
     check(&run_bars(&bars_data(&truth, QUIET, 1)), 1e-3, "noise-free");
     for seed in [3, 4] {

@@ -59,7 +59,10 @@ const AS_STATED: [(&str, &str); 20] = [
     ("000-as_stated-clean-none", "none"),
     ("001-as_stated-clean-none", "none"),
     ("002-as_stated-joint_coupling-weak", "effect:joint_coupling"),
-    ("003-as_stated-joint_coupling-strong", "effect:joint_coupling"),
+    (
+        "003-as_stated-joint_coupling-strong",
+        "effect:joint_coupling",
+    ),
     ("004-as_stated-joint_mass-weak", "none"),
     ("005-as_stated-joint_mass-strong", "effect:joint_mass"),
     ("006-as_stated-sensor_mass-weak", "none"),
@@ -73,7 +76,10 @@ const AS_STATED: [(&str, &str); 20] = [
     ("014-as_stated-lap_joint-weak", "effect:joint_mass"),
     ("015-as_stated-lap_joint-strong", "effect:joint_mass"),
     ("016-as_stated-frequency_joint-weak", "none"),
-    ("017-as_stated-frequency_joint-strong", "frequency_dependent"),
+    (
+        "017-as_stated-frequency_joint-strong",
+        "frequency_dependent",
+    ),
     ("018-as_stated-point_mass-weak", "none"),
     ("019-as_stated-point_mass-strong", "effect:joint_mass"),
 ];

@@ -160,6 +160,7 @@ pub fn diagnose(
         measured,
         stated: settings.noise,
         criterion: decide::criterion(&estimate, tried, library.len()),
+        hypotheses: tried,
         estimate,
         initial: &calibrated.initial,
         base: &calibrated.base,

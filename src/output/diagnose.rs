@@ -130,6 +130,41 @@ fn profile(out: &mut dyn Write, name: &str, p: &Profile) -> io::Result<()> {
 
 /// Writes the report as text.
 pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
+    write_verdict(out, r)?;
+    write_noise(out, r)?;
+    write_errors(out, r)?;
+    write_candidates(out, r)?;
+    writeln!(out, "\nfitted parameters after:")?;
+    for e in &r.after.parameters {
+        writeln!(
+            out,
+            "  {} = {} +- {} {}",
+            e.name,
+            sci(e.value),
+            sci(e.se),
+            e.unit
+        )?;
+    }
+    corrections(
+        out,
+        &format!(
+            "per-mode joint corrections, joint calibrated ({})",
+            r.per_mode_settings
+        ),
+        &r.per_mode_before,
+        &r.flatness_before,
+    )?;
+    corrections(
+        out,
+        "per-mode joint corrections, after",
+        &r.per_mode_after,
+        &r.flatness_after,
+    )?;
+    Ok(())
+}
+
+/// The verdict, with the trend and the misfit's pattern when there are.
+fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = verdict_text(r, true);
     writeln!(out, "verdict: {verdict}")?;
     for f in &r.trend {
@@ -182,6 +217,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             regions.join("; ")
         )?;
     }
+    Ok(())
+}
+
+/// The stated noise and the estimate, and the pairing remarks.
+fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(
         out,
         "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
@@ -204,6 +244,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     for w in &r.warnings {
         writeln!(out, "warning: {w}")?;
     }
+    Ok(())
+}
+
+/// The errors of the model as given, calibrated and after; then mode by mode.
+fn write_errors(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out)?;
     write_table(
         out,
@@ -256,6 +301,12 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         ],
         &rows,
     )?;
+    Ok(())
+}
+
+/// Every candidate with its fit and tests (or why it failed or was excluded), and the scans'
+/// profiles.
+fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out, "\ncandidates ({})", r.criterion)?;
     // Name, size, chi^2/dof and LR statistic of a fitted candidate.
     let fitted_cells = |c: &crate::diagnose::CandidateReport| {
@@ -325,31 +376,5 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             profile(out, &c.name, p)?;
         }
     }
-    writeln!(out, "\nfitted parameters after:")?;
-    for e in &r.after.parameters {
-        writeln!(
-            out,
-            "  {} = {} +- {} {}",
-            e.name,
-            sci(e.value),
-            sci(e.se),
-            e.unit
-        )?;
-    }
-    corrections(
-        out,
-        &format!(
-            "per-mode joint corrections, joint calibrated ({})",
-            r.per_mode_settings
-        ),
-        &r.per_mode_before,
-        &r.flatness_before,
-    )?;
-    corrections(
-        out,
-        "per-mode joint corrections, after",
-        &r.per_mode_after,
-        &r.flatness_after,
-    )?;
     Ok(())
 }

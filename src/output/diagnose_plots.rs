@@ -35,6 +35,15 @@ pub fn diagnose_figures(
     report: &Report,
     measured: &MeasuredModes,
 ) -> Result<Vec<Figure>, PlotError> {
+    let mut out = shape_figures(report, measured)?;
+    out.push(frequency_error_figure(report)?);
+    out.extend(correction_figures(report)?);
+    out.extend(candidates_figure(report)?);
+    Ok(out)
+}
+
+/// Measured against model shape of every mode, joint calibrated and after.
+fn shape_figures(report: &Report, measured: &MeasuredModes) -> Result<Vec<Figure>, PlotError> {
     let mut out = Vec::new();
     for ((m, before), after) in measured
         .modes()
@@ -111,6 +120,11 @@ pub fn diagnose_figures(
             svg: body,
         });
     }
+    Ok(out)
+}
+
+/// The frequency error of every mode, joint calibrated and after.
+fn frequency_error_figure(report: &Report) -> Result<Figure, PlotError> {
     let error_series = |name: &str, modes: &[crate::diagnose::report::ModeError]| Series {
         name: name.into(),
         points: modes
@@ -140,11 +154,16 @@ pub fn diagnose_figures(
             &series,
         )
     })?;
-    out.push(Figure {
+    Ok(Figure {
         name: "frequency_error.svg".into(),
         caption: "Frequency error of every mode, joint calibrated and after.".into(),
         svg: body,
-    });
+    })
+}
+
+/// The per-mode corrections and the per-mode joint values of every parameter.
+fn correction_figures(report: &Report) -> Result<Vec<Figure>, PlotError> {
+    let mut out = Vec::new();
     let mut params: Vec<String> = report
         .per_mode_before
         .iter()
@@ -187,6 +206,12 @@ pub fn diagnose_figures(
             out.push(figure);
         }
     }
+    Ok(out)
+}
+
+/// Every candidate's likelihood-ratio statistic against the critical value (none when no
+/// candidate was fitted).
+fn candidates_figure(report: &Report) -> Result<Option<Figure>, PlotError> {
     let fitted: Vec<_> = report
         .candidates
         .iter()
@@ -198,7 +223,7 @@ pub fn diagnose_figures(
         let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1);
         let critical = report
             .noise_estimate
-            .lrt_critical(ALPHA / report.candidates.len() as f64, k);
+            .lrt_critical(ALPHA / report.hypotheses as f64, k);
         let label = format!("critical value {critical:.2}");
         let selected = report
             .selected
@@ -216,16 +241,21 @@ pub fn diagnose_figures(
                 selected,
             )
         })?;
-        out.push(Figure {
+        return Ok(Some(Figure {
             name: "candidates.svg".into(),
             caption: format!(
-                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} candidates, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
-                report.candidates.len()
+                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} {}, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
+                report.hypotheses,
+                if report.hypotheses == report.candidates.len() {
+                    "candidates"
+                } else {
+                    "hypotheses (a scan counts each of its members)"
+                }
             ),
             svg: body,
-        });
+        }));
     }
-    Ok(out)
+    Ok(None)
 }
 
 /// The per-mode value of `param` (calibrated joint-only value plus the paper's correction)

@@ -155,6 +155,10 @@ pub struct Report {
     pub per_mode_settings: String,
     /// The shape-noise floor used in the weights.
     pub shape_floor: f64,
+    /// Hypotheses the selection tested (the multiple-testing count: a scan counts each of its
+    /// members; for the figures, not in the JSON).
+    #[serde(skip)]
+    pub hypotheses: usize,
 }
 
 /// Everything the report is made of: the steps' results.
@@ -176,6 +180,8 @@ pub struct Findings<'a> {
     pub decision: Decision,
     /// The rule of the selection, in words.
     pub criterion: String,
+    /// Hypotheses the selection tested.
+    pub hypotheses: usize,
     /// The per-mode identification settings.
     pub per_mode: Settings,
 }
@@ -247,6 +253,7 @@ pub fn assemble(f: Findings) -> Report {
             f.per_mode.n, f.per_mode.m, f.per_mode.weighting
         ),
         shape_floor: SHAPE_FLOOR,
+        hypotheses: f.hypotheses,
     }
 }
 
