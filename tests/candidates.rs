@@ -361,7 +361,7 @@ fn a_flexible_clamp_is_named_and_its_compliances_recovered_within_3_sigma() {
 // candidates add d k_e to the nominal elements' stiffness, another assembly of the same
 // physics.
 
-/// Two steel bars of 0.3 m in 15 elements of 20 mm each, joined at x = 0.3 m; `segments`
+/// Two steel bars of 0.3 m in 10 elements of 30 mm each, joined at x = 0.3 m; `segments`
 /// holds each beam's `[[beam.segment]]` tables (empty for the nominal model).
 fn bars(segments: [&str; 2]) -> jointid::structure::Structure {
     let steel =
@@ -369,7 +369,7 @@ fn bars(segments: [&str; 2]) -> jointid::structure::Structure {
     let [left, right] = segments;
     jointid::model::from_toml(
         &format!(
-            "[[beam]]\nlength = 0.3\nelements = 15\n{steel}{left}[[beam]]\nlength = 0.3\nelements = 15\n{steel}{right}[[joint]]\nk1 = 1e7\nk2 = 1e3\n"
+            "[[beam]]\nlength = 0.3\nelements = 10\n{steel}{left}[[beam]]\nlength = 0.3\nelements = 10\n{steel}{right}[[joint]]\nk1 = 1e7\nk2 = 1e3\n"
         ),
         std::path::Path::new("bars.toml"),
     )
@@ -420,9 +420,9 @@ fn run_bars(data: &MeasuredModes) -> Report {
     .unwrap()
 }
 
-/// A joint region 60 mm on each side of the joint (3 elements), EI 40% lower: the scan finds
+/// A joint region 60 mm on each side of the joint (2 elements), EI 40% lower: the scan finds
 /// its length (0.12 m, both sides) and d = -0.4, exactly on noise-free data and within 3
-/// sigma on three noisy seeds.
+/// sigma on two noisy seeds.
 #[test]
 fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
     let truth = bars([&softer(0.24, 0.3, 0.6), &softer(0.0, 0.06, 0.6)]);
@@ -449,7 +449,7 @@ fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
         .find(|l| l.contains("joint_region: chi^2 along length (m):"))
         .unwrap_or_else(|| panic!("no profile line in\n{text}"));
     assert!(line.contains("best 0.1200"), "{line}");
-    for seed in [3, 4, 5] {
+    for seed in [3, 4] {
         check(
             &run_bars(&bars_data(&truth, NOISE, seed)),
             3.0,
@@ -458,12 +458,12 @@ fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
     }
 }
 
-/// One element of the second bar (x = 0.40 to 0.42 m along the chain) with EI 50% lower: the
-/// scan of local_stiffness puts it at x = 0.41 m with d = -0.5 (noise-free exactly; within 3
+/// One element of the second bar (x = 0.39 to 0.42 m along the chain) with EI 50% lower: the
+/// scan of local_stiffness puts it at x = 0.405 m with d = -0.5 (noise-free exactly; within 3
 /// sigma on noisy data).
 #[test]
 fn a_local_loss_of_stiffness_is_found_at_its_element() {
-    let truth = bars(["", &softer(0.10, 0.12, 0.5)]);
+    let truth = bars(["", &softer(0.09, 0.12, 0.5)]);
     let check = |report: &Report, sigmas: f64, label: &str| {
         let c = candidate(report, "local_stiffness");
         assert!(c.error.is_none() && c.excluded.is_none(), "{label}: {c:?}");
@@ -472,7 +472,7 @@ fn a_local_loss_of_stiffness_is_found_at_its_element() {
             "{label}: d {} +- {}, x {} +- {}, verdict {:?} {:?}",
             d.value, d.se, x.value, x.se, report.verdict, report.selected
         );
-        assert!((x.value - 0.41).abs() < 1e-9, "{label}: {x:?}");
+        assert!((x.value - 0.405).abs() < 1e-9, "{label}: {x:?}");
         assert!((d.value + 0.5).abs() < sigmas * d.se, "{label}: {d:?}");
         assert_eq!(
             report.selected.as_deref(),

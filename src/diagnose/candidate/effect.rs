@@ -85,5 +85,6 @@ pub(super) fn fit_effect(
         parameters,
         model: Some(fitted),
         profile: None,
+        members: Vec::new(),
     })
 }

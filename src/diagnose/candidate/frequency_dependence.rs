@@ -94,6 +94,7 @@ impl Candidate for FrequencyDependence {
             model: None,
             excluded: None,
             profile: None,
+            members: Vec::new(),
         })
     }
 }

@@ -79,6 +79,9 @@ pub struct Fit {
     pub excluded: Option<String>,
     /// A scan's chi^2 along its coordinate.
     pub profile: Option<Profile>,
+    /// A scan's member optima (None where a member failed): the starts of its refits on the
+    /// next stage.
+    pub members: Vec<Option<Fitted>>,
 }
 
 /// Why a candidate could not be fitted.

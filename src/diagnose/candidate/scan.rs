@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use super::effect::fit_effect;
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::fit::Estimate;
+use crate::diagnose::fit::{Estimate, Fitted};
 use crate::model::effects::{Effect, EffectContext, region_lengths, scan};
 
 /// The members of a scan on a structure: each with its coordinate.
@@ -119,12 +119,24 @@ impl Candidate for Scan {
         !self.members(ctx).is_empty()
     }
 
-    /// Every member fitted afresh on `stage` (in parallel); the best physical one kept.
-    fn fit(&self, stage: &Stage, _earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+    /// Every member fitted on `stage` (in parallel), from its optimum on the earlier stage
+    /// when there is one; the best physical one kept.
+    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
         let members = self.members(stage.ctx);
+        let starts: Vec<Option<&Fitted>> = match earlier {
+            Some(e) if e.members.len() == members.len() => {
+                e.members.iter().map(Option::as_ref).collect()
+            }
+            _ => vec![None; members.len()],
+        };
         let outcomes: Vec<(f64, Result<Fit, CandidateError>)> = members
             .par_iter()
-            .map(|(x, e)| (*x, fit_effect(e, stage, None)))
+            .zip(starts)
+            .map(|((x, e), from)| (*x, fit_effect(e, stage, from)))
+            .collect();
+        let optima: Vec<Option<Fitted>> = outcomes
+            .iter()
+            .map(|(_, f)| f.as_ref().ok().and_then(|f| f.model.clone()))
             .collect();
         // chi^2 of every member that fitted to a physical size.
         let points: Vec<(f64, Option<f64>)> = outcomes
@@ -154,7 +166,10 @@ impl Candidate for Scan {
                 .into_iter()
                 .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2));
             return match (least, failure) {
-                (Some((_, fit)), _) => Ok(fit),
+                (Some((_, fit)), _) => Ok(Fit {
+                    members: optima,
+                    ..fit
+                }),
                 (None, Some(e)) => Err(e),
                 (None, None) => Err(CandidateError::Undetermined(
                     "the scan has no member".into(),
@@ -179,6 +194,7 @@ impl Candidate for Scan {
             points.len()
         );
         fit.profile = Some(profile);
+        fit.members = optima;
         Ok(fit)
     }
 }
