@@ -650,6 +650,10 @@ k2 = 1.0e4
                 "m.toml:28: support[1].rotational: invalid type: string \"stiff\", expected f64 (kind = \"spring\")",
             ),
             (
+                "[[support]]\nx = 0.1\nkind = \"spring\"\nidentify = [\"rotational\", 3]\n",
+                "m.toml:25: support[0].identify[1]: invalid type: integer `3`, expected a string (kind = \"spring\")",
+            ),
+            (
                 "[[support]]\nkind = \"guided\"\n",
                 "m.toml:22: support[0]: missing field `x` (kind = \"guided\")",
             ),
