@@ -11,7 +11,7 @@ use super::modes::MeasuredModes;
 use crate::structure::Structure;
 
 /// A file format of measured modes: how its files are named, how its content looks, how it is
-/// read against a structure (the points resolved by [`super::locate`], the errors a
+/// read against a structure (the points resolved by [`super::locate()`], the errors a
 /// [`MeasuredError`] that names the file and, where the format has lines, the line).
 pub trait Format: Sync {
     /// Its name in messages, lower case (`csv`).

@@ -3,8 +3,8 @@
 //!
 //! - [`modes`]: measured modes, their frequencies and partial shapes;
 //! - [`error`]: the error of a measured-modes file, whatever its format;
-//! - [`locate`]: point resolution (node and DOF, position and DOF, label) shared by formats;
-//! - [`format`]: the [`Format`] trait and the choice of a file's format;
+//! - [`locate`](mod@locate): point resolution (node and DOF, position and DOF, label) shared by formats;
+//! - [`format`](mod@format): the [`Format`] trait and the choice of a file's format;
 //! - [`csv`]: the measured-modes CSV (by node, by position or by label), reader and writer.
 //!
 //! [`read`] chooses a file's format (its extension, else its content) among [`FORMATS`]. A new
