@@ -2,11 +2,18 @@
 //! the error type shared by every input file (model, study).
 //!
 //! Errors name the file, the line where known, the field path (`beam[1].length`), the value
-//! and what is allowed.
+//! and what is allowed. A table that comes in kinds (`kind = "spring"`, each kind with its own
+//! fields) is kept as read in a [`TaggedTable`] and parsed into a serde enum afterwards, so the
+//! errors inside a kind keep their field path and line.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use serde::Deserialize;
 use serde::de::DeserializeOwned;
+use serde::de::value::{MapAccessDeserializer, MapDeserializer};
+use serde_path_to_error::Segment;
+use toml::Spanned;
 
 /// An input file that cannot be used, with where and why.
 #[derive(Debug, thiserror::Error)]
@@ -85,6 +92,84 @@ pub fn parse_toml<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Inp
 fn span_line(text: &str, span: Option<std::ops::Range<usize>>) -> Option<usize> {
     let start = span?.start.min(text.len());
     Some(text[..start].bytes().filter(|&b| b == b'\n').count() + 1)
+}
+
+/// A TOML table whose `kind` (or another tag key) says which of several kinds it is, each kind
+/// with its own fields: kept as read, with the span of every value, until [`TaggedTable::parse`]
+/// turns it into a serde enum.
+///
+/// serde's internally tagged enums (`#[serde(tag = "kind")]`) would check the same fields, but
+/// they buffer the table before choosing the variant and lose the field path and line of an
+/// error inside it (`support[1]` instead of `support[1].rotational`); parsing the kept table
+/// as an externally tagged enum keeps both.
+#[derive(Debug, Deserialize)]
+#[serde(transparent)]
+pub struct TaggedTable(Spanned<BTreeMap<String, Spanned<toml::Value>>>);
+
+impl TaggedTable {
+    /// Parses the table into `T`, an externally tagged serde enum with one struct variant per
+    /// kind (`rename_all`, `deny_unknown_fields`): the value of `tag` names the variant, the
+    /// other keys are its fields. Errors are [`InputError::Format`] with the file, the line
+    /// (from `text`, the file's text), the field path below `path` (`support[1].rotational`,
+    /// `support[0].kind`) and, for a field of a kind, the kind.
+    pub fn parse<T: DeserializeOwned>(
+        self,
+        tag: &str,
+        path: &str,
+        file: &Path,
+        text: &str,
+    ) -> Result<T, InputError> {
+        let (table_span, mut entries) = (self.0.span(), self.0.into_inner());
+        let format_error =
+            |span: std::ops::Range<usize>, path: String, message: String| InputError::Format {
+                file: file.to_path_buf(),
+                line: span_line(text, Some(span)),
+                path,
+                message,
+            };
+        let Some(kind) = entries.remove(tag) else {
+            return Err(format_error(
+                table_span,
+                path.to_string(),
+                format!("missing field `{tag}`"),
+            ));
+        };
+        let kind_span = kind.span();
+        let spans: BTreeMap<String, std::ops::Range<usize>> =
+            entries.iter().map(|(k, v)| (k.clone(), v.span())).collect();
+        let fields: toml::Table = entries
+            .into_iter()
+            .map(|(k, v)| (k, v.into_inner()))
+            .collect();
+        let tagged = MapDeserializer::<_, toml::de::Error>::new(std::iter::once((
+            kind.into_inner(),
+            toml::Value::Table(fields),
+        )));
+        serde_path_to_error::deserialize(MapAccessDeserializer::new(tagged)).map_err(|e| {
+            let segments: Vec<&Segment> = e.path().iter().collect();
+            let message = e.inner().message().to_string();
+            let Some((Segment::Enum { variant }, inside)) = segments.split_first() else {
+                // The tag itself: an unknown kind, or not a string.
+                return format_error(kind_span.clone(), format!("{path}.{tag}"), message);
+            };
+            let mut at = path.to_string();
+            for segment in inside {
+                match segment {
+                    Segment::Seq { .. } => at += &segment.to_string(),
+                    _ => at += &format!(".{segment}"),
+                }
+            }
+            let span = match inside.first() {
+                Some(Segment::Map { key }) => spans.get(key).cloned(),
+                _ => None,
+            };
+            format_error(
+                span.unwrap_or(table_span.clone()),
+                at,
+                format!("{message} ({tag} = \"{variant}\")"),
+            )
+        })
+    }
 }
 
 /// A number as a message shows it: the shortest form that reads back to the same value,

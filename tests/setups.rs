@@ -1,16 +1,26 @@
 //! Golden tests of test set-ups: supports, point masses, stepped beams, sensors between nodes,
 //! and the parameters a set-up may identify.
 //!
+//! Every support kind has its test here: clamped, pinned and guided against the textbook roots,
+//! a spring support against the exact solution of a beam on end springs and in its limits
+//! (k -> 0: free; k large: the rigid kind that holds the same motions).
+//!
 //! References, all independent of the finite-element code:
-//! - clamped-free, pinned-pinned, clamped-pinned uniform Euler-Bernoulli beams:
-//!   omega_i = (beta_i L)^2 sqrt(EI / (rho A L^4)), beta L the textbook roots (Blevins,
-//!   *Formulas for Natural Frequency and Mode Shape*, table 8-1);
+//! - clamped-free, pinned-pinned, clamped-pinned, guided-pinned and clamped-guided uniform
+//!   Euler-Bernoulli beams: omega_i = (beta_i L)^2 sqrt(EI / (rho A L^4)), beta L the textbook
+//!   roots (Blevins, *Formulas for Natural Frequency and Mode Shape*, table 8-1; a guided end is
+//!   Blevins' "sliding" end, w' = w''' = 0: guided-pinned has beta_i L = (2i - 1) pi / 2 and
+//!   clamped-guided the roots of tan(bL) + tanh(bL) = 0);
 //! - a cantilever with a tip mass M: roots of
 //!   1 + cos(bL) cosh(bL) + mu bL (cos(bL) sinh(bL) - sin(bL) cosh(bL)) = 0, mu = M / (rho A L)
 //!   (the same reference, section 8.2), found here by bisection;
 //! - a stepped free-free beam: the exact continuous solution, a transfer matrix of the state
-//!   (w, theta, M, Q) through each uniform piece written with the Krylov functions
-//!   S, T, U, V of beta x, frequencies where the end moment and shear vanish;
+//!   (w, theta, M = EI w'', Q = EI w''') through each uniform piece written with the Krylov
+//!   functions S, T, U, V of beta x, frequencies where the end moment and shear vanish;
+//! - a beam on grounded springs k_t (N/m), k_r (N m/rad) at x = 0, free at x = L: the same
+//!   transfer matrix from the spring end's natural boundary conditions EI w'''(0) = -k_t w(0),
+//!   EI w''(0) = k_r w'(0) (the variation of the strain energy plus the springs'); k -> 0 gives
+//!   the free-free roots and k -> infinity the clamped-free ones of table 8-1, checked below;
 //! - mode shapes of the cantilever: w(x) = cosh bx - cos bx - s (sinh bx - sin bx),
 //!   s = (cosh bL + cos bL) / (sinh bL + sin bL).
 //!
@@ -18,8 +28,11 @@
 //!   |=========================== free        clamped-free (cantilever)
 //!   ^===========================^            pinned-pinned
 //!   |===========================^            clamped-pinned
+//!   ]===========================^            guided-pinned (] a sliding clamp)
+//!   |===========================[            clamped-guided
 //!   |===========================[M]          cantilever with a tip mass
 //!   ========[##########]=========            free-free, stepped in the middle
+//!   $===========================             on springs k_t, k_r at x = 0, free at L
 //! ```
 
 mod common;
@@ -76,7 +89,7 @@ fn worst_error(found: &[f64], reference: &[f64]) -> f64 {
 #[test]
 fn supported_beams_match_the_textbook_roots_with_h4_convergence() {
     let pi = std::f64::consts::PI;
-    let cases: [(&str, Vec<Support>, [f64; 5]); 3] = [
+    let cases: [(&str, Vec<Support>, [f64; 5]); 5] = [
         (
             "clamped-free",
             vec![support(0.0, SupportKind::Clamped)],
@@ -108,6 +121,28 @@ fn supported_beams_match_the_textbook_roots_with_h4_convergence() {
                 10.2101761242,
                 13.3517687778,
                 16.4933614313,
+            ],
+        ),
+        (
+            "guided-pinned",
+            vec![
+                support(0.0, SupportKind::Guided),
+                support(LENGTH, SupportKind::Pinned),
+            ],
+            [0.5 * pi, 1.5 * pi, 2.5 * pi, 3.5 * pi, 4.5 * pi],
+        ),
+        (
+            "clamped-guided",
+            vec![
+                support(0.0, SupportKind::Clamped),
+                support(LENGTH, SupportKind::Guided),
+            ],
+            [
+                2.3650203724,
+                5.4978039190,
+                8.6393798287,
+                11.7809724510,
+                14.9225651046,
             ],
         ),
     ];
@@ -200,12 +235,15 @@ fn cantilever_with_a_tip_mass_matches_the_frequency_equation() {
     }
 }
 
-/// Angular frequencies where a free-free beam of uniform `pieces` (length, section) has zero
-/// end moment and shear: the exact continuous solution.
-fn stepped_free_free(pieces: &[(f64, Section)], count: usize) -> Vec<f64> {
+/// Angular frequencies where a beam of uniform `pieces` (length, section), held at x = 0 by
+/// grounded springs `[k_t, k_r]` (N/m, N m/rad; zero: a free end), has zero moment and shear at
+/// its far end: the exact continuous solution, above 10 rad/s.
+fn free_far_end(pieces: &[(f64, Section)], springs: [f64; 2], count: usize) -> Vec<f64> {
+    let [k_t, k_r] = springs;
     let determinant = |omega: f64| {
-        // State (w, theta, M, Q) at x = 0 with M = Q = 0: two free columns (w0, theta0).
-        let mut columns = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0]];
+        // State (w, theta, M, Q) at x = 0 with Q = -k_t w, M = k_r theta: two free columns
+        // (w0, theta0).
+        let mut columns = [[1.0, 0.0, 0.0, -k_t], [0.0, 1.0, k_r, 0.0]];
         for (l, s) in pieces {
             let ei = s.bending_stiffness();
             let b = (s.mass_per_length() * omega * omega / ei).powf(0.25);
@@ -248,7 +286,7 @@ fn a_stepped_beam_matches_the_exact_stepped_solution() {
         second_moment: 8.0 * thin.second_moment,
         ..thin
     };
-    let reference = stepped_free_free(&[(0.2, thin), (0.1, thick), (0.2, thin)], 4);
+    let reference = free_far_end(&[(0.2, thin), (0.1, thick), (0.2, thin)], [0.0; 2], 4);
     let errors: Vec<f64> = [20, 40, 80]
         .iter()
         .map(|&elements| {
@@ -264,6 +302,105 @@ fn a_stepped_beam_matches_the_exact_stepped_solution() {
         .collect();
     assert!(errors[2] < 1e-6, "{errors:?}");
     assert!(errors[0] / errors[1] > 12.0, "{errors:?}");
+}
+
+/// Spring stiffnesses `[k_t, k_r]` (N/m, N m/rad) of relative stiffnesses
+/// `[k_t L^3 / EI, k_r L / EI]`.
+fn springs_of(relative: [f64; 2]) -> [f64; 2] {
+    let ei = section().bending_stiffness();
+    [relative[0] * ei / LENGTH.powi(3), relative[1] * ei / LENGTH]
+}
+
+fn spring(springs: [f64; 2]) -> SupportKind {
+    SupportKind::Spring {
+        translational: springs[0],
+        rotational: springs[1],
+    }
+}
+
+/// Asserts that each gap is `factor` times smaller than the one before, within 20%.
+fn assert_falls_by(gaps: &[f64], factor: f64, what: &str) {
+    for pair in gaps.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!(
+            (0.8 * factor..1.2 * factor).contains(&ratio),
+            "{what}: {gaps:?}"
+        );
+    }
+}
+
+#[test]
+fn a_beam_on_a_spring_support_matches_the_exact_solution() {
+    let bar = [(LENGTH, section())];
+    // The reference in its limits: free-free and clamped-free (Blevins table 8-1).
+    let free: Vec<f64> = [4.7300407449, 7.8532046241, 10.9956078380]
+        .iter()
+        .map(|&b| omega_of_beta_l(b))
+        .collect();
+    let clamped: Vec<f64> = [1.8751040687, 4.6940911330, 7.8547574382]
+        .iter()
+        .map(|&b| omega_of_beta_l(b))
+        .collect();
+    let loose = free_far_end(&bar, [0.0; 2], 3);
+    assert!(worst_error(&loose, &free) < 1e-10, "{loose:?}");
+    let stiff = free_far_end(&bar, springs_of([1e14; 2]), 3);
+    assert!(worst_error(&stiff, &clamped) < 1e-10, "{stiff:?}");
+    // Springs that move the modes far from both limits: on w, on theta, on both.
+    for relative in [[10.0, 0.0], [0.0, 3.0], [100.0, 5.0], [1e4, 1e3]] {
+        let springs = springs_of(relative);
+        let reference = free_far_end(&bar, springs, 5);
+        let s = beam_with(vec![support(0.0, spring(springs))], 80).build();
+        // A lone spring on one motion leaves one rigid mode, at zero (below the reference's
+        // range, which starts at 10 rad/s).
+        assert_eq!(s.rigid, 2 - relative.iter().filter(|&&k| k > 0.0).count());
+        let err = worst_error(&elastic(&s, 5), &reference);
+        assert!(err < 2e-6, "{relative:?}: {err}");
+    }
+}
+
+#[test]
+fn a_spring_support_tends_to_free_when_soft_and_to_the_rigid_kind_when_stiff() {
+    // Soft: the elastic modes of the free-free beam; the two spring modes go to zero; the
+    // gap falls as k (a hundredfold per step).
+    let free = elastic(&Chain::free(vec![steel_bar(LENGTH, 40)], vec![]).build(), 4);
+    let soft: Vec<Vec<f64>> = [1e-2, 1e-4, 1e-6]
+        .iter()
+        .map(|&k| {
+            elastic(
+                &beam_with(vec![support(0.0, spring(springs_of([k; 2])))], 40).build(),
+                6,
+            )
+        })
+        .collect();
+    let gaps: Vec<f64> = soft.iter().map(|m| worst_error(&m[2..], &free)).collect();
+    assert!(gaps[2] < 1e-6, "soft: {gaps:?}");
+    assert_falls_by(&gaps, 100.0, "soft");
+    assert!(soft[2][1] < 1e-2 * soft[2][2], "{:?}", soft[2]);
+    // Stiff: the kind that holds the same motions, the far end pinned; the gap falls as 1/k
+    // (k_t L^3 / EI from 1e5, k_r L / EI from 1e2: stiffer, the round-off of the eigenvalues
+    // grows as k).
+    let pinned_end = support(LENGTH, SupportKind::Pinned);
+    for (holds, rigid) in [
+        ([1.0, 0.0], SupportKind::Pinned),
+        ([0.0, 1.0], SupportKind::Guided),
+        ([1.0, 1.0], SupportKind::Clamped),
+    ] {
+        let reference = elastic(
+            &beam_with(vec![support(0.0, rigid), pinned_end.clone()], 40).build(),
+            4,
+        );
+        let gaps: Vec<f64> = [1.0, 10.0, 100.0]
+            .iter()
+            .map(|&k| {
+                let springs = springs_of([holds[0] * 1e5 * k, holds[1] * 1e2 * k]);
+                let s = beam_with(vec![support(0.0, spring(springs)), pinned_end.clone()], 40);
+                worst_error(&elastic(&s.build(), 4), &reference)
+            })
+            .collect();
+        let name = rigid.name();
+        assert!(gaps[2] < 3e-4, "{name}: {gaps:?}");
+        assert_falls_by(&gaps, 10.0, name);
+    }
 }
 
 #[test]

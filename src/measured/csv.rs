@@ -13,63 +13,20 @@
 //! leave the point and the value empty to give a frequency alone; a mode still needs at least
 //! one shape row. Optional columns after `value`: `damping_ratio` and `mpc` (modal phase
 //! collinearity), constant within a mode, as `jointid extract` writes them.
+//!
+//! [`Csv`] reads it as one of the [`Format`]s; points are resolved by [`locate`]; the writer
+//! ([`MeasuredModes::write_csv`]) chooses the location form the points allow.
+//!
+//! May import: the measured-modes model, its error, point resolution and format trait.
 
 use std::collections::BTreeMap;
-use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::{MeasuredMode, MeasuredModes};
+use super::error::MeasuredError;
+use super::format::Format;
+use super::locate::{Location, locate};
+use super::modes::{MAX_FREQUENCY_HZ, MAX_MODE, MeasuredMode, MeasuredModes};
 use crate::structure::{Direction, Observation, Structure};
-
-/// A measured-modes file that cannot be used.
-#[derive(Debug, thiserror::Error)]
-pub enum MeasuredError {
-    /// The file cannot be read.
-    #[error("{file}: cannot read the file: {cause}")]
-    Read {
-        /// The file.
-        file: PathBuf,
-        /// The cause.
-        cause: std::io::Error,
-    },
-    /// A line is invalid.
-    #[error("{file}:{line}: {message}")]
-    Line {
-        /// The file.
-        file: PathBuf,
-        /// 1-based line number.
-        line: u64,
-        /// What is wrong and what is allowed.
-        message: String,
-    },
-    /// The file holds no mode at all.
-    #[error("{file}: no measured mode (only a header, or an empty file)")]
-    Empty {
-        /// The file.
-        file: PathBuf,
-    },
-}
-
-/// How a file locates its measured points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Location {
-    /// `node,dof`.
-    Node,
-    /// `x,dof`.
-    Position,
-    /// `label`.
-    Label,
-}
-
-impl Location {
-    fn columns(self) -> &'static [&'static str] {
-        match self {
-            Location::Node => &["node", "dof"],
-            Location::Position => &["x", "dof"],
-            Location::Label => &["label"],
-        }
-    }
-}
 
 /// Optional per-mode columns.
 const OPTIONAL: [&str; 2] = ["damping_ratio", "mpc"];
@@ -96,10 +53,10 @@ fn header(fields: &[&str]) -> Result<Header, String> {
         Some("label") => Location::Label,
         _ => return Err(format!("{allowed}; found `{}`", fields.join(","))),
     };
-    let value = 2 + location.columns().len();
+    let value = 2 + location.fields().len();
     let expected_start: Vec<&str> = ["mode", "frequency_hz"]
         .iter()
-        .chain(location.columns())
+        .chain(location.fields())
         .chain(&["value"])
         .copied()
         .collect();
@@ -125,22 +82,38 @@ fn header(fields: &[&str]) -> Result<Header, String> {
     })
 }
 
-impl MeasuredModes {
-    /// Reads and validates a file against `structure`.
-    pub fn from_path(path: &Path, structure: &Structure) -> Result<Self, MeasuredError> {
-        let file = std::fs::File::open(path).map_err(|cause| MeasuredError::Read {
-            file: path.to_path_buf(),
-            cause,
-        })?;
-        Self::from_reader(file, path, structure)
+/// The measured-modes CSV as a [`Format`].
+pub struct Csv;
+
+impl Format for Csv {
+    fn name(&self) -> &'static str {
+        "csv"
     }
 
-    /// Reads and validates CSV from any reader; `file` names it in errors.
-    pub fn from_reader<R: Read>(
-        reader: R,
+    fn extensions(&self) -> &'static [&'static str] {
+        &["csv"]
+    }
+
+    fn signature(&self) -> &'static str {
+        "a header starting `mode,frequency_hz`"
+    }
+
+    /// The first line that is neither blank nor a `#` comment starts with the field `mode`.
+    fn recognises(&self, bytes: &[u8]) -> bool {
+        let text = String::from_utf8_lossy(bytes);
+        let text = text.trim_start_matches('\u{feff}');
+        text.lines()
+            .map(str::trim)
+            .find(|l| !l.is_empty() && !l.starts_with('#'))
+            .is_some_and(|l| l.split(',').next().map(str::trim) == Some("mode"))
+    }
+
+    fn read(
+        &self,
+        bytes: &[u8],
         file: &Path,
         structure: &Structure,
-    ) -> Result<Self, MeasuredError> {
+    ) -> Result<MeasuredModes, MeasuredError> {
         let err = |line: u64, message: String| MeasuredError::Line {
             file: file.to_path_buf(),
             line,
@@ -149,7 +122,7 @@ impl MeasuredModes {
         let mut csv = ::csv::ReaderBuilder::new()
             .trim(::csv::Trim::All)
             .comment(Some(b'#'))
-            .from_reader(reader);
+            .from_reader(bytes);
         let fields: Vec<String> = csv
             .headers()
             .map_err(|e| err(1, e.to_string()))?
@@ -165,96 +138,7 @@ impl MeasuredModes {
                 err(line, e.to_string())
             })?;
             let line = record.position().map(|p| p.line()).unwrap_or(0);
-            let mode: usize = match record[0].parse::<usize>() {
-                Ok(r) if (1..=MAX_MODE).contains(&r) => r,
-                _ => {
-                    return Err(err(
-                        line,
-                        format!(
-                            "mode = `{}` is invalid: it must be an integer from 1 (the first elastic mode) to {MAX_MODE}",
-                            &record[0]
-                        ),
-                    ));
-                }
-            };
-            let frequency_hz = positive(&record[1], "frequency_hz", "Hz", MAX_FREQUENCY_HZ)
-                .map_err(|m| err(line, m))?;
-            let optional: Vec<(&str, Option<f64>)> = header
-                .optional
-                .iter()
-                .map(|&(i, name)| {
-                    let text = &record[i];
-                    if text.is_empty() {
-                        return Ok((name, None));
-                    }
-                    match text.parse::<f64>() {
-                        Ok(v) if v.is_finite() && (0.0..=1.0).contains(&v) => Ok((name, Some(v))),
-                        _ => Err(err(
-                            line,
-                            format!(
-                                "{name} = `{text}` is invalid: it must be a number from 0 to 1"
-                            ),
-                        )),
-                    }
-                })
-                .collect::<Result<_, _>>()?;
-            let entry = pending.entry(mode).or_insert_with(|| Pending {
-                frequency_hz,
-                first_line: line,
-                damping_ratio: None,
-                mpc: None,
-                shape: BTreeMap::new(),
-            });
-            if entry.frequency_hz != frequency_hz {
-                return Err(err(
-                    line,
-                    format!(
-                        "mode {mode} has frequency_hz = {frequency_hz} here but {} on line {}: all rows of a mode must carry the same frequency",
-                        entry.frequency_hz, entry.first_line
-                    ),
-                ));
-            }
-            for (name, value) in optional {
-                let slot = if name == "mpc" {
-                    &mut entry.mpc
-                } else {
-                    &mut entry.damping_ratio
-                };
-                match (*slot, value) {
-                    (Some(a), Some(b)) if a != b => {
-                        return Err(err(
-                            line,
-                            format!(
-                                "mode {mode} has {name} = {b} here but {a} above: it is one value per mode"
-                            ),
-                        ));
-                    }
-                    (None, Some(b)) => *slot = Some(b),
-                    _ => {}
-                }
-            }
-            let location: Vec<&str> = (2..header.value).map(|i| &record[i]).collect();
-            let value_text = &record[header.value];
-            if location.iter().all(|f| f.is_empty()) && value_text.is_empty() {
-                continue;
-            }
-            let point = locate(header.location, &location, structure).map_err(|m| err(line, m))?;
-            let value: f64 = match value_text.parse::<f64>() {
-                Ok(v) if v.is_finite() => v,
-                _ => {
-                    return Err(err(
-                        line,
-                        format!("value = `{value_text}` is invalid: it must be a finite number"),
-                    ));
-                }
-            };
-            let label = point.label.clone();
-            if let Some((_, _, first)) = entry.shape.insert(label.clone(), (point, value, line)) {
-                return Err(err(
-                    line,
-                    format!("mode {mode}, point {label} is given twice (first on line {first})"),
-                ));
-            }
+            row(&mut pending, &record, line, &header, structure).map_err(|m| err(line, m))?;
         }
         if pending.is_empty() {
             return Err(MeasuredError::Empty {
@@ -279,9 +163,97 @@ impl MeasuredModes {
                 Ok(m)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self { modes })
+        Ok(MeasuredModes::new(modes))
     }
+}
 
+/// Adds the row on `line` to the modes read so far, or says what is wrong with it.
+fn row(
+    pending: &mut BTreeMap<usize, Pending>,
+    record: &::csv::StringRecord,
+    line: u64,
+    header: &Header,
+    structure: &Structure,
+) -> Result<(), String> {
+    let mode: usize = match record[0].parse::<usize>() {
+        Ok(r) if (1..=MAX_MODE).contains(&r) => r,
+        _ => {
+            return Err(format!(
+                "mode = `{}` is invalid: it must be an integer from 1 (the first elastic mode) to {MAX_MODE}",
+                &record[0]
+            ));
+        }
+    };
+    let frequency_hz = positive(&record[1], "frequency_hz", "Hz", MAX_FREQUENCY_HZ)?;
+    let optional: Vec<(&str, Option<f64>)> = header
+        .optional
+        .iter()
+        .map(|&(i, name)| {
+            let text = &record[i];
+            if text.is_empty() {
+                return Ok((name, None));
+            }
+            match text.parse::<f64>() {
+                Ok(v) if v.is_finite() && (0.0..=1.0).contains(&v) => Ok((name, Some(v))),
+                _ => Err(format!(
+                    "{name} = `{text}` is invalid: it must be a number from 0 to 1"
+                )),
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    let entry = pending.entry(mode).or_insert_with(|| Pending {
+        frequency_hz,
+        first_line: line,
+        damping_ratio: None,
+        mpc: None,
+        shape: BTreeMap::new(),
+    });
+    if entry.frequency_hz != frequency_hz {
+        return Err(format!(
+            "mode {mode} has frequency_hz = {frequency_hz} here but {} on line {}: all rows of a mode must carry the same frequency",
+            entry.frequency_hz, entry.first_line
+        ));
+    }
+    for (name, value) in optional {
+        let slot = if name == "mpc" {
+            &mut entry.mpc
+        } else {
+            &mut entry.damping_ratio
+        };
+        match (*slot, value) {
+            (Some(a), Some(b)) if a != b => {
+                return Err(format!(
+                    "mode {mode} has {name} = {b} here but {a} above: it is one value per mode"
+                ));
+            }
+            (None, Some(b)) => *slot = Some(b),
+            _ => {}
+        }
+    }
+    let location: Vec<&str> = (2..header.value).map(|i| &record[i]).collect();
+    let value_text = &record[header.value];
+    if location.iter().all(|f| f.is_empty()) && value_text.is_empty() {
+        return Ok(());
+    }
+    let point = locate(header.location, &location, structure)?;
+    let value: f64 = match value_text.parse::<f64>() {
+        Ok(v) if v.is_finite() => v,
+        _ => {
+            return Err(format!(
+                "value = `{value_text}` is invalid: it must be a finite number"
+            ));
+        }
+    };
+    let label = point.label.clone();
+    if let Some((_, _, first)) = entry.shape.insert(label.clone(), (point, value, line)) {
+        return Err(format!(
+            "mode {mode}, point {label} is given twice (first on line {first})"
+        ));
+    }
+    Ok(())
+}
+
+impl MeasuredModes {
     /// Writes the modes in the file format above: by label where every point is a sensor the
     /// model declares, by node where every point is a node's DOF, by position where every
     /// point lies on a chain, by label otherwise.
@@ -306,11 +278,11 @@ impl MeasuredModes {
         } else {
             Location::Label
         };
-        let damping = self.modes.iter().any(|m| m.damping_ratio.is_some());
-        let mpc = self.modes.iter().any(|m| m.mpc.is_some());
+        let damping = self.modes().iter().any(|m| m.damping_ratio.is_some());
+        let mpc = self.modes().iter().any(|m| m.mpc.is_some());
         let mut w = ::csv::Writer::from_writer(out);
         let mut head: Vec<&str> = vec!["mode", "frequency_hz"];
-        head.extend(location.columns());
+        head.extend(location.fields());
         head.push("value");
         if damping {
             head.push("damping_ratio");
@@ -320,7 +292,7 @@ impl MeasuredModes {
         }
         w.write_record(&head)?;
         let opt = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
-        for m in &self.modes {
+        for m in self.modes() {
             for (o, &v) in m.points.iter().zip(&m.values) {
                 let mut row = vec![m.mode.to_string(), m.frequency_hz.to_string()];
                 match location {
@@ -349,87 +321,12 @@ impl MeasuredModes {
     }
 }
 
-/// Largest mode number a file may give.
-pub const MAX_MODE: usize = 100_000;
-/// Largest frequency a file may give, Hz (an acoustic or ultrasonic test stays far below).
-pub const MAX_FREQUENCY_HZ: f64 = 1e9;
-
 fn positive(text: &str, name: &str, unit: &str, max: f64) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && v <= max => Ok(v),
         _ => Err(format!(
             "{name} = `{text}` is invalid: it must be a number > 0 and at most {max:e} ({unit})"
         )),
-    }
-}
-
-/// The observation a row names.
-fn locate(
-    location: Location,
-    fields: &[&str],
-    structure: &Structure,
-) -> Result<Observation, String> {
-    let dofs = &structure.dofs;
-    let direction = |text: &str| {
-        Direction::parse(text).ok_or_else(|| {
-            format!("dof = `{text}` is invalid: it must be `w` or `theta` (or x, y, z, rx, ry, rz for an external model)")
-        })
-    };
-    match location {
-        Location::Node => {
-            let nodes = dofs
-                .dofs()
-                .iter()
-                .filter_map(|d| d.node)
-                .max()
-                .map_or(0, |n| n + 1);
-            let node: usize = fields[0].parse().ok().filter(|&n| n < nodes).ok_or_else(|| {
-                if nodes == 0 {
-                    format!("node = `{}` is invalid: this model has no numbered nodes; give points by label", fields[0])
-                } else {
-                    format!("node = `{}` is invalid: the model has nodes 0 to {}", fields[0], nodes - 1)
-                }
-            })?;
-            let d = direction(fields[1])?;
-            let label = crate::structure::DofMap::node_label(node, d);
-            match dofs.index(&label) {
-                Some(i) => Ok(Observation::dof(dofs, i)),
-                None => Err(match dofs.constrained_by(&label) {
-                    Some(by) => format!(
-                        "node {node}, dof {d} is held by {by}: it is always zero; leave the row out"
-                    ),
-                    None => format!("node {node} has no dof {d}"),
-                }),
-            }
-        }
-        Location::Position => {
-            let x: f64 = fields[0]
-                .parse()
-                .ok()
-                .filter(|x: &f64| x.is_finite())
-                .ok_or_else(|| {
-                    format!("x = `{}` is invalid: it must be a number (m)", fields[0])
-                })?;
-            dofs.at_x(x, direction(fields[1])?)
-                .map_err(|e| e.to_string())
-        }
-        Location::Label => {
-            let label = fields[0];
-            if let Some(i) = dofs.index(label) {
-                return Ok(Observation::dof(dofs, i));
-            }
-            if let Some(s) = structure.sensors.iter().find(|s| s.label == label) {
-                return Ok(s.clone());
-            }
-            Err(match dofs.constrained_by(label) {
-                Some(by) => format!(
-                    "label = `{label}` is held by {by}: it is always zero; leave the row out"
-                ),
-                None => format!(
-                    "label = `{label}` is invalid: it is neither a DOF of the model nor a declared sensor"
-                ),
-            })
-        }
     }
 }
 
@@ -585,6 +482,30 @@ mod tests {
         assert_eq!(
             read("mode,frequency_hz,x,dof,value\n1,150,0.6,w,1\n").unwrap_err(),
             "d.csv:2: x = 0.6 m is outside the chain, which spans 0 to 0.5 m"
+        );
+    }
+
+    /// A file not named *.csv is read as CSV when its content is; otherwise the error lists
+    /// the formats.
+    #[test]
+    fn the_csv_is_chosen_by_its_name_or_its_header() {
+        assert!(Csv.recognises(b"\xef\xbb\xbf# from the rig\n\n mode , frequency_hz,x\n"));
+        assert!(!Csv.recognises(b"{\"modes\": []}"));
+        assert!(!Csv.recognises(b""));
+        let text = "mode,frequency_hz,node,dof,value\n1,150,0,w,1\n";
+        let model = paper_model(1e7, 1e4);
+        let from = |name: &str, text: &str| {
+            MeasuredModes::from_reader(text.as_bytes(), Path::new(name), &model)
+                .map_err(|e| e.to_string())
+        };
+        assert_eq!(from("d.txt", text), read(text));
+        // The extension wins over the content: a CSV's own message.
+        let e = from("d.CSV", "{}").unwrap_err();
+        assert!(e.starts_with("d.CSV:1: the header must be"), "{e}");
+        assert_eq!(
+            from("d.json", "{}").unwrap_err(),
+            "d.json: the format of these measured modes is not known: the formats known are csv \
+             (*.csv, or a header starting `mode,frequency_hz`)"
         );
     }
 

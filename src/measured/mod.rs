@@ -1,101 +1,85 @@
-//! Measured modes: the identified eigensolutions y_r^m, lambda_r^m of the paper, with
-//! partially identified shapes (eq. (15)): for every mode its number, frequency and the values
-//! read at some measured points, each point an [`Observation`] of the structure (a DOF, or a
-//! position between nodes read through the element shape functions).
+//! Measured modes: the model of the paper's measured eigensolutions ([`modes`]), read from
+//! files of any registered format.
 //!
-//! - [`csv`]: the measured-modes CSV (by node, by position or by label).
+//! - [`modes`]: measured modes, their frequencies and partial shapes;
+//! - [`error`]: the error of a measured-modes file, whatever its format;
+//! - [`locate`](mod@locate): point resolution (node and DOF, position and DOF, label) shared by formats;
+//! - [`format`](mod@format): the [`Format`] trait and the choice of a file's format;
+//! - [`csv`]: the measured-modes CSV (by node, by position or by label), reader and writer.
+//!
+//! [`read`] chooses a file's format (its extension, else its content) among [`FORMATS`]. A new
+//! format is one file implementing [`Format`], its `mod` line and its entry in [`FORMATS`].
+//!
+//! May import: the structure and the modal conversions; nothing above them (commands, output,
+//! diagnose, ...).
 
 pub mod csv;
+pub mod error;
+pub mod format;
+pub mod locate;
+pub mod modes;
 
-pub use csv::{Location, MeasuredError};
+use std::io::Read;
+use std::path::Path;
 
-use crate::structure::Observation;
+pub use error::MeasuredError;
+pub use format::Format;
+pub use locate::{Location, locate};
+pub use modes::{MAX_FREQUENCY_HZ, MAX_MODE, MeasuredMode, MeasuredModes, point_order};
 
-/// One measured mode: frequency and the values at its measured points.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MeasuredMode {
-    /// Deformable mode number r, 1-based (1 = the first elastic mode).
-    pub mode: usize,
-    /// Measured natural frequency f_r, Hz.
-    pub frequency_hz: f64,
-    /// Measured points, in the order of [`point_order`].
-    pub points: Vec<Observation>,
-    /// Shape components at `points`.
-    pub values: Vec<f64>,
-    /// Modal damping ratio, when the data give it (extracted modes).
-    pub damping_ratio: Option<f64>,
-    /// Modal phase collinearity of the complex shape it comes from (1: a real mode).
-    pub mpc: Option<f64>,
+use crate::structure::Structure;
+
+/// The formats of measured-modes files, in the order their content is tried.
+pub const FORMATS: &[&dyn Format] = &[&csv::Csv];
+
+/// Reads and validates the measured modes of the file at `path` against `structure`, in the
+/// format its extension names, else the one its content shows.
+pub fn read(path: &Path, structure: &Structure) -> Result<MeasuredModes, MeasuredError> {
+    let bytes = std::fs::read(path).map_err(|cause| MeasuredError::Read {
+        file: path.to_path_buf(),
+        cause,
+    })?;
+    read_bytes(&bytes, path, structure)
 }
 
-impl MeasuredMode {
-    /// A mode measured at `points` with `values`, in any order: sorted by [`point_order`].
-    pub fn new(mode: usize, frequency_hz: f64, points: Vec<Observation>, values: Vec<f64>) -> Self {
-        let mut pairs: Vec<(Observation, f64)> = points.into_iter().zip(values).collect();
-        pairs.sort_by(|a, b| point_order(&a.0, &b.0));
-        let (points, values) = pairs.into_iter().unzip();
-        Self {
-            mode,
-            frequency_hz,
-            points,
-            values,
-            damping_ratio: None,
-            mpc: None,
-        }
-    }
-
-    /// The largest magnitude of its components (the unit of the shape noise's floor).
-    pub fn peak(&self) -> f64 {
-        self.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()))
-    }
-
-    /// The measured eigenvalue lambda_r^m = (2 pi f_r)^2.
-    pub fn lambda(&self) -> f64 {
-        crate::modal::hz_to_lambda(self.frequency_hz)
-    }
+/// [`read`] from any reader; `file` names the source in errors and its extension chooses the
+/// format.
+pub fn from_reader<R: Read>(
+    mut reader: R,
+    file: &Path,
+    structure: &Structure,
+) -> Result<MeasuredModes, MeasuredError> {
+    let mut bytes = Vec::new();
+    reader
+        .read_to_end(&mut bytes)
+        .map_err(|cause| MeasuredError::Read {
+            file: file.to_path_buf(),
+            cause,
+        })?;
+    read_bytes(&bytes, file, structure)
 }
 
-/// The order of measured points: by the lowest DOF read (for DOFs: ascending DOF), then by
-/// abscissa, then by direction.
-pub fn point_order(a: &Observation, b: &Observation) -> std::cmp::Ordering {
-    a.first_dof()
-        .cmp(&b.first_dof())
-        .then(a.x.total_cmp(&b.x))
-        .then(a.direction.cmp(&b.direction))
-}
-
-/// All measured modes of a test, ordered by mode number.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MeasuredModes {
-    modes: Vec<MeasuredMode>,
+fn read_bytes(
+    bytes: &[u8],
+    file: &Path,
+    structure: &Structure,
+) -> Result<MeasuredModes, MeasuredError> {
+    format::choose(FORMATS, file, bytes)?.read(bytes, file, structure)
 }
 
 impl MeasuredModes {
-    /// Builds from modes already validated (used by simulators); sorted by mode number.
-    pub fn new(mut modes: Vec<MeasuredMode>) -> Self {
-        modes.sort_by_key(|m| m.mode);
-        Self { modes }
+    /// Reads and validates a file against `structure`: [`read`].
+    pub fn from_path(path: &Path, structure: &Structure) -> Result<Self, MeasuredError> {
+        read(path, structure)
     }
 
-    /// The modes, ascending mode number.
-    pub fn modes(&self) -> &[MeasuredMode] {
-        &self.modes
-    }
-
-    /// The mode with number `r`, if measured.
-    pub fn get(&self, r: usize) -> Option<&MeasuredMode> {
-        self.modes.iter().find(|m| m.mode == r)
-    }
-
-    /// Every distinct measured point of every mode, in [`point_order`].
-    pub fn points(&self) -> Vec<Observation> {
-        let mut all: Vec<Observation> = self
-            .modes
-            .iter()
-            .flat_map(|m| m.points.iter().cloned())
-            .collect();
-        all.sort_by(point_order);
-        all.dedup_by(|a, b| a.label == b.label);
-        all
+    /// Reads and validates modes from any reader; `file` names them in errors and chooses
+    /// the format: [`from_reader`].
+    pub fn from_reader<R: Read>(
+        reader: R,
+        file: &Path,
+        structure: &Structure,
+    ) -> Result<Self, MeasuredError> {
+        from_reader(reader, file, structure)
     }
 }

@@ -52,7 +52,7 @@ fn kind(text: &str, file: &Path) -> Result<Option<String>, InputError> {
 /// Parses and validates a beam-chain model file.
 pub fn chain_from_toml(text: &str, file: &Path) -> Result<Chain, InputError> {
     let raw: chain::config::RawChain = parse_toml(text, file)?;
-    raw.validate(file)
+    raw.validate(file, text)
 }
 
 /// The paper's system on the shipped geometry (`models/paper-case-*.toml`), built in code for

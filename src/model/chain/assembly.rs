@@ -9,11 +9,11 @@
 //! DOF index 2 node + (0 for w, 1 for theta) and bitwise the matrices of a dense assembly
 //! element by element.
 
+use super::Chain;
 use super::beam::{element_mass, element_stiffness};
 use super::joint::{JointStiffness, parameter_name};
 use super::mesh::Mesh;
-use super::setup::rigid_body_modes;
-use super::{Chain, SupportKind};
+use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
 use crate::structure::{
     Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite,
     LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite, SymMatrix,
@@ -152,39 +152,33 @@ impl Chain {
         // Grounded springs of the supports: in the base, or parameters after the joints'.
         let mut extra: Vec<Parameter> = Vec::new();
         for (i, s) in self.supports.iter().enumerate() {
-            if let SupportKind::Spring {
-                translational,
-                rotational,
-            } = s.kind
-            {
-                let values = [translational, rotational];
-                for (slot, name) in ["translational", "rotational"].into_iter().enumerate() {
-                    let dofs: Vec<usize> = mesh
-                        .nodes
-                        .iter()
-                        .zip(&node_dofs)
-                        .filter(|(node, _)| same(node.x, s.x))
-                        .filter_map(|(_, d)| d[slot])
-                        .collect();
-                    if values[slot] <= 0.0 {
-                        continue;
+            let values = s.kind.springs();
+            for (slot, name) in SPRING_NAMES.into_iter().enumerate() {
+                if values[slot] <= 0.0 {
+                    continue;
+                }
+                let dofs: Vec<usize> = mesh
+                    .nodes
+                    .iter()
+                    .zip(&node_dofs)
+                    .filter(|(node, _)| same(node.x, s.x))
+                    .filter_map(|(_, d)| d[slot])
+                    .collect();
+                if s.identify[slot] {
+                    let mut pattern = SparseSym::zero();
+                    for &d in &dofs {
+                        pattern.push(d, d, 1.0);
                     }
-                    if s.identify[slot] {
-                        let mut pattern = SparseSym::zero();
-                        for &d in &dofs {
-                            pattern.push(d, d, 1.0);
-                        }
-                        extra.push(Parameter {
-                            name: format!("support{i}.{name}"),
-                            unit: if slot == 0 { "N/m" } else { "N m/rad" },
-                            value: values[slot],
-                            stiffness: pattern,
-                            mass: SparseSym::zero(),
-                            role: Role::Identified,
-                        });
-                    } else {
-                        k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
-                    }
+                    extra.push(Parameter {
+                        name: format!("support{i}.{name}"),
+                        unit: SPRING_UNITS[slot],
+                        value: values[slot],
+                        stiffness: pattern,
+                        mass: SparseSym::zero(),
+                        role: Role::Identified,
+                    });
+                } else {
+                    k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
                 }
             }
         }

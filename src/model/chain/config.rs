@@ -1,5 +1,6 @@
 //! The chain's model file (TOML, SI units), parsed in two stages: raw serde structs that
-//! reject unknown keys, then a validated [`Chain`].
+//! reject unknown keys, then a validated [`Chain`]. A `[[support]]` table is parsed by its
+//! kind in [`super::support`].
 //!
 //! ```toml
 //! [mesh]                     # optional
@@ -25,9 +26,9 @@
 //!
 //! [[support]]                # optional, any number; none: free-free
 //! x = 0.0                    # m along the chain
-//! kind = "clamped"           # clamped | pinned | guided | spring
-//! # translational = 1e5      # spring: N/m
-//! # rotational = 10.0        # spring: N m/rad
+//! kind = "clamped"           # clamped | pinned | guided | spring: each kind its own fields
+//! # translational = 1e5      # spring only: N/m
+//! # rotational = 10.0        # spring only: N m/rad (one of the two at least)
 //! # identify = ["rotational"] # spring: stiffnesses identified beside the joints
 //!
 //! [[mass]]                   # a point mass
@@ -51,8 +52,9 @@ use serde::Deserialize;
 use super::Chain;
 use super::beam::{Beam, Section, Segment};
 use super::joint::Joint;
-use super::setup::{PointMass, Sensor, Support, SupportKind};
-use crate::input::{FieldCheck, InputError};
+use super::setup::{PointMass, Sensor};
+use super::support::{Support, SupportCheck};
+use crate::input::{FieldCheck, InputError, TaggedTable};
 use crate::structure::{Direction, Role};
 
 /// Largest number of beams: the identification takes at most
@@ -76,7 +78,7 @@ pub(crate) struct RawChain {
     #[serde(default)]
     joint: Vec<RawJoint>,
     #[serde(default)]
-    support: Vec<RawSupport>,
+    support: Vec<TaggedTable>,
     #[serde(default)]
     mass: Vec<RawMass>,
     #[serde(default)]
@@ -126,17 +128,6 @@ struct RawJoint {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawSupport {
-    x: f64,
-    kind: String,
-    translational: Option<f64>,
-    rotational: Option<f64>,
-    #[serde(default)]
-    identify: Vec<String>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct RawMass {
     x: f64,
     mass: f64,
@@ -156,8 +147,9 @@ struct RawSensor {
 }
 
 impl RawChain {
-    /// Validates the raw file into a chain; `file` names it in errors.
-    pub(crate) fn validate(self, file: &Path) -> Result<Chain, InputError> {
+    /// Validates the raw file into a chain; `file` names it in errors, `text` is its text
+    /// (for the lines of errors in its supports).
+    pub(crate) fn validate(self, file: &Path, text: &str) -> Result<Chain, InputError> {
         let check = FieldCheck { file };
         if let Some(kind) = self.kind.as_deref().filter(|k| *k != "chain") {
             return Err(check.invalid(
@@ -214,71 +206,15 @@ impl RawChain {
                 ))
             }
         };
+        let supports_check = SupportCheck {
+            text,
+            check: &check,
+            position: &position,
+        };
         let mut supports: Vec<Support> = Vec::with_capacity(self.support.len());
-        for (i, s) in self.support.iter().enumerate() {
-            let p = |field: &str| format!("support[{i}].{field}");
-            let x = position(p("x"), s.x)?;
-            if let Some(other) = supports.iter().position(|o| o.x == x) {
-                return Err(check.invalid(
-                    p("x"),
-                    x,
-                    format!("support[{other}] is already there: one support per position"),
-                ));
-            }
-            let kind = match (s.kind.as_str(), s.translational, s.rotational) {
-                ("clamped", None, None) => SupportKind::Clamped,
-                ("pinned", None, None) => SupportKind::Pinned,
-                ("guided", None, None) => SupportKind::Guided,
-                ("spring", t, r) if t.is_some() || r.is_some() => SupportKind::Spring {
-                    translational: check.non_negative(
-                        p("translational"),
-                        t.unwrap_or(0.0),
-                        "N/m",
-                    )?,
-                    rotational: check.non_negative(p("rotational"), r.unwrap_or(0.0), "N m/rad")?,
-                },
-                ("spring", _, _) => {
-                    return Err(check.invalid(
-                        p("kind"),
-                        "\"spring\"",
-                        "a spring support needs translational (N/m) and/or rotational (N m/rad)",
-                    ));
-                }
-                ("clamped" | "pinned" | "guided", _, _) => {
-                    return Err(check.invalid(
-                        p("kind"),
-                        format!("\"{}\"", s.kind),
-                        "translational and rotational belong to kind = \"spring\" only",
-                    ));
-                }
-                (other, _, _) => {
-                    return Err(check.invalid(
-                        p("kind"),
-                        format!("\"{other}\""),
-                        "it must be \"clamped\", \"pinned\", \"guided\" or \"spring\"",
-                    ));
-                }
-            };
-            let mut identify = [false; 2];
-            for (k, name) in s.identify.iter().enumerate() {
-                let slot = match (name.as_str(), kind) {
-                    ("translational", SupportKind::Spring { translational, .. })
-                        if translational > 0.0 =>
-                    {
-                        0
-                    }
-                    ("rotational", SupportKind::Spring { rotational, .. }) if rotational > 0.0 => 1,
-                    _ => {
-                        return Err(check.invalid(
-                            p(&format!("identify[{k}]")),
-                            format!("\"{name}\""),
-                            "a spring support identifies its \"translational\" and/or \"rotational\" stiffness, when that stiffness is given and > 0",
-                        ));
-                    }
-                };
-                identify[slot] = true;
-            }
-            supports.push(Support { x, kind, identify });
+        for (i, table) in self.support.into_iter().enumerate() {
+            let support = supports_check.support(table, i, &supports)?;
+            supports.push(support);
         }
         let masses = self
             .mass
@@ -555,6 +491,7 @@ fn joint(j: &RawJoint, i: usize, check: &FieldCheck) -> Result<Joint, InputError
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::chain::SupportKind;
 
     const GOOD: &str = r#"
 [[beam]]
@@ -673,7 +610,7 @@ k2 = 1.0e4
     #[test]
     fn set_up_tables_are_read_and_checked() {
         let text = format!(
-            "{GOOD}\n[[support]]\nx = 0.0\nkind = \"clamped\"\n[[support]]\nx = 0.5\nkind = \"spring\"\ntranslational = 1e5\n[[mass]]\nx = 0.085\nmass = 0.02\nrotary_inertia = 1e-6\n[[sensor]]\nx = 0.176\nlabel = \"acc3\"\nmass = 0.003\n"
+            "{GOOD}\n[[support]]\nx = 0.0\nkind = \"clamped\"\nidentify = []\n[[support]]\nx = 0.5\nkind = \"spring\"\ntranslational = 1e5\nidentify = [\"translational\"]\n[[mass]]\nx = 0.085\nmass = 0.02\nrotary_inertia = 1e-6\n[[sensor]]\nx = 0.176\nlabel = \"acc3\"\nmass = 0.003\n"
         );
         let c = chain(&text).unwrap();
         assert_eq!(c.supports[0].kind, SupportKind::Clamped);
@@ -684,6 +621,7 @@ k2 = 1.0e4
                 rotational: 0.0
             }
         );
+        assert_eq!(c.supports[1].identify, [true, false]);
         assert_eq!(c.masses[0].rotary_inertia, 1e-6);
         assert_eq!(c.sensors[0].label.as_deref(), Some("acc3"));
         let cases = [
@@ -693,7 +631,11 @@ k2 = 1.0e4
             ),
             (
                 "[[support]]\nx = 0.1\nkind = \"welded\"\n",
-                "m.toml: support[0].kind = \"welded\" is invalid: it must be \"clamped\", \"pinned\", \"guided\" or \"spring\"",
+                "m.toml:24: support[0].kind: unknown variant `welded`, expected one of `clamped`, `pinned`, `guided`, `spring`",
+            ),
+            (
+                "[[support]]\nx = 0.1\n",
+                "m.toml:22: support[0]: missing field `kind`",
             ),
             (
                 "[[support]]\nx = 0.1\nkind = \"spring\"\n",
@@ -701,7 +643,31 @@ k2 = 1.0e4
             ),
             (
                 "[[support]]\nx = 0.1\nkind = \"pinned\"\nrotational = 3.0\n",
-                "m.toml: support[0].kind = \"pinned\" is invalid: translational and rotational belong to kind = \"spring\" only",
+                "m.toml:25: support[0].rotational: unknown field `rotational`, expected `x` or `identify` (kind = \"pinned\")",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"clamped\"\n[[support]]\nx = 0.2\nkind = \"spring\"\nrotational = \"stiff\"\n",
+                "m.toml:28: support[1].rotational: invalid type: string \"stiff\", expected f64 (kind = \"spring\")",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"spring\"\nidentify = [\"rotational\", 3]\n",
+                "m.toml:25: support[0].identify[1]: invalid type: integer `3`, expected a string (kind = \"spring\")",
+            ),
+            (
+                "[[support]]\nkind = \"guided\"\n",
+                "m.toml:22: support[0]: missing field `x` (kind = \"guided\")",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"spring\"\nrotational = -3.0\n",
+                "m.toml: support[0].rotational = -3 is invalid: it must be finite and >= 0 (N m/rad)",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"spring\"\ntranslational = 1e5\nidentify = [\"rotational\"]\n",
+                "m.toml: support[0].identify[0] = \"rotational\" is invalid: a spring support identifies its \"translational\" and/or \"rotational\" stiffness, when that stiffness is given and > 0",
+            ),
+            (
+                "[[support]]\nx = 0.1\nkind = \"clamped\"\nidentify = [\"translational\"]\n",
+                "m.toml: support[0].identify[0] = \"translational\" is invalid: a spring support identifies its \"translational\" and/or \"rotational\" stiffness, when that stiffness is given and > 0",
             ),
             (
                 "[[mass]]\nx = 0.1\nmass = -0.01\n",

@@ -5,7 +5,9 @@
 //!
 //! - [`beam`]: element matrices, sections and stepped segments;
 //! - [`joint`]: the joint of eq. (17) and the names of its parameters;
-//! - [`setup`]: supports, point masses, sensors; the count of rigid-body modes;
+//! - [`support`]: the kinds of support, their table in the model file, the count of
+//!   rigid-body modes;
+//! - [`setup`]: point masses, sensors;
 //! - [`mesh`]: nodes where things happen, elements between them;
 //! - [`assembly`]: the [`crate::structure::Structure`] of a chain;
 //! - [`config`]: the TOML model file, parsed and validated.
@@ -16,11 +18,13 @@ pub mod config;
 pub mod joint;
 pub mod mesh;
 pub mod setup;
+pub mod support;
 
 pub use beam::{Beam, Section, Segment};
 pub use joint::Joint;
 pub use mesh::Mesh;
-pub use setup::{PointMass, Sensor, Support, SupportKind};
+pub use setup::{PointMass, Sensor};
+pub use support::{Support, SupportKind};
 
 /// A validated chain: at least one beam and exactly `beams - 1` joints; joint i connects the
 /// last node of beam i to the first node of beam i + 1. Abscissae run from the first end.

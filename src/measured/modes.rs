@@ -1,0 +1,102 @@
+//! The measured-modes model: the identified eigensolutions y_r^m, lambda_r^m of the paper,
+//! with partially identified shapes (eq. (15)): for every mode its number, frequency and the
+//! values read at some measured points, each point an [`Observation`] of the structure (a DOF,
+//! or a position between nodes read through the element shape functions).
+//!
+//! May import: the structure and the modal conversions, nothing of the formats.
+
+use crate::structure::Observation;
+
+/// Largest mode number a file may give.
+pub const MAX_MODE: usize = 100_000;
+/// Largest frequency a file may give, Hz (an acoustic or ultrasonic test stays far below).
+pub const MAX_FREQUENCY_HZ: f64 = 1e9;
+
+/// One measured mode: frequency and the values at its measured points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredMode {
+    /// Deformable mode number r, 1-based (1 = the first elastic mode).
+    pub mode: usize,
+    /// Measured natural frequency f_r, Hz.
+    pub frequency_hz: f64,
+    /// Measured points, in the order of [`point_order`].
+    pub points: Vec<Observation>,
+    /// Shape components at `points`.
+    pub values: Vec<f64>,
+    /// Modal damping ratio, when the data give it (extracted modes).
+    pub damping_ratio: Option<f64>,
+    /// Modal phase collinearity of the complex shape it comes from (1: a real mode).
+    pub mpc: Option<f64>,
+}
+
+impl MeasuredMode {
+    /// A mode measured at `points` with `values`, in any order: sorted by [`point_order`].
+    pub fn new(mode: usize, frequency_hz: f64, points: Vec<Observation>, values: Vec<f64>) -> Self {
+        let mut pairs: Vec<(Observation, f64)> = points.into_iter().zip(values).collect();
+        pairs.sort_by(|a, b| point_order(&a.0, &b.0));
+        let (points, values) = pairs.into_iter().unzip();
+        Self {
+            mode,
+            frequency_hz,
+            points,
+            values,
+            damping_ratio: None,
+            mpc: None,
+        }
+    }
+
+    /// The largest magnitude of its components (the unit of the shape noise's floor).
+    pub fn peak(&self) -> f64 {
+        self.values.iter().fold(0.0_f64, |a, b| a.max(b.abs()))
+    }
+
+    /// The measured eigenvalue lambda_r^m = (2 pi f_r)^2.
+    pub fn lambda(&self) -> f64 {
+        crate::modal::hz_to_lambda(self.frequency_hz)
+    }
+}
+
+/// The order of measured points: by the lowest DOF read (for DOFs: ascending DOF), then by
+/// abscissa, then by direction.
+pub fn point_order(a: &Observation, b: &Observation) -> std::cmp::Ordering {
+    a.first_dof()
+        .cmp(&b.first_dof())
+        .then(a.x.total_cmp(&b.x))
+        .then(a.direction.cmp(&b.direction))
+}
+
+/// All measured modes of a test, ordered by mode number.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredModes {
+    modes: Vec<MeasuredMode>,
+}
+
+impl MeasuredModes {
+    /// Builds from modes already validated (used by simulators); sorted by mode number.
+    pub fn new(mut modes: Vec<MeasuredMode>) -> Self {
+        modes.sort_by_key(|m| m.mode);
+        Self { modes }
+    }
+
+    /// The modes, ascending mode number.
+    pub fn modes(&self) -> &[MeasuredMode] {
+        &self.modes
+    }
+
+    /// The mode with number `r`, if measured.
+    pub fn get(&self, r: usize) -> Option<&MeasuredMode> {
+        self.modes.iter().find(|m| m.mode == r)
+    }
+
+    /// Every distinct measured point of every mode, in [`point_order`].
+    pub fn points(&self) -> Vec<Observation> {
+        let mut all: Vec<Observation> = self
+            .modes
+            .iter()
+            .flat_map(|m| m.points.iter().cloned())
+            .collect();
+        all.sort_by(point_order);
+        all.dedup_by(|a, b| a.label == b.label);
+        all
+    }
+}
