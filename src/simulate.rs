@@ -6,11 +6,11 @@ use std::sync::Arc;
 
 use crate::input::Number;
 use crate::measured::{MeasuredMode, MeasuredModes};
-use crate::modal::ModalSolution;
+use crate::modal::{ModalSolution, check_elastic};
 use crate::model::effects::{
     Configured, EffectContext, by_name, candidates, extended, outside_library,
 };
-use crate::structure::{Observation, Structure, check_elastic};
+use crate::structure::{Observation, Structure};
 use crate::study::noise::{NoiseKind, TrialRng};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
@@ -126,7 +126,7 @@ pub enum SimulateError {
     },
     /// The simulated structure is a mechanism.
     #[error("the simulated structure")]
-    Mechanism(#[from] crate::structure::Mechanism),
+    Mechanism(#[from] crate::modal::Mechanism),
     /// The simulated model has no eigensolution.
     #[error("the simulated model has no eigensolution")]
     Modal(#[from] crate::modal::ModalError),
@@ -154,7 +154,7 @@ pub fn simulate(
 ) -> Result<MeasuredModes, SimulateError> {
     let rigid = structure.rigid;
     let highest = modes.iter().copied().max().unwrap_or(1) + rigid;
-    let nominal = structure.modes(highest)?;
+    let nominal = ModalSolution::lowest_of(&structure.assemble(), highest)?;
     if highest > nominal.len() {
         return Err(SimulateError::NoSuchMode {
             mode: highest - rigid,

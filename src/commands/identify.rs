@@ -7,9 +7,8 @@ use anyhow::{Context, bail};
 use crate::cli::IdentifyArgs;
 use jointid::identify::{Identifier, Selection, Settings};
 use jointid::measured::MeasuredModes;
-use jointid::modal::ModalSolution;
+use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::{check_outputs, identify as out, write_atomically};
-use jointid::structure::check_elastic;
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();

@@ -52,9 +52,9 @@ pub use whiteness::Whiteness;
 
 use crate::identify::{Identifier, Settings, Weighting};
 use crate::measured::MeasuredModes;
-use crate::modal::{ModalError, ModalSolution};
+use crate::modal::{ModalError, ModalSolution, check_elastic};
 use crate::model::effects::{Effect, EffectContext, candidates, extended};
-use crate::structure::{Structure, check_elastic};
+use crate::structure::Structure;
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -87,7 +87,7 @@ pub enum DiagnoseError {
     },
     /// The nominal model is a mechanism.
     #[error("the model as given")]
-    Mechanism(#[from] crate::structure::Mechanism),
+    Mechanism(#[from] crate::modal::Mechanism),
     /// The model has nothing to calibrate.
     #[error(
         "the model identifies no joint parameter (no joint, or every parameter held fixed): there is nothing to calibrate"

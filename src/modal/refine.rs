@@ -29,7 +29,7 @@
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
-use super::lanczos::sparse_mul;
+use super::sparse_mul;
 use super::sparse_llt::SparseLlt;
 
 /// Corrections of M-norm below this (for M-normalised vectors) are left out: their content is

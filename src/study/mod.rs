@@ -55,7 +55,7 @@ pub enum StudyError {
         /// `nominal` or `modified (truth.delta)`.
         which: &'static str,
         /// The zero frequency.
-        cause: crate::structure::Mechanism,
+        cause: crate::modal::Mechanism,
     },
     /// Some cells of the grid cannot be computed.
     #[error("{file}: {count} impossible cell(s) in the grid, nothing was computed:\n{list}", count = problems.len(), list = problems.join("\n"))]

@@ -5,8 +5,8 @@
 //! The nominal and truth eigensolutions are shared by every cell: the model is the same.
 
 use crate::identify::{Identifier, IdentifyError, ModeSystem, Projector, Settings, Weighting};
-use crate::modal::ModalSolution;
-use crate::structure::{Parameter, Structure, check_elastic};
+use crate::modal::{ModalSolution, check_elastic};
+use crate::structure::{Parameter, Structure};
 
 use super::StudyError;
 use super::config::{NfSpec, Study};

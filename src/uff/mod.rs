@@ -109,10 +109,24 @@ pub enum Record {
     },
 }
 
+/// The payload lengths of the binary datasets whose layout is known here: 58b, from its record
+/// 7 ([`function`]); the declared byte count of any other.
+fn payload_lengths(
+    kind: u32,
+    header: &[fields::Line<'_>],
+    line: usize,
+) -> Result<Option<Vec<usize>>, error::Located> {
+    if kind == 58 {
+        function::binary_lengths(header, line).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
 /// Reads every dataset of a universal file held in `bytes`; `file` names it in errors.
 pub fn read(bytes: &[u8], file: &Path) -> Result<Vec<Record>, UffError> {
     let mut records = Vec::new();
-    for raw in split::Splitter::new(bytes) {
+    for raw in split::Splitter::new(bytes, payload_lengths) {
         let raw = raw.map_err(|(record, located)| match record {
             Some((record, dataset)) => UffError::Record {
                 file: file.to_path_buf(),
