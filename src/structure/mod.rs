@@ -27,6 +27,11 @@ pub use sites::{
 };
 pub use sparse::SparseSym;
 
+/// Largest number of identified parameters a structure may have: the most the per-mode
+/// identification solves for (eight joints of two parameters; its least-squares solver keeps
+/// R on the stack, [`crate::identify::wls::MAX_Q`]). The beam-chain builder refuses more.
+pub const MAX_IDENTIFIED: usize = 16;
+
 /// Whether a parameter is identified or held at its value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
