@@ -1,5 +1,5 @@
 //! The result file of one shard: a few `#` lines that say what it is, then the result CSV of
-//! its cells exactly as the single-machine run writes them ([`crate::output::study`]).
+//! its cells exactly as the single-machine run writes them ([`crate::study::results`]).
 //!
 //! ```text
 //! # jointid shard 2/4
@@ -24,7 +24,7 @@ use std::io::{self, BufRead, Read, Write};
 use std::path::{Path, PathBuf};
 
 use super::shard::ShardSpec;
-use crate::output::study::{RESULT_HEADER, write_results};
+use crate::study::results::{RESULT_HEADER, write_results};
 use crate::study::{CellResult, NoiseKind};
 
 const MAGIC: &str = "# jointid shard ";

@@ -12,12 +12,13 @@ use crate::cli::StudyArgs;
 use jointid::cluster::{
     ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
 };
-use jointid::output::study::{TrialsWriter, write_results};
+use jointid::output::study::TrialsWriter;
 use jointid::output::{check_outputs, commit_all, stage};
 use jointid::study::check::selected_rows;
 
 use crate::commands::resources::check_memory;
 use jointid::study::resources::peak_bytes;
+use jointid::study::results::write_results;
 use jointid::study::{CellResult, Study, StudyRun};
 
 /// A finished study (or shard of a study).

@@ -5,27 +5,29 @@ use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-/// Columns a report needs from a study CSV.
-pub const REQUIRED: [&str; 19] = [
-    "cell",
-    "mode",
-    "param",
-    "n",
-    "m",
-    "nf",
-    "weighting",
-    "shape_noise",
-    "frequency_noise",
-    "noise",
-    "introduced",
-    "trials",
-    "failures",
-    "median",
-    "q05",
-    "q25",
-    "q75",
-    "q95",
-    "relative_bias",
+use crate::study::results::Column;
+
+/// Columns a report needs from a study CSV (of [`crate::study::results`]).
+pub const REQUIRED: [Column; 19] = [
+    Column::Cell,
+    Column::Mode,
+    Column::Param,
+    Column::N,
+    Column::M,
+    Column::Nf,
+    Column::Weighting,
+    Column::ShapeNoise,
+    Column::FrequencyNoise,
+    Column::Noise,
+    Column::Introduced,
+    Column::Trials,
+    Column::Failures,
+    Column::Median,
+    Column::Q05,
+    Column::Q25,
+    Column::Q75,
+    Column::Q95,
+    Column::RelativeBias,
 ];
 
 /// A study CSV that cannot be reported.
@@ -155,7 +157,7 @@ impl StudyResults {
             .clone();
         let missing: Vec<&str> = REQUIRED
             .iter()
-            .copied()
+            .map(|c| c.name())
             .filter(|c| !header.iter().any(|h| h == *c))
             .collect();
         if !missing.is_empty() {
@@ -164,12 +166,15 @@ impl StudyResults {
                 missing: missing.join(", "),
             });
         }
-        let at: BTreeMap<&str, usize> = REQUIRED
+        let at: BTreeMap<Column, usize> = REQUIRED
             .iter()
-            .map(|c| {
+            .map(|&c| {
                 (
-                    *c,
-                    header.iter().position(|h| h == *c).expect("checked above"),
+                    c,
+                    header
+                        .iter()
+                        .position(|h| h == c.name())
+                        .expect("checked above"),
                 )
             })
             .collect();
@@ -178,42 +183,56 @@ impl StudyResults {
             let record = record
                 .map_err(|e| line_error(e.position().map_or(0, |p| p.line()), e.to_string()))?;
             let line = record.position().map_or(0, |p| p.line());
-            let field = |name: &str| record.get(at[name]).unwrap_or("");
-            let number = |name: &str| -> Result<f64, ReportError> {
-                field(name)
+            let field = |column: Column| record.get(at[&column]).unwrap_or("");
+            let number = |column: Column| -> Result<f64, ReportError> {
+                field(column)
                     .parse::<f64>()
                     .ok()
                     .filter(|v| v.is_finite())
                     .ok_or_else(|| {
                         line_error(
                             line,
-                            format!("{name} = `{}` is not a finite number", field(name)),
+                            format!(
+                                "{} = `{}` is not a finite number",
+                                column.name(),
+                                field(column)
+                            ),
                         )
                     })
             };
-            let optional = |name: &str| -> Result<Option<f64>, ReportError> {
-                if field(name).is_empty() {
+            let optional = |column: Column| -> Result<Option<f64>, ReportError> {
+                if field(column).is_empty() {
                     Ok(None)
                 } else {
-                    number(name).map(Some)
+                    number(column).map(Some)
                 }
             };
-            let integer = |name: &str| -> Result<usize, ReportError> {
-                field(name).parse().map_err(|_| {
-                    line_error(line, format!("{name} = `{}` is not a count", field(name)))
+            let integer = |column: Column| -> Result<usize, ReportError> {
+                field(column).parse().map_err(|_| {
+                    line_error(
+                        line,
+                        format!("{} = `{}` is not a count", column.name(), field(column)),
+                    )
                 })
             };
-            let cell = integer("cell")?;
+            let cell = integer(Column::Cell)?;
             cells.entry(cell).or_insert(Conditions {
-                n: integer("n")?,
-                m: integer("m")?,
-                nf: integer("nf")?,
-                weighting: field("weighting").to_string(),
-                shape_noise: number("shape_noise")?,
-                frequency_noise: number("frequency_noise")?,
+                n: integer(Column::N)?,
+                m: integer(Column::M)?,
+                nf: integer(Column::Nf)?,
+                weighting: field(Column::Weighting).to_string(),
+                shape_noise: number(Column::ShapeNoise)?,
+                frequency_noise: number(Column::FrequencyNoise)?,
             });
-            noise = field("noise").to_string();
-            let q = ["q05", "q25", "median", "q75", "q95"].map(optional);
+            noise = field(Column::Noise).to_string();
+            let q = [
+                Column::Q05,
+                Column::Q25,
+                Column::Median,
+                Column::Q75,
+                Column::Q95,
+            ]
+            .map(optional);
             let quantiles = match q {
                 [
                     Ok(Some(a)),
@@ -231,13 +250,13 @@ impl StudyResults {
             };
             rows.push(ResultRow {
                 cell,
-                mode: integer("mode")?,
-                param: field("param").to_string(),
-                introduced: number("introduced")?,
-                trials: integer("trials")?,
-                failures: integer("failures")?,
+                mode: integer(Column::Mode)?,
+                param: field(Column::Param).to_string(),
+                introduced: number(Column::Introduced)?,
+                trials: integer(Column::Trials)?,
+                failures: integer(Column::Failures)?,
                 quantiles,
-                relative_bias: optional("relative_bias")?,
+                relative_bias: optional(Column::RelativeBias)?,
             });
         }
         if rows.is_empty() {
@@ -354,8 +373,8 @@ mod tests {
     fn every_required_column_is_written_by_the_study() {
         for column in REQUIRED {
             assert!(
-                crate::output::study::RESULT_HEADER.contains(&column),
-                "{column}"
+                crate::study::results::RESULT_HEADER.contains(&column.name()),
+                "{column:?}"
             );
         }
     }

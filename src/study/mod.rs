@@ -8,6 +8,7 @@
 //! - [`noise`]: the error model and the per-trial random streams;
 //! - [`engine`]: the parallel trials and their statistics;
 //! - [`predicted`]: first-order predicted standard deviations;
+//! - [`results`]: the result CSV, its columns and its writer;
 //! - [`check`]: the CI gate on estimator bias.
 
 pub mod check;
@@ -17,6 +18,7 @@ pub mod noise;
 pub mod plan;
 pub mod predicted;
 pub mod resources;
+pub mod results;
 pub mod unidentified;
 
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
