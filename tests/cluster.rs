@@ -14,9 +14,10 @@ use std::path::{Path, PathBuf};
 
 use common::{jointid, scratch};
 use jointid::cluster::{
-    MergeError, ShardFile, ShardHeader, ShardSpec, fingerprint, merge, model_data_files,
-    read_results, study_assignment, write_shard,
+    MergeError, ShardFile, ShardHeader, ShardSpec, merge, read_results, study_assignment,
+    write_shard,
 };
+use jointid::study::fingerprint::{fingerprint, model_data_files};
 use jointid::study::results::write_results;
 use jointid::study::{Study, StudyRun};
 

@@ -7,7 +7,8 @@
 //! trials alone. So the split changes no number, only where it is computed.
 //!
 //! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;
-//! - [`shard_file`]: the fingerprint and the shard result file;
+//! - [`shard_file`]: the shard result file (it carries the study's fingerprint,
+//!   [`crate::study::fingerprint`]);
 //! - [`merge`]: the checks and the merged CSV;
 //! - [`results`]: a result CSV read back for `check --results`;
 //! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
@@ -21,7 +22,5 @@ pub mod slurm;
 pub use merge::{MergeError, merge};
 pub use results::{ResultsError, read_results, read_results_path};
 pub use shard::{ShardError, ShardSpec, assign, cell_cost, study_assignment};
-pub use shard_file::{
-    ShardFile, ShardFileError, ShardHeader, fingerprint, model_data_files, write_shard,
-};
+pub use shard_file::{ShardFile, ShardFileError, ShardHeader, write_shard};
 pub use slurm::{SlurmPlan, SlurmScripts};

@@ -9,15 +9,14 @@ use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
-use jointid::cluster::{
-    ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
-};
+use jointid::cluster::{ShardHeader, ShardSpec, study_assignment, write_shard};
 use jointid::output::study::TrialsWriter;
 use jointid::output::{check_outputs, commit_all, stage};
 use jointid::study::check::selected_rows;
 
 use crate::commands::resources::check_memory;
 use jointid::study::resources::peak_bytes;
+use jointid::study::fingerprint::{study_fingerprint, tool_version};
 use jointid::study::results::write_results;
 use jointid::study::{CellResult, Study, StudyRun};
 
@@ -30,11 +29,6 @@ pub struct Finished {
     pub out: PathBuf,
     /// The shard run, if any.
     pub shard: Option<ShardSpec>,
-}
-
-/// The tool's version as the fingerprint records it.
-pub fn tool_version() -> String {
-    format!("jointid {}", env!("CARGO_PKG_VERSION"))
 }
 
 /// The default shard file of `output_csv`: `NAME.shard-K-of-N.csv` beside it.
@@ -52,22 +46,6 @@ fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
         (None, Some(spec)) => shard_path(&study.output_csv, spec),
         (None, None) => study.output_csv.clone(),
     }
-}
-
-/// The fingerprint of a study: this tool's version, the study file, its model file and the
-/// files the model names.
-pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
-    let read = |path: &Path| {
-        std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
-    };
-    let model = read(&study.model_file)?;
-    let mut files = vec![read(&study.file)?];
-    for path in model_data_files(&String::from_utf8_lossy(&model), &study.model_file) {
-        files.push(read(&path)?);
-    }
-    files.insert(1, model);
-    let parts: Vec<&[u8]> = files.iter().map(|f| f.as_slice()).collect();
-    Ok(fingerprint(&tool_version(), &parts))
 }
 
 /// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs

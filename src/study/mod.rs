@@ -9,11 +9,13 @@
 //! - [`engine`]: the parallel trials and their statistics;
 //! - [`predicted`]: first-order predicted standard deviations;
 //! - [`results`]: the result CSV, its columns and its writer;
-//! - [`check`]: the CI gate on estimator bias.
+//! - [`check`]: the CI gate on estimator bias;
+//! - [`fingerprint`]: what makes two runs of a study the same computation.
 
 pub mod check;
 pub mod config;
 pub mod engine;
+pub mod fingerprint;
 pub mod noise;
 pub mod plan;
 pub mod predicted;
