@@ -29,6 +29,7 @@ pub mod measured;
 pub mod modal;
 pub mod model;
 pub mod output;
+pub mod random;
 pub mod report;
 pub mod simulate;
 pub mod stats;

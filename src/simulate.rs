@@ -11,7 +11,7 @@ use crate::model::effects::{
     Configured, EffectContext, by_name, candidates, extended, outside_library,
 };
 use crate::structure::{Observation, Structure};
-use crate::study::noise::{NoiseKind, TrialRng};
+use crate::random::{NoiseKind, TrialRng};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
 /// rigid-body modes, exact, read at `points`. The caller guarantees every mode exists

@@ -9,7 +9,7 @@ use std::process::Command;
 use jointid::identify::{Identifier, Settings};
 use jointid::measured::MeasuredMode;
 use jointid::structure::Observation;
-use jointid::study::noise::TrialRng;
+use jointid::random::TrialRng;
 use jointid::study::predicted::noise_free_jacobian;
 use jointid::study::{CellPlan, Study, StudyRun};
 

@@ -3,7 +3,7 @@
 //! single-machine result; and the Slurm scripts that run the shards as a job array.
 //!
 //! A cell gives the same bits wherever it runs: every trial draws from its own stream seeded
-//! by (seed, cell, trial) ([`crate::study::noise`]), and a cell's statistics depend on its
+//! by (seed, cell, trial) ([`crate::random`]), and a cell's statistics depend on its
 //! trials alone. So the split changes no number, only where it is computed.
 //!
 //! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;

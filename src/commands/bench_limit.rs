@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use jointid::identify::{LANES, Lanes};
 use jointid::study::CellPlan;
-use jointid::study::noise::{LaneRng, NoiseKind};
+use jointid::random::{LaneRng, NoiseKind};
 
 /// The measured parts of the limit.
 pub struct Limit {

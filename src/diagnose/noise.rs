@@ -459,7 +459,7 @@ mod tests {
     /// matches the second moment): 20000 draws, within 4 standard errors of each.
     #[test]
     fn pseudo_dof_matches_the_variance_of_the_normalised_sum() {
-        use crate::study::noise::TrialRng;
+        use crate::random::TrialRng;
         use rand_distr::{Distribution, StandardNormal};
         let x: Vec<f64> = (0..15)
             .map(|j| f64::from(j) + 0.4 * f64::from(j % 3))

@@ -37,7 +37,7 @@ use serde::Deserialize;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{MapAccess, SeqAccess, Visitor};
 
-use super::noise::NoiseKind;
+use crate::random::NoiseKind;
 use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
 use crate::structure::{Direction, DofMap, Structure};

@@ -5,7 +5,7 @@
 //! - [`config`]: the study file;
 //! - [`unidentified`]: the NF rule;
 //! - [`plan`]: cells and the per-cell precomputation;
-//! - [`noise`]: the error model and the per-trial random streams;
+//! - the error model and the per-trial random streams are [`crate::random`]'s;
 //! - [`engine`]: the parallel trials and their statistics;
 //! - [`predicted`]: first-order predicted standard deviations;
 //! - [`results`]: the result CSV, its columns and its writer;
@@ -16,7 +16,6 @@ pub mod check;
 pub mod config;
 pub mod engine;
 pub mod fingerprint;
-pub mod noise;
 pub mod plan;
 pub mod predicted;
 pub mod resources;
@@ -25,7 +24,7 @@ pub mod unidentified;
 
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
 pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
-pub use noise::NoiseKind;
+pub use crate::random::NoiseKind;
 pub use plan::{Cell, CellPlan, StudyContext};
 
 /// The statistics of one cell.

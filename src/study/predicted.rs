@@ -2,7 +2,7 @@
 //! model propagated linearly through g, S and b at the noise-free point
 //! ([`crate::identify::propagation`]).
 
-use super::noise::NoiseKind;
+use crate::random::NoiseKind;
 use super::plan::{Cell, CellPlan, ModePlan};
 use crate::identify::propagation::{jacobian, propagated_std};
 
