@@ -23,4 +23,4 @@ pub use merge::{MergeError, merge};
 pub use results::{ResultsError, read_results, read_results_path};
 pub use shard::{ShardError, ShardSpec, assign, cell_cost, study_assignment};
 pub use shard_file::{ShardFile, ShardFileError, ShardHeader, write_shard};
-pub use slurm::{SlurmPlan, SlurmScripts};
+pub use slurm::{SlurmPlan, SlurmScripts, check_settings};

@@ -4,10 +4,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 
 use crate::cli::{ExtractArgs, FrfQuantity};
-use jointid::extract::{Quantity, Settings, csv, extract, universal};
+use crate::commands::flagged;
+use jointid::extract::{ExtractError, Quantity, Settings, csv, extract, universal};
 use jointid::output::stabilization::stabilization_svg;
 use jointid::output::{check_outputs, commit_all, stage};
 
@@ -71,15 +72,18 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             "absent"
         }
     ));
-    if args.modes == Some(0) {
-        bail!("--modes 0 is invalid: at least one mode is needed");
-    }
+    let failed = || format!("{inputs}: extraction failed");
     let settings = Settings {
         band_hz: args.band,
         n_modes: args.modes,
         max_order: args.max_order,
         ..Settings::default()
     };
+    // --modes is refused as the flag it is; any other setting as the extraction refuses it.
+    settings.check().map_err(|e| match e.setting {
+        "n_modes" => flagged(e, &[("n_modes", "--modes")]),
+        _ => anyhow::Error::new(ExtractError::Setting(e)).context(failed()),
+    })?;
     let last = std::cell::Cell::new(0);
     let ex = extract(&input.set, &settings, &|done, total| {
         let tenth = 10 * done / total.max(1);
@@ -88,7 +92,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             say(format!("extracting: {}%", 10 * tenth));
         }
     })
-    .with_context(|| format!("{inputs}: extraction failed"))?;
+    .with_context(failed)?;
     say(format!(
         "band {:.3}..{:.3} Hz, {} modes:",
         ex.band_hz.0,

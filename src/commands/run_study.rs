@@ -12,7 +12,7 @@ use crate::cli::StudyArgs;
 use jointid::cluster::{ShardHeader, ShardSpec, study_assignment, write_shard};
 use jointid::output::study::TrialsWriter;
 use jointid::output::{check_outputs, commit_all, stage};
-use jointid::study::check::selected_rows;
+use jointid::study::check;
 
 use crate::commands::resources::check_memory;
 use jointid::study::resources::peak_bytes;
@@ -97,24 +97,7 @@ fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
 fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow::Result<StudyRun> {
     let study = Study::from_path(path)?;
     if gate {
-        let Some(spec) = &study.check else {
-            bail!(
-                "{}: there is no [check] table: nothing to hold the study to",
-                study.file.display()
-            );
-        };
-        let names: Vec<String> = study
-            .model
-            .identified()
-            .into_iter()
-            .map(|p| p.name)
-            .collect();
-        if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
-            bail!(
-                "{}: [check].where selects no (cell, mode, parameter) of the grid",
-                study.file.display()
-            );
-        }
+        check::gate(&study)?;
     }
     let out = output_path(&study, args);
     let mut outputs = vec![out.as_path()];

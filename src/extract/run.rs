@@ -8,65 +8,6 @@ use super::lscf::{self, Lscf};
 use super::stabilization::{self, Criteria, OrderPoles};
 use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
 
-fn invalid(name: &'static str, value: impl ToString, allowed: &'static str) -> ExtractError {
-    ExtractError::InvalidSetting {
-        name,
-        value: value.to_string(),
-        allowed,
-    }
-}
-
-/// Checks every setting against its range.
-fn check(settings: &Settings) -> Result<(), ExtractError> {
-    let open_unit = |v: f64| v > 0.0 && v < 1.0;
-    if settings.max_order < 2 {
-        return Err(invalid("max_order", settings.max_order, "an integer >= 2"));
-    }
-    if settings.n_modes == Some(0) {
-        return Err(invalid("n_modes", 0, "an integer >= 1"));
-    }
-    if let Some(m) = settings.min_stable
-        && (m == 0 || m > settings.max_order)
-    {
-        return Err(invalid("min_stable", m, "an integer in 1..=max_order"));
-    }
-    if !open_unit(settings.frequency_tolerance) {
-        return Err(invalid(
-            "frequency_tolerance",
-            settings.frequency_tolerance,
-            "in (0, 1)",
-        ));
-    }
-    if !open_unit(settings.damping_tolerance) {
-        return Err(invalid(
-            "damping_tolerance",
-            settings.damping_tolerance,
-            "in (0, 1)",
-        ));
-    }
-    if !open_unit(settings.mac_min) {
-        return Err(invalid("mac_min", settings.mac_min, "in (0, 1)"));
-    }
-    if !(settings.max_damping > 0.0 && settings.max_damping <= 1.0) {
-        return Err(invalid("max_damping", settings.max_damping, "in (0, 1]"));
-    }
-    if settings.residual_terms > 2 {
-        return Err(invalid(
-            "residual_terms",
-            settings.residual_terms,
-            "0, 1 or 2",
-        ));
-    }
-    if !(0.0..=1.0).contains(&settings.coherence_min) {
-        return Err(invalid(
-            "coherence_min",
-            settings.coherence_min,
-            "in [0, 1]",
-        ));
-    }
-    Ok(())
-}
-
 fn frequency(s: c64) -> f64 {
     s.norm() / (2.0 * PI)
 }
@@ -99,7 +40,7 @@ pub fn extract(
     settings: &Settings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Extraction, ExtractError> {
-    check(settings)?;
+    settings.check().map_err(ExtractError::Setting)?;
     frf.validate()?;
     let band = frf::band(frf, settings)?;
     let max_order = settings.max_order;

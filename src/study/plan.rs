@@ -195,7 +195,9 @@ impl CellPlan {
         };
         let identifier = Identifier::new(&ctx.nominal, ctx.params.clone(), ctx.rigid, settings)
             .map_err(|e| match e {
-                IdentifyError::BasisSize { .. } => at("n", cell.n.1, cell.n.0, &e),
+                IdentifyError::Setting(ref s) if s.setting == "n" => {
+                    at("n", cell.n.1, cell.n.0, &e)
+                }
                 _ => at("m", cell.m.1, cell.m.0, &e),
             })?;
         let identified = unidentified::complement(study.model.dof_count(), &cell.unidentified);
