@@ -5,7 +5,8 @@
 //! Errors name the file, the line where known, the field path (`beam[1].length`), the value
 //! and what is allowed.
 //!
-//! May import: nothing of the crate (a foundation: see the layers in the crate docs).
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
 use std::path::{Path, PathBuf};
 

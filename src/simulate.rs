@@ -1,6 +1,11 @@
 //! Simulated measurements: the exact eigensolution of a model (the paper's "simulated
 //! identified model"), over chosen DOFs, in the measured-modes form, optionally with
 //! measurement errors.
+//!
+//! Layer 5 (simulation and studies; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`]) and, without a circle, [`crate::study`].
 
 use std::sync::Arc;
 
@@ -10,8 +15,8 @@ use crate::modal::{ModalSolution, check_elastic};
 use crate::model::effects::{
     Configured, EffectContext, by_name, candidates, extended, outside_library,
 };
-use crate::structure::{Observation, Structure};
 use crate::random::{NoiseKind, TrialRng};
+use crate::structure::{Observation, Structure};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
 /// rigid-body modes, exact, read at `points`. The caller guarantees every mode exists

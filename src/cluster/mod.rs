@@ -9,9 +9,15 @@
 //! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;
 //! - [`shard_file`]: the shard result file (it carries the study's fingerprint,
 //!   [`crate::study::fingerprint`]);
-//! - [`merge`]: the checks and the merged CSV;
+//! - [`mod@merge`]: the checks and the merged CSV;
 //! - [`results`]: a result CSV read back for `check --results`;
 //! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::diagnose`], [`crate::report`].
 
 pub mod merge;
 pub mod results;

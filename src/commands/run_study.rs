@@ -15,8 +15,8 @@ use jointid::output::{check_outputs, commit_all, stage};
 use jointid::study::check;
 
 use crate::commands::resources::check_memory;
-use jointid::study::resources::peak_bytes;
 use jointid::study::fingerprint::{study_fingerprint, tool_version};
+use jointid::study::resources::peak_bytes;
 use jointid::study::results::write_results;
 use jointid::study::{CellResult, Study, StudyRun};
 

@@ -4,6 +4,11 @@ use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
 use crate::commands::flagged;
+use jointid::input::SettingError;
+use jointid::output::{check_outputs, write_atomically};
+use jointid::simulate::{Errors, first_modes, simulate};
+use jointid::structure::Observation;
+use jointid::study::NoiseKind;
 
 /// The library's settings by their flags.
 const FLAGS: &[(&str, &str)] = &[
@@ -12,20 +17,14 @@ const FLAGS: &[(&str, &str)] = &[
     ("shape_noise", "--shape-noise"),
     ("frequency_noise", "--frequency-noise"),
 ];
-use jointid::output::{check_outputs, write_atomically};
-use jointid::input::SettingError;
-use jointid::simulate::{Errors, first_modes, simulate};
-use jointid::structure::Observation;
-use jointid::study::NoiseKind;
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     check_outputs(&[&args.out], &[&args.model])?;
     let model = jointid::model::from_path(&args.model)?;
     let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
-    let kind: NoiseKind = args
-        .noise
-        .parse()
-        .map_err(|allowed: String| flagged(SettingError::new("noise", &args.noise, allowed), FLAGS))?;
+    let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {
+        flagged(SettingError::new("noise", &args.noise, allowed), FLAGS)
+    })?;
     let errors = Errors::new(args.shape_noise, args.frequency_noise, kind, args.seed)
         .map_err(|e| flagged(e, FLAGS))?;
     let points: Vec<Observation> = match args.measure {

@@ -29,6 +29,12 @@
 //! - [`fit`]: the weighted nonlinear least squares (Levenberg-Marquardt);
 //! - [`bounds`]: the fit's feasible region (linear inequalities, active set);
 //! - [`report`]: summaries, per-mode corrections, the report.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::report`], [`crate::cluster`].
 
 pub mod along;
 pub mod bounds;

@@ -24,6 +24,10 @@
 //! Contract of [`Mode`]: frequency_hz is the undamped natural frequency |lambda| / 2 pi, the
 //! damping ratio -Re(lambda) / |lambda|; the residues are receptance residues (displacement per
 //! unit reference, times rad/s) whatever the quantity of the FRFs; modes ascend in frequency.
+//!
+//! Layer 3 (models and measurements; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`]) and, without a circle, [`crate::model`], [`crate::measured`].
 
 pub mod csv;
 pub mod frf;
@@ -131,7 +135,11 @@ impl Settings {
             return invalid("max_damping", &self.max_damping, "it must be in (0, 1]");
         }
         if self.residual_terms > 2 {
-            return invalid("residual_terms", &self.residual_terms, "it must be 0, 1 or 2");
+            return invalid(
+                "residual_terms",
+                &self.residual_terms,
+                "it must be 0, 1 or 2",
+            );
         }
         if !(0.0..=1.0).contains(&self.coherence_min) {
             return invalid("coherence_min", &self.coherence_min, "it must be in [0, 1]");

@@ -10,6 +10,10 @@
 //!    [`weighting`]).
 //! 4. Z_r: weighted least squares (13) by QR ([`wls`]); the correction of parameter i is
 //!    Delta p_i = p_i Z_r(i) (eq. (8)).
+//!
+//! Layer 4 (identification; see the crate docs): may import the layers below: [`crate::stats`],
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
+//! [`crate::model`], [`crate::measured`], [`crate::extract`].
 
 pub mod identifiability;
 pub mod projection;

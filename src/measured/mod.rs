@@ -4,6 +4,10 @@
 //! position between nodes read through the element shape functions).
 //!
 //! - [`csv`]: the measured-modes CSV (by node, by position or by label).
+//!
+//! Layer 3 (models and measurements; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`]) and, without a circle, [`crate::model`], [`crate::extract`].
 
 pub mod csv;
 

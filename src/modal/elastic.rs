@@ -1,8 +1,6 @@
 //! Whether a modal solution is that of an elastic structure: the first deformable eigenvalue
 //! must stand above the solver's zero, else the structure is a mechanism (it moves without
 //! deforming more ways than its rigid-body count says).
-//!
-//! May import: [`crate::structure`] (the matrices) and its parent [`super`].
 
 use super::{DENSE_MAX_DOFS, ModalSolution};
 use crate::structure::Matrices;
@@ -28,7 +26,7 @@ const RIGID_MARGIN: f64 = 1e2;
 /// `rigid` rigid-body modes first) stands above the solver's zero: for the dense solve of a
 /// small model, the round-off level [`Matrices::zero_eigenvalue_level`]; for the sparse
 /// solver of a large one, whose low eigenvalues are accurate relative to themselves,
-/// [`RIGID_MARGIN`] times the largest computed rigid-body eigenvalue. Never at or below 0.
+/// `RIGID_MARGIN` times the largest computed rigid-body eigenvalue. Never at or below 0.
 pub fn check_elastic(
     matrices: &Matrices,
     modal: &ModalSolution,

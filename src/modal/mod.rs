@@ -16,6 +16,9 @@
 //! A x = lambda x, y = L^-T x. A is scaled to unit largest entry before the symmetric solver
 //! and the eigenvalues rescaled after: faer's solver loses accuracy on entries of order
 //! 1e12 (as L^-1 K L^-T of a fine beam mesh is) without it.
+//!
+//! Layer 2 (eigensolution; see the crate docs): may import the layers below: [`crate::stats`],
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
 pub mod elastic;
 pub mod lanczos;

@@ -24,7 +24,8 @@
 //! arrays, so that uniform draws vectorise); lane l is exactly the stream of [`TrialRng`] for
 //! its trial.
 //!
-//! May import: nothing of the crate (a foundation: see the layers in the crate docs).
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::structure`], [`crate::uff`].
 
 use std::fmt;
 use std::str::FromStr;

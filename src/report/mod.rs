@@ -1,5 +1,11 @@
 //! Reading a study result CSV back for reports: the rows, the conditions of every cell, and
 //! which grid axes vary.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::diagnose`], [`crate::cluster`].
 
 use std::collections::BTreeMap;
 use std::io::Read;

@@ -12,6 +12,9 @@
 //! - [`dofs`]: the DOF map (labels, positions, directions, line elements);
 //! - [`observation`]: what a sensor reads, c^T u, at a DOF or between nodes;
 //! - [`sites`]: joints, elements and free ends, for the effects.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::uff`].
 
 pub mod dofs;
 pub mod matrix;

@@ -18,10 +18,10 @@
 use rayon::prelude::*;
 
 use super::config::Study;
-use crate::random::{LaneRng, NoiseKind};
 use super::plan::{Cell, CellPlan};
 use super::predicted::predicted_std;
 use crate::identify::{LANES, Lanes, wls};
+use crate::random::{LaneRng, NoiseKind};
 use crate::stats::{Summary, summarize};
 
 /// Trials handed to a worker at a time (and the granularity of progress reports).

@@ -7,9 +7,6 @@
 //! DOF table, [`model_data_files`]), each prefixed by its length. It guards against mistakes,
 //! not against forgery. [`crate::cluster`] writes it into every shard file and merges only
 //! shards that carry the same one.
-//!
-//! May import: the rest of [`crate::study`] and what it may import (here the model file's
-//! reader, [`crate::model`], and [`crate::input`]).
 
 use std::path::{Path, PathBuf};
 

@@ -11,6 +11,11 @@
 //! - [`results`]: the result CSV, its columns and its writer;
 //! - [`check`]: the CI gate on estimator bias;
 //! - [`fingerprint`]: what makes two runs of a study the same computation.
+//!
+//! Layer 5 (simulation and studies; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`]) and, without a circle, [`crate::simulate`].
 
 pub mod check;
 pub mod config;
@@ -22,9 +27,9 @@ pub mod resources;
 pub mod results;
 pub mod unidentified;
 
+pub use crate::random::NoiseKind;
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
 pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
-pub use crate::random::NoiseKind;
 pub use plan::{Cell, CellPlan, StudyContext};
 
 /// The statistics of one cell.

@@ -8,8 +8,6 @@
 //! successful trials; a statistic that does not exist (every trial failed, a relative bias
 //! of a zero introduction) is an empty field, never NaN. Numbers are Rust's shortest
 //! round-trip decimals, so a result read back is the computed bits.
-//!
-//! May import: the rest of [`crate::study`] (and what it may import).
 
 use std::io::{self, Write};
 

@@ -25,6 +25,9 @@
 //! issue tracker taught which liberties real files take (blank-separated fields, values run
 //! together, zero padding of the last line, a line terminator before the closing `-1` of a
 //! 58b). No code is taken from it.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`].
 
 pub mod error;
 mod fields;
