@@ -98,6 +98,16 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         _ => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".to_string(),
     };
     writeln!(out, "verdict: {verdict}")?;
+    write_findings(out, r)?;
+    write_noise(out, r)?;
+    write_fit_tables(out, r)?;
+    write_candidates(out, r)?;
+    write_parameters(out, r)?;
+    Ok(())
+}
+
+/// The trend of the per-mode corrections and where the remaining misfit lies.
+fn write_findings(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     for f in &r.trend {
         writeln!(
             out,
@@ -148,6 +158,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             regions.join("; ")
         )?;
     }
+    Ok(())
+}
+
+/// The stated and the estimated noise, and the warnings.
+fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(
         out,
         "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
@@ -170,6 +185,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     for w in &r.warnings {
         writeln!(out, "warning: {w}")?;
     }
+    Ok(())
+}
+
+/// The summary of the fits and the per-mode errors before and after.
+fn write_fit_tables(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out)?;
     write_table(
         out,
@@ -222,6 +242,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         ],
         &rows,
     )?;
+    Ok(())
+}
+
+/// Every candidate with its size, fit and tests.
+fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out, "\ncandidates ({})", r.criterion)?;
     // Name, size, chi^2/dof and LR statistic of a fitted candidate.
     let fitted_cells = |c: &crate::diagnose::CandidateReport| {
@@ -286,6 +311,11 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         ],
         &rows,
     )?;
+    Ok(())
+}
+
+/// The fitted parameters and the per-mode joint corrections.
+fn write_parameters(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out, "\nfitted parameters after:")?;
     for e in &r.after.parameters {
         writeln!(

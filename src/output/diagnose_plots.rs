@@ -35,6 +35,29 @@ pub fn diagnose_figures(
     report: &Report,
     measured: &MeasuredModes,
 ) -> Result<Vec<Figure>, PlotError> {
+    let mut out = shape_figures(report, measured)?;
+    out.push(frequency_error_figure(report)?);
+    let mut params: Vec<String> = report
+        .per_mode_before
+        .iter()
+        .map(|c| c.param.clone())
+        .collect();
+    params.sort();
+    params.dedup();
+    for param in &params {
+        out.push(corrections_figure(report, param)?);
+    }
+    for param in &params {
+        if let Some(figure) = stiffness_figure(report, param)? {
+            out.push(figure);
+        }
+    }
+    out.extend(candidates_figure(report)?);
+    Ok(out)
+}
+
+/// The measured shape of every mode against the model's, joint calibrated and after.
+fn shape_figures(report: &Report, measured: &MeasuredModes) -> Result<Vec<Figure>, PlotError> {
     let mut out = Vec::new();
     for ((m, before), after) in measured
         .modes()
@@ -111,6 +134,11 @@ pub fn diagnose_figures(
             svg: body,
         });
     }
+    Ok(out)
+}
+
+/// The frequency error of every mode, joint calibrated and after.
+fn frequency_error_figure(report: &Report) -> Result<Figure, PlotError> {
     let error_series = |name: &str, modes: &[crate::diagnose::report::ModeError]| Series {
         name: name.into(),
         points: modes
@@ -140,92 +168,89 @@ pub fn diagnose_figures(
             &series,
         )
     })?;
-    out.push(Figure {
+    Ok(Figure {
         name: "frequency_error.svg".into(),
         caption: "Frequency error of every mode, joint calibrated and after.".into(),
         svg: body,
-    });
-    let mut params: Vec<String> = report
-        .per_mode_before
-        .iter()
-        .map(|c| c.param.clone())
-        .collect();
-    params.sort();
-    params.dedup();
-    for param in &params {
-        let series = [
-            corrections_series("joint calibrated", &report.per_mode_before, param),
-            corrections_series("after", &report.per_mode_after, param),
-        ];
-        let title = format!(
-            "Per-mode correction of {param} (paper's method, {})",
-            report.per_mode_settings
-        );
-        let body = svg((1000, 480), |area| {
-            lines(
-                area,
-                &title,
-                &LineAxes {
-                    x_desc: "measured frequency (Hz)".into(),
-                    y_desc: format!("Delta {param} ({})", unit_of(param)),
-                    log_x: true,
-                    log_y: false,
-                    reference: Some((0.0, "no correction".into())),
-                    clip_errors: true,
-                },
-                &series,
-            )
-        })?;
-        out.push(Figure {
-            name: format!("corrections_{}.svg", param.replace('.', "_")),
-            caption: format!("The paper's per-mode correction of {param} against frequency, +- one standard deviation under the stated noise (bars cut at the edge): a trend that disappears after the effect is added was the missing effect, not the joint."),
-            svg: body,
-        });
-    }
-    for param in &params {
-        if let Some(figure) = stiffness_figure(report, param)? {
-            out.push(figure);
-        }
-    }
+    })
+}
+
+/// The paper's per-mode corrections of `param` against frequency, joint calibrated and after.
+fn corrections_figure(report: &Report, param: &str) -> Result<Figure, PlotError> {
+    let series = [
+        corrections_series("joint calibrated", &report.per_mode_before, param),
+        corrections_series("after", &report.per_mode_after, param),
+    ];
+    let title = format!(
+        "Per-mode correction of {param} (paper's method, {})",
+        report.per_mode_settings
+    );
+    let body = svg((1000, 480), |area| {
+        lines(
+            area,
+            &title,
+            &LineAxes {
+                x_desc: "measured frequency (Hz)".into(),
+                y_desc: format!("Delta {param} ({})", unit_of(param)),
+                log_x: true,
+                log_y: false,
+                reference: Some((0.0, "no correction".into())),
+                clip_errors: true,
+            },
+            &series,
+        )
+    })?;
+    Ok(Figure {
+        name: format!("corrections_{}.svg", param.replace('.', "_")),
+        caption: format!(
+            "The paper's per-mode correction of {param} against frequency, +- one standard deviation under the stated noise (bars cut at the edge): a trend that disappears after the effect is added was the missing effect, not the joint."
+        ),
+        svg: body,
+    })
+}
+
+/// Every fitted candidate's likelihood-ratio statistic against the critical value; None when
+/// no candidate was fitted.
+fn candidates_figure(report: &Report) -> Result<Option<Figure>, PlotError> {
     let fitted: Vec<_> = report
         .candidates
         .iter()
         .filter(|c| c.lrt.is_some())
         .collect();
-    if !fitted.is_empty() {
-        let labels: Vec<String> = fitted.iter().map(|c| c.name.clone()).collect();
-        let values: Vec<f64> = fitted.iter().map(|c| c.lrt.unwrap_or(0.0)).collect();
-        let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1);
-        let critical = report
-            .noise_estimate
-            .lrt_critical(ALPHA / report.candidates.len() as f64, k);
-        let label = format!("critical value {critical:.2}");
-        let selected = report
-            .selected
-            .as_ref()
-            .and_then(|name| labels.iter().position(|l| l == name))
-            .map(|i| (i, "selected"));
-        let body = svg((900, 450), |area| {
-            bars(
-                area,
-                "Candidates: chi^2(joint only) - chi^2(with candidate)",
-                "likelihood-ratio statistic",
-                &labels,
-                &values,
-                (critical, &label),
-                selected,
-            )
-        })?;
-        out.push(Figure {
-            name: "candidates.svg".into(),
-            caption: format!(
-                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} candidates, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
-                report.candidates.len()
-            ),
-            svg: body,
-        });
+    if fitted.is_empty() {
+        return Ok(None);
     }
-    Ok(out)
+    let labels: Vec<String> = fitted.iter().map(|c| c.name.clone()).collect();
+    let values: Vec<f64> = fitted.iter().map(|c| c.lrt.unwrap_or(0.0)).collect();
+    let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1);
+    let critical = report
+        .noise_estimate
+        .lrt_critical(ALPHA / report.candidates.len() as f64, k);
+    let label = format!("critical value {critical:.2}");
+    let selected = report
+        .selected
+        .as_ref()
+        .and_then(|name| labels.iter().position(|l| l == name))
+        .map(|i| (i, "selected"));
+    let body = svg((900, 450), |area| {
+        bars(
+            area,
+            "Candidates: chi^2(joint only) - chi^2(with candidate)",
+            "likelihood-ratio statistic",
+            &labels,
+            &values,
+            (critical, &label),
+            selected,
+        )
+    })?;
+    Ok(Some(Figure {
+        name: "candidates.svg".into(),
+        caption: format!(
+            "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} candidates, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
+            report.candidates.len()
+        ),
+        svg: body,
+    }))
 }
 
 /// The per-mode value of `param` (calibrated joint-only value plus the paper's correction)
