@@ -139,6 +139,36 @@ pub struct StudyResults {
     pub noise: String,
 }
 
+/// Where each [`REQUIRED`] column is in `header`; the missing ones named when some are.
+fn required_columns(
+    header: &csv::StringRecord,
+    file: &Path,
+) -> Result<BTreeMap<Column, usize>, ReportError> {
+    let missing: Vec<&str> = REQUIRED
+        .iter()
+        .map(|c| c.name())
+        .filter(|c| !header.iter().any(|h| h == *c))
+        .collect();
+    if !missing.is_empty() {
+        return Err(ReportError::MissingColumns {
+            file: file.into(),
+            missing: missing.join(", "),
+        });
+    }
+    Ok(REQUIRED
+        .iter()
+        .map(|&c| {
+            (
+                c,
+                header
+                    .iter()
+                    .position(|h| h == c.name())
+                    .expect("checked above"),
+            )
+        })
+        .collect())
+}
+
 impl StudyResults {
     /// Reads a study CSV.
     pub fn from_path(path: &Path) -> Result<Self, ReportError> {
@@ -161,29 +191,7 @@ impl StudyResults {
             .headers()
             .map_err(|e| line_error(1, e.to_string()))?
             .clone();
-        let missing: Vec<&str> = REQUIRED
-            .iter()
-            .map(|c| c.name())
-            .filter(|c| !header.iter().any(|h| h == *c))
-            .collect();
-        if !missing.is_empty() {
-            return Err(ReportError::MissingColumns {
-                file: file.into(),
-                missing: missing.join(", "),
-            });
-        }
-        let at: BTreeMap<Column, usize> = REQUIRED
-            .iter()
-            .map(|&c| {
-                (
-                    c,
-                    header
-                        .iter()
-                        .position(|h| h == c.name())
-                        .expect("checked above"),
-                )
-            })
-            .collect();
+        let at = required_columns(&header, file)?;
         let (mut rows, mut cells, mut noise) = (Vec::new(), BTreeMap::new(), String::new());
         for record in csv.records() {
             let record = record
