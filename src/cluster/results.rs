@@ -86,12 +86,7 @@ pub fn read_results<R: Read>(
             ),
         ));
     }
-    let names: Vec<String> = study
-        .model
-        .identified()
-        .into_iter()
-        .map(|p| p.name)
-        .collect();
+    let names = study.model.identified_names();
     let mut results: Vec<CellResult> = study
         .cells()
         .into_iter()
@@ -147,14 +142,19 @@ impl Fields<'_> {
         self.record.get(column.index()).unwrap_or("")
     }
 
-    fn number(&self, column: Column) -> Result<f64, ResultsError> {
-        self.text(column).parse::<f64>().map_err(|_| {
+    /// The field parsed as a `T`; else an error saying it is not `what` (`a number`).
+    fn parse<T: std::str::FromStr>(&self, column: Column, what: &str) -> Result<T, ResultsError> {
+        self.text(column).parse::<T>().map_err(|_| {
             self.bad(format!(
-                "{} = `{}` is not a number",
+                "{} = `{}` is not {what}",
                 column.name(),
                 self.text(column)
             ))
         })
+    }
+
+    fn number(&self, column: Column) -> Result<f64, ResultsError> {
+        self.parse(column, "a number")
     }
 
     fn optional(&self, column: Column) -> Result<Option<f64>, ResultsError> {
@@ -166,13 +166,7 @@ impl Fields<'_> {
     }
 
     fn whole(&self, column: Column) -> Result<usize, ResultsError> {
-        self.text(column).parse::<usize>().map_err(|_| {
-            self.bad(format!(
-                "{} = `{}` is not a whole number",
-                column.name(),
-                self.text(column)
-            ))
-        })
+        self.parse(column, "a whole number")
     }
 }
 
@@ -244,18 +238,17 @@ fn check_conditions(
     index: usize,
     param: usize,
 ) -> Result<(), ResultsError> {
-    let expected = [
-        (Column::N, c.n.0.to_string()),
-        (Column::M, c.m.0.to_string()),
-        (Column::Nf, c.nf().to_string()),
-        (Column::Weighting, c.weighting.to_string()),
-        (Column::ShapeNoise, c.shape_noise.to_string()),
-        (Column::FrequencyNoise, c.frequency_noise.to_string()),
+    // n to frequency_noise, as Cell::condition_fields gives them.
+    let conditions = Column::ALL[Column::N.index()..=Column::FrequencyNoise.index()]
+        .iter()
+        .copied()
+        .zip(c.condition_fields());
+    let expected = conditions.chain([
         (Column::Noise, study.noise.to_string()),
         (Column::Introduced, study.delta[param].to_string()),
         (Column::Trials, study.trials.to_string()),
         (Column::Unidentified, c.unidentified_names()),
-    ];
+    ]);
     for (column, want) in expected {
         if f.text(column) != want {
             return Err(f.bad(format!(

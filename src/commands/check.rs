@@ -32,12 +32,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
             }
             let study = Study::from_path(file)?;
             gate(&study)?;
-            let names: Vec<String> = study
-                .model
-                .identified()
-                .into_iter()
-                .map(|p| p.name)
-                .collect();
+            let names = study.model.identified_names();
             let results = read_results_path(path, &study)?;
             !check_one(&study, &results, &names)?
         }

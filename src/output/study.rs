@@ -82,15 +82,8 @@ pub fn write_paper_table(
         .iter()
         .map(|res| {
             let c = &res.cell;
-            let mut cells = vec![
-                c.index.to_string(),
-                c.n.0.to_string(),
-                c.m.0.to_string(),
-                c.nf().to_string(),
-                c.weighting.to_string(),
-                c.shape_noise.to_string(),
-                c.frequency_noise.to_string(),
-            ];
+            let mut cells = vec![c.index.to_string()];
+            cells.extend(c.condition_fields());
             for row in &res.rows {
                 cells.push(match &row.summary {
                     Some(s) => format!("{} [{}, {}]", sci(s.median), sci(s.q05), sci(s.q95)),

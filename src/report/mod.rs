@@ -13,28 +13,24 @@ use std::path::{Path, PathBuf};
 
 use crate::study::results::Column;
 
-/// Columns a report needs from a study CSV (of [`crate::study::results`]).
-pub const REQUIRED: [Column; 19] = [
-    Column::Cell,
-    Column::Mode,
-    Column::Param,
-    Column::N,
-    Column::M,
-    Column::Nf,
-    Column::Weighting,
-    Column::ShapeNoise,
-    Column::FrequencyNoise,
-    Column::Noise,
-    Column::Introduced,
-    Column::Trials,
-    Column::Failures,
-    Column::Median,
-    Column::Q05,
-    Column::Q25,
-    Column::Q75,
-    Column::Q95,
-    Column::RelativeBias,
-];
+/// Columns a report needs from a study CSV (of [`crate::study::results`]): those that say
+/// which row it is and how it was run (`cell` to `failures`), the quantiles and the relative
+/// bias.
+pub fn required() -> Vec<Column> {
+    let conditions = &Column::ALL[..=Column::Failures.index()];
+    conditions
+        .iter()
+        .copied()
+        .chain([
+            Column::Median,
+            Column::Q05,
+            Column::Q25,
+            Column::Q75,
+            Column::Q95,
+            Column::RelativeBias,
+        ])
+        .collect()
+}
 
 /// A study CSV that cannot be reported.
 #[derive(Debug, thiserror::Error)]
@@ -139,12 +135,13 @@ pub struct StudyResults {
     pub noise: String,
 }
 
-/// Where each [`REQUIRED`] column is in `header`; the missing ones named when some are.
+/// Where each [`required`] column is in `header`; the missing ones named when some are.
 fn required_columns(
     header: &csv::StringRecord,
     file: &Path,
 ) -> Result<BTreeMap<Column, usize>, ReportError> {
-    let missing: Vec<&str> = REQUIRED
+    let required = required();
+    let missing: Vec<&str> = required
         .iter()
         .map(|c| c.name())
         .filter(|c| !header.iter().any(|h| h == *c))
@@ -155,7 +152,7 @@ fn required_columns(
             missing: missing.join(", "),
         });
     }
-    Ok(REQUIRED
+    Ok(required
         .iter()
         .map(|&c| {
             (
@@ -385,7 +382,7 @@ mod tests {
 
     #[test]
     fn every_required_column_is_written_by_the_study() {
-        for column in REQUIRED {
+        for column in required() {
             assert!(
                 crate::study::results::RESULT_HEADER.contains(&column.name()),
                 "{column:?}"

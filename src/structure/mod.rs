@@ -145,6 +145,11 @@ impl Structure {
             .collect()
     }
 
+    /// The names of the identified parameters, in model order.
+    pub fn identified_names(&self) -> Vec<String> {
+        self.identified().into_iter().map(|p| p.name).collect()
+    }
+
     /// Positions in [`Structure::parameters`] of the identified parameters.
     pub fn identified_indices(&self) -> Vec<usize> {
         (0..self.parameters.len())

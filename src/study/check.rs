@@ -88,12 +88,7 @@ pub fn gate(study: &Study) -> Result<&CheckSpec, GateError> {
             file: study.file.clone(),
         });
     };
-    let names: Vec<String> = study
-        .model
-        .identified()
-        .into_iter()
-        .map(|p| p.name)
-        .collect();
+    let names = study.model.identified_names();
     if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
         return Err(GateError::SelectsNothing {
             file: study.file.clone(),

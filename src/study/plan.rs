@@ -49,6 +49,19 @@ impl Cell {
         self.unidentified_labels.join(" ")
     }
 
+    /// The cell's conditions as the result CSV writes them: n, m, nf, weighting, shape noise,
+    /// frequency noise.
+    pub fn condition_fields(&self) -> [String; 6] {
+        [
+            self.n.0.to_string(),
+            self.m.0.to_string(),
+            self.nf().to_string(),
+            self.weighting.to_string(),
+            self.shape_noise.to_string(),
+            self.frequency_noise.to_string(),
+        ]
+    }
+
     /// `n = 10, m = 5, nf = 5, weighting = inverse, shape_noise = 0.04, frequency_noise = 0`.
     pub fn describe(&self) -> String {
         format!(

@@ -200,17 +200,14 @@ pub fn write_results(
                 c.index.to_string(),
                 row.mode.to_string(),
                 names[row.param].clone(),
-                c.n.0.to_string(),
-                c.m.0.to_string(),
-                c.nf().to_string(),
-                c.weighting.to_string(),
-                c.shape_noise.to_string(),
-                c.frequency_noise.to_string(),
+            ];
+            record.extend(c.condition_fields());
+            record.extend([
                 noise.to_string(),
                 row.introduced.to_string(),
                 row.trials.to_string(),
                 row.failures.to_string(),
-            ];
+            ]);
             record.extend(stat_fields(row));
             record.push(opt(row.predicted_std));
             record.push(opt(row.summary.as_ref().map(|s| s.median_se)));
