@@ -1,10 +1,14 @@
 //! Reading input files: TOML into raw serde structs with the field path of every error, and
-//! the error type shared by every input file (model, study).
+//! the error type shared by every input file (model, study); and [`SettingError`], a setting
+//! given in code (or on a command line) outside its range.
 //!
 //! Errors name the file, the line where known, the field path (`beam[1].length`), the value
 //! and what is allowed. A table that comes in kinds (`kind = "spring"`, each kind with its own
 //! fields) is kept as read in a [`TaggedTable`] and parsed into a serde enum afterwards, so the
 //! errors inside a kind keep their field path and line.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -50,6 +54,44 @@ pub enum InputError {
         /// What is allowed, with the unit.
         allowed: String,
     },
+}
+
+/// A setting outside its range, checked where it is set (a settings constructor of the
+/// library): the setting's name, the value given and what is allowed.
+///
+/// Its message reads `n = 39 is invalid: it must be from 3 to 38 ...`; a command line that
+/// takes the setting as a flag says the same with the flag's name,
+/// [`SettingError::with_name`]: `--n 39 is invalid: ...`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{setting} = {value} is invalid: {allowed}")]
+pub struct SettingError {
+    /// The setting, as the library names it (`n`, `shape_noise`, ...).
+    pub setting: &'static str,
+    /// The value given, as written.
+    pub value: String,
+    /// What is allowed (a clause: `it must be ...`).
+    pub allowed: String,
+}
+
+impl SettingError {
+    /// The setting `setting` given as `value`, with what is allowed.
+    pub fn new(
+        setting: &'static str,
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        SettingError {
+            setting,
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// The message with the setting called `name` (a command-line flag) and no `=`:
+    /// `{name} {value} is invalid: {allowed}`.
+    pub fn with_name(&self, name: &str) -> String {
+        format!("{name} {} is invalid: {}", self.value, self.allowed)
+    }
 }
 
 fn line_suffix(line: Option<usize>) -> String {

@@ -14,11 +14,31 @@
 //!    [`model::effects`], selection and the before/after report;
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
-//! Beside the flow: [`input`] (TOML with field paths), [`simulate`] (measurements of a model,
-//! with effects and errors, for tests, studies and rehearsals of a test campaign), [`uff`]
-//! (universal files: measured FRFs and geometry in, mode shapes out), [`extract`] (modal
-//! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
-//! their complexity).
+//! Beside the flow: [`input`] (TOML with field paths), [`structure`] (the model-agnostic
+//! structure every step works on), [`random`] (the random streams of studies and simulations),
+//! [`simulate`] (measurements of a model, with effects and errors, for tests, studies and
+//! rehearsals of a test campaign), [`uff`] (universal files: measured FRFs and geometry in, mode
+//! shapes out), [`extract`] (modal parameters from measured FRFs: LSCF poles, stabilisation
+//! chart, LSFD residues, real modes and their complexity), [`cluster`] (studies split into
+//! shards that run anywhere).
+//!
+//! # Layers
+//!
+//! Every module sits in a layer, bottom first. A module may import the modules of the layers
+//! below its own and those of its own layer, never in a circle; never one of a layer above.
+//! Under every module the same holds for its submodules: no circles among siblings.
+//! `#[cfg(test)]` code may take fixtures from anywhere. `tests/layers.rs` reads this list and
+//! holds every `use crate::...` and every `crate::`/`super::` path of `src/` to it.
+//!
+//! 1. foundations: [`stats`], [`input`], [`random`], [`structure`], [`uff`]
+//! 2. eigensolution: [`modal`]
+//! 3. models and measurements: [`model`], [`measured`], [`extract`]
+//! 4. identification: [`identify`]
+//! 5. simulation and studies: [`simulate`], [`study`]
+//! 6. diagnosis and results: [`diagnose`], [`report`], [`cluster`]
+//! 7. outputs: [`output`]
+//!
+//! Above them all, the binary (`main.rs`, `cli.rs`, `commands/`) may import any of them.
 
 pub mod cluster;
 pub mod diagnose;
@@ -29,6 +49,7 @@ pub mod measured;
 pub mod modal;
 pub mod model;
 pub mod output;
+pub mod random;
 pub mod report;
 pub mod simulate;
 pub mod stats;

@@ -1,15 +1,20 @@
 //! Simulated measurements: the exact eigensolution of a model (the paper's "simulated
 //! identified model"), over chosen DOFs, in the measured-modes form, optionally with
 //! measurement errors.
+//!
+//! Layer 5 (simulation and studies; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`]) and, without a circle, [`crate::study`].
 
 use std::sync::Arc;
 
-use crate::input::Number;
+use crate::input::{Number, SettingError};
 use crate::measured::{MeasuredMode, MeasuredModes};
-use crate::modal::ModalSolution;
+use crate::modal::{ModalSolution, check_elastic};
 use crate::model::effects::{Configured, EffectContext, by_name, registry};
-use crate::structure::{Observation, Structure, check_elastic};
-use crate::study::noise::{NoiseKind, TrialRng};
+use crate::random::{NoiseKind, TrialRng};
+use crate::structure::{Observation, Structure};
 
 /// Deformable modes `modes` (1 = first elastic) of `modal`, whose first `rigid` pairs are
 /// rigid-body modes, exact, read at `points`. The caller guarantees every mode exists
@@ -48,6 +53,57 @@ pub struct Errors {
     pub kind: NoiseKind,
     /// Seed: mode r draws from the stream (seed, 0, r) of [`TrialRng`].
     pub seed: u64,
+}
+
+impl Errors {
+    /// The errors of these levels, checked ([`Errors::check`]).
+    pub fn new(
+        shape: f64,
+        frequency: f64,
+        kind: NoiseKind,
+        seed: u64,
+    ) -> Result<Errors, SettingError> {
+        let errors = Errors {
+            shape,
+            frequency,
+            kind,
+            seed,
+        };
+        errors.check()?;
+        Ok(errors)
+    }
+
+    /// Checks that each level (settings `shape_noise`, `frequency_noise`) is a finite
+    /// relative level from 0 to below 1.
+    pub fn check(&self) -> Result<(), SettingError> {
+        for (setting, level) in [
+            ("shape_noise", self.shape),
+            ("frequency_noise", self.frequency),
+        ] {
+            if !(level.is_finite() && (0.0..1.0).contains(&level)) {
+                return Err(SettingError::new(
+                    setting,
+                    level,
+                    "it must be a relative level from 0 to below 1",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The first `count` deformable modes of `structure`, 1 to `count` (setting `modes`: from 1
+/// to its deformable modes).
+pub fn first_modes(structure: &Structure, count: usize) -> Result<Vec<usize>, SettingError> {
+    let deformable = structure.dof_count() - structure.rigid;
+    if count == 0 || count > deformable {
+        return Err(SettingError::new(
+            "modes",
+            count,
+            format!("the model has deformable modes 1 to {deformable}"),
+        ));
+    }
+    Ok((1..=count).collect())
 }
 
 /// Exact modes as [`exact_modes`], each shape scaled to a largest component of +1 (left as it
@@ -131,10 +187,13 @@ pub enum SimulateError {
     },
     /// The simulated structure is a mechanism.
     #[error("the simulated structure")]
-    Mechanism(#[from] crate::structure::Mechanism),
+    Mechanism(#[from] crate::modal::Mechanism),
     /// The simulated model has no eigensolution.
     #[error("the simulated model has no eigensolution")]
     Modal(#[from] crate::modal::ModalError),
+    /// The errors' levels are out of range ([`Errors::check`]).
+    #[error(transparent)]
+    Setting(#[from] SettingError),
 }
 
 /// Every name `--effect` accepts, with what its size means.
@@ -156,9 +215,10 @@ pub fn simulate(
     points: &[Observation],
     errors: Errors,
 ) -> Result<MeasuredModes, SimulateError> {
+    errors.check()?;
     let rigid = structure.rigid;
     let highest = modes.iter().copied().max().unwrap_or(1) + rigid;
-    let nominal = structure.modes(highest)?;
+    let nominal = ModalSolution::lowest_of(&structure.assemble(), highest)?;
     if highest > nominal.len() {
         return Err(SimulateError::NoSuchMode {
             mode: highest - rigid,
@@ -250,6 +310,42 @@ pub fn simulate(
 mod tests {
     use super::*;
     use crate::model::fixtures::paper_model;
+
+    #[test]
+    fn errors_and_modes_are_checked_where_they_are_set() {
+        let uniform = NoiseKind::Uniform;
+        assert!(Errors::new(0.0, 0.999, uniform, 1).is_ok());
+        for (shape, frequency, setting) in [
+            (1.0, 0.0, "shape_noise"),
+            (-0.1, 0.0, "shape_noise"),
+            (0.0, f64::NAN, "frequency_noise"),
+        ] {
+            let e = Errors::new(shape, frequency, uniform, 1).unwrap_err();
+            assert_eq!(e.setting, setting);
+            assert!(
+                e.to_string()
+                    .ends_with("is invalid: it must be a relative level from 0 to below 1"),
+                "{e}"
+            );
+        }
+        let model = paper_model(1e7, 1e4);
+        assert_eq!(first_modes(&model, 3).unwrap(), vec![1, 2, 3]);
+        for count in [0, 37] {
+            assert_eq!(
+                first_modes(&model, count).unwrap_err().to_string(),
+                format!("modes = {count} is invalid: the model has deformable modes 1 to 36")
+            );
+        }
+        let points = [Observation::dof(&model.dofs, 0)];
+        let bad = Errors {
+            shape: 1.5,
+            ..Errors::new(0.0, 0.0, uniform, 1).unwrap()
+        };
+        assert!(matches!(
+            simulate(&model, &[], &[1], &points, bad),
+            Err(SimulateError::Setting(_))
+        ));
+    }
 
     #[test]
     fn noise_free_measurement_is_the_scaled_exact_mode_and_noise_is_seeded() {

@@ -13,6 +13,9 @@
 //!
 //! The sample is sorted by a radix sort and the MAD's median is merged from the sorted
 //! sample, not sorted ([`order`]): the same bits as comparison sorts, in linear time.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
 pub mod order;
 

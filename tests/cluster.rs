@@ -3,7 +3,7 @@
 //! duplicated shard) are refused with exit 2 and nothing written.
 //!
 //! The reference is the single-machine result itself: `jointid study` run whole (or, in the
-//! library test, every cell run and written by `output::study::write_results`); the shards
+//! library test, every cell run and written by `study::results::write_results`); the shards
 //! are run by separate processes of the binary. Trial counts are cut (the grid is the
 //! shipped one) to keep the debug test short: the bits of a cell do not depend on its trial
 //! count's size, only on (seed, cell, trial).
@@ -14,10 +14,11 @@ use std::path::{Path, PathBuf};
 
 use common::{jointid, scratch};
 use jointid::cluster::{
-    MergeError, ShardFile, ShardHeader, ShardSpec, fingerprint, merge, model_data_files,
-    read_results, study_assignment, write_shard,
+    MergeError, ShardFile, ShardHeader, ShardSpec, merge, read_results, study_assignment,
+    write_shard,
 };
-use jointid::output::study::write_results;
+use jointid::study::fingerprint::{fingerprint, model_data_files};
+use jointid::study::results::write_results;
 use jointid::study::{Study, StudyRun};
 
 const SHIPPED: [&str; 3] = [

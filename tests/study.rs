@@ -8,8 +8,8 @@ use std::process::Command;
 
 use jointid::identify::{Identifier, Settings};
 use jointid::measured::MeasuredMode;
+use jointid::random::TrialRng;
 use jointid::structure::Observation;
-use jointid::study::noise::TrialRng;
 use jointid::study::predicted::noise_free_jacobian;
 use jointid::study::{CellPlan, Study, StudyRun};
 

@@ -4,14 +4,14 @@
 //! and the same N and assignment; no cell is in two files; every cell of the study is in some
 //! file, with `rows per cell` rows, in the shard the assignment gives it. The output is the
 //! header and the rows of every cell in cell order, each record written back by the same CSV
-//! writer settings as [`crate::output::study::write_results`]: a field read and written again
+//! writer settings as [`crate::study::results::write_results`]: a field read and written again
 //! is the same bytes, so the merge is byte for byte the single-machine CSV.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use super::shard_file::ShardFile;
-use crate::output::study::RESULT_HEADER;
+use crate::study::results::RESULT_HEADER;
 
 /// Why shards do not merge.
 #[derive(Debug, thiserror::Error)]

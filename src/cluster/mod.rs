@@ -3,14 +3,21 @@
 //! single-machine result; and the Slurm scripts that run the shards as a job array.
 //!
 //! A cell gives the same bits wherever it runs: every trial draws from its own stream seeded
-//! by (seed, cell, trial) ([`crate::study::noise`]), and a cell's statistics depend on its
+//! by (seed, cell, trial) ([`crate::random`]), and a cell's statistics depend on its
 //! trials alone. So the split changes no number, only where it is computed.
 //!
 //! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;
-//! - [`shard_file`]: the fingerprint and the shard result file;
-//! - [`merge`]: the checks and the merged CSV;
+//! - [`shard_file`]: the shard result file (it carries the study's fingerprint,
+//!   [`crate::study::fingerprint`]);
+//! - [`mod@merge`]: the checks and the merged CSV;
 //! - [`results`]: a result CSV read back for `check --results`;
 //! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::diagnose`], [`crate::report`].
 
 pub mod merge;
 pub mod results;
@@ -21,7 +28,5 @@ pub mod slurm;
 pub use merge::{MergeError, merge};
 pub use results::{ResultsError, read_results, read_results_path};
 pub use shard::{ShardError, ShardSpec, assign, cell_cost, study_assignment};
-pub use shard_file::{
-    ShardFile, ShardFileError, ShardHeader, fingerprint, model_data_files, write_shard,
-};
-pub use slurm::{SlurmPlan, SlurmScripts};
+pub use shard_file::{ShardFile, ShardFileError, ShardHeader, write_shard};
+pub use slurm::{SlurmPlan, SlurmScripts, check_settings};

@@ -10,9 +10,9 @@
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use crate::output::study::RESULT_HEADER;
 use crate::stats::Summary;
-use crate::study::{CellResult, RowStats, Study};
+use crate::study::results::{Column, RESULT_HEADER};
+use crate::study::{Cell, CellResult, RowStats, Study};
 
 /// A result CSV that does not belong to the study or cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -86,12 +86,7 @@ pub fn read_results<R: Read>(
             ),
         ));
     }
-    let names: Vec<String> = study
-        .model
-        .identified()
-        .into_iter()
-        .map(|p| p.name)
-        .collect();
+    let names = study.model.identified_names();
     let mut results: Vec<CellResult> = study
         .cells()
         .into_iter()
@@ -103,133 +98,12 @@ pub fn read_results<R: Read>(
     for record in csv.records() {
         let record =
             record.map_err(|e| bad(e.position().map_or(0, |p| p.line()), e.to_string()))?;
-        let line = record.position().map_or(0, |p| p.line());
-        let field = |column: &str| {
-            record
-                .get(RESULT_HEADER.iter().position(|c| *c == column).unwrap_or(0))
-                .unwrap_or("")
+        let fields = Fields {
+            record: &record,
+            line: record.position().map_or(0, |p| p.line()),
+            file,
         };
-        let parse = |column: &str| -> Result<f64, ResultsError> {
-            field(column).parse::<f64>().map_err(|_| {
-                bad(
-                    line,
-                    format!("{column} = `{}` is not a number", field(column)),
-                )
-            })
-        };
-        let optional = |column: &str| -> Result<Option<f64>, ResultsError> {
-            if field(column).is_empty() {
-                Ok(None)
-            } else {
-                parse(column).map(Some)
-            }
-        };
-        let whole = |column: &str| -> Result<usize, ResultsError> {
-            field(column).parse::<usize>().map_err(|_| {
-                bad(
-                    line,
-                    format!("{column} = `{}` is not a whole number", field(column)),
-                )
-            })
-        };
-        let index = whole("cell")?;
-        let Some(result) = results.get_mut(index) else {
-            return Err(bad(
-                line,
-                format!(
-                    "cell = {index}: {} has {} cells",
-                    study.file.display(),
-                    study.cells().len()
-                ),
-            ));
-        };
-        let c = &result.cell;
-        let introduced = |i: usize| study.delta[i].to_string();
-        let mode = whole("mode")?;
-        let param = names
-            .iter()
-            .position(|n| n == field("param"))
-            .ok_or_else(|| {
-                bad(
-                    line,
-                    format!(
-                        "param = `{}`: the study identifies {}",
-                        field("param"),
-                        names.join(", ")
-                    ),
-                )
-            })?;
-        let expected = [
-            ("n", c.n.0.to_string()),
-            ("m", c.m.0.to_string()),
-            ("nf", c.nf().to_string()),
-            ("weighting", c.weighting.to_string()),
-            ("shape_noise", c.shape_noise.to_string()),
-            ("frequency_noise", c.frequency_noise.to_string()),
-            ("noise", study.noise.to_string()),
-            ("introduced", introduced(param)),
-            ("trials", study.trials.to_string()),
-            ("unidentified", c.unidentified_names()),
-        ];
-        for (column, want) in expected {
-            if field(column) != want {
-                return Err(bad(
-                    line,
-                    format!(
-                        "{column} = `{}` but cell {index} of {} has {want}: the results are not of this study",
-                        field(column),
-                        study.file.display()
-                    ),
-                ));
-            }
-        }
-        if !study.modes.contains(&mode) {
-            return Err(bad(
-                line,
-                format!("mode = {mode} is not a mode of {}", study.file.display()),
-            ));
-        }
-        let trials = whole("trials")?;
-        let failures = whole("failures")?;
-        let summary = match optional("mean")? {
-            None => None,
-            Some(mean) => Some(Summary {
-                count: trials.saturating_sub(failures),
-                mean,
-                bias: parse("bias")?,
-                relative_bias: optional("relative_bias")?,
-                std: parse("std")?,
-                rmse: parse("rmse")?,
-                median: parse("median")?,
-                mad: parse("mad")?,
-                q05: parse("q05")?,
-                q25: parse("q25")?,
-                q75: parse("q75")?,
-                q95: parse("q95")?,
-                bias_se: parse("bias_se")?,
-                median_se: parse("median_se")?,
-            }),
-        };
-        let row = RowStats {
-            mode,
-            param,
-            introduced: study.delta[param],
-            trials,
-            failures,
-            summary,
-            predicted_std: optional("predicted_std")?,
-        };
-        if result
-            .rows
-            .iter()
-            .any(|r| r.mode == mode && r.param == param)
-        {
-            return Err(bad(
-                line,
-                format!("cell {index}, mode {mode}, {} appears twice", names[param]),
-            ));
-        }
-        result.rows.push(row);
+        read_row(&fields, study, &names, &mut results)?;
     }
     let expected = study.modes.len() * names.len();
     for r in &results {
@@ -245,4 +119,169 @@ pub fn read_results<R: Read>(
         }
     }
     Ok(results)
+}
+
+/// The fields of one row, read by column.
+struct Fields<'a> {
+    record: &'a csv::StringRecord,
+    /// Its line, 1-based.
+    line: u64,
+    file: &'a Path,
+}
+
+impl Fields<'_> {
+    fn bad(&self, message: String) -> ResultsError {
+        ResultsError::Line {
+            file: self.file.into(),
+            line: self.line,
+            message,
+        }
+    }
+
+    fn text(&self, column: Column) -> &str {
+        self.record.get(column.index()).unwrap_or("")
+    }
+
+    /// The field parsed as a `T`; else an error saying it is not `what` (`a number`).
+    fn parse<T: std::str::FromStr>(&self, column: Column, what: &str) -> Result<T, ResultsError> {
+        self.text(column).parse::<T>().map_err(|_| {
+            self.bad(format!(
+                "{} = `{}` is not {what}",
+                column.name(),
+                self.text(column)
+            ))
+        })
+    }
+
+    fn number(&self, column: Column) -> Result<f64, ResultsError> {
+        self.parse(column, "a number")
+    }
+
+    fn optional(&self, column: Column) -> Result<Option<f64>, ResultsError> {
+        if self.text(column).is_empty() {
+            Ok(None)
+        } else {
+            self.number(column).map(Some)
+        }
+    }
+
+    fn whole(&self, column: Column) -> Result<usize, ResultsError> {
+        self.parse(column, "a whole number")
+    }
+}
+
+/// Reads one row into its cell of `results`, after checking that it belongs to `study`
+/// (`names`: its parameters) and is not there already.
+fn read_row(
+    f: &Fields,
+    study: &Study,
+    names: &[String],
+    results: &mut [CellResult],
+) -> Result<(), ResultsError> {
+    let cell_count = results.len();
+    let index = f.whole(Column::Cell)?;
+    let Some(result) = results.get_mut(index) else {
+        return Err(f.bad(format!(
+            "cell = {index}: {} has {cell_count} cells",
+            study.file.display(),
+        )));
+    };
+    let mode = f.whole(Column::Mode)?;
+    let param = names
+        .iter()
+        .position(|n| n == f.text(Column::Param))
+        .ok_or_else(|| {
+            f.bad(format!(
+                "param = `{}`: the study identifies {}",
+                f.text(Column::Param),
+                names.join(", ")
+            ))
+        })?;
+    check_conditions(f, study, &result.cell, index, param)?;
+    if !study.modes.contains(&mode) {
+        return Err(f.bad(format!(
+            "mode = {mode} is not a mode of {}",
+            study.file.display()
+        )));
+    }
+    let trials = f.whole(Column::Trials)?;
+    let failures = f.whole(Column::Failures)?;
+    let row = RowStats {
+        mode,
+        param,
+        introduced: study.delta[param],
+        trials,
+        failures,
+        summary: summary(f, trials.saturating_sub(failures))?,
+        predicted_std: f.optional(Column::PredictedStd)?,
+    };
+    if result
+        .rows
+        .iter()
+        .any(|r| r.mode == mode && r.param == param)
+    {
+        return Err(f.bad(format!(
+            "cell {index}, mode {mode}, {} appears twice",
+            names[param]
+        )));
+    }
+    result.rows.push(row);
+    Ok(())
+}
+
+/// Checks that a row of cell `index`, parameter `param`, states the conditions the study
+/// gives the cell.
+fn check_conditions(
+    f: &Fields,
+    study: &Study,
+    c: &Cell,
+    index: usize,
+    param: usize,
+) -> Result<(), ResultsError> {
+    // n to frequency_noise, as Cell::condition_fields gives them.
+    let conditions = Column::ALL[Column::N.index()..=Column::FrequencyNoise.index()]
+        .iter()
+        .copied()
+        .zip(c.condition_fields());
+    let expected = conditions.chain([
+        (Column::Noise, study.noise.to_string()),
+        (Column::Introduced, study.delta[param].to_string()),
+        (Column::Trials, study.trials.to_string()),
+        (Column::Unidentified, c.unidentified_names()),
+    ]);
+    for (column, want) in expected {
+        if f.text(column) != want {
+            return Err(f.bad(format!(
+                "{} = `{}` but cell {index} of {} has {want}: the results are not of this study",
+                column.name(),
+                f.text(column),
+                study.file.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The statistics of a row over its `count` successful trials; None when `mean` is empty
+/// (every trial failed).
+fn summary(f: &Fields, count: usize) -> Result<Option<Summary>, ResultsError> {
+    let Some(mean) = f.optional(Column::Mean)? else {
+        return Ok(None);
+    };
+    Ok(Some(Summary {
+        count,
+        mean,
+        bias: f.number(Column::Bias)?,
+        relative_bias: f.optional(Column::RelativeBias)?,
+        std: f.number(Column::Std)?,
+        rmse: f.number(Column::Rmse)?,
+        median: f.number(Column::Median)?,
+        mad: f.number(Column::Mad)?,
+        q05: f.number(Column::Q05)?,
+        q25: f.number(Column::Q25)?,
+        q75: f.number(Column::Q75)?,
+        q95: f.number(Column::Q95)?,
+        bias_se: f.number(Column::BiasSe)?,
+        median_se: f.number(Column::MedianSe)?,
+    }))
 }

@@ -1,5 +1,5 @@
 //! The result file of one shard: a few `#` lines that say what it is, then the result CSV of
-//! its cells exactly as the single-machine run writes them ([`crate::output::study`]).
+//! its cells exactly as the single-machine run writes them ([`crate::study::results`]).
 //!
 //! ```text
 //! # jointid shard 2/4
@@ -12,64 +12,18 @@
 //! cell,mode,param,n,...
 //! ```
 //!
-//! The fingerprint is the 64-bit FNV-1a hash (Fowler, Noll, Vo; the parameters of
-//! <http://www.isthe.com/chongo/tech/comp/fnv/>) of the tool version, the study file's bytes,
-//! the model file's bytes and those of the files an external model names (its matrices and
-//! DOF table, [`model_data_files`]), each prefixed by its length: shards of different study
-//! files, models or jointid versions never merge. It guards against mistakes, not against forgery.
-//! `assignment` is the shard (1-based) of every cell in cell order, so that a merge can name
-//! the shard a missing cell belongs to.
+//! The fingerprint is the study's ([`crate::study::fingerprint`]): shards of different study
+//! files, models or jointid versions never merge. `assignment` is the shard (1-based) of every
+//! cell in cell order, so that a merge can name the shard a missing cell belongs to.
 
 use std::io::{self, BufRead, Read, Write};
 use std::path::{Path, PathBuf};
 
 use super::shard::ShardSpec;
-use crate::output::study::{RESULT_HEADER, write_results};
+use crate::study::results::{RESULT_HEADER, write_results};
 use crate::study::{CellResult, NoiseKind};
 
 const MAGIC: &str = "# jointid shard ";
-
-/// The 64-bit FNV-1a hash of `bytes`, continuing from `hash` (start from [`FNV_OFFSET`]).
-pub fn fnv1a(mut hash: u64, bytes: &[u8]) -> u64 {
-    for &b in bytes {
-        hash ^= u64::from(b);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    hash
-}
-
-/// The FNV-1a 64-bit offset basis.
-pub const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-
-/// The fingerprint of a study: the tool version and the bytes of its files (the study file,
-/// the model file, the model's data files; see the module docs), as 16 hexadecimal digits.
-pub fn fingerprint(tool: &str, files: &[&[u8]]) -> String {
-    let mut h = FNV_OFFSET;
-    for part in std::iter::once(tool.as_bytes()).chain(files.iter().copied()) {
-        h = fnv1a(h, &(part.len() as u64).to_le_bytes());
-        h = fnv1a(h, part);
-    }
-    format!("{h:016x}")
-}
-
-/// The files a model file names, whose bytes are part of the model: for an external model
-/// (`kind = "matrices"`) K, M, the DOF table and every dK/dp and dM/dp, in file order; none for
-/// a beam chain (everything is in the model file). `text` is the model file's content.
-pub fn model_data_files(text: &str, model_file: &Path) -> Vec<PathBuf> {
-    use crate::model::matrices::config::RawMatrices;
-    let Ok(raw) = crate::input::parse_toml::<RawMatrices>(text, model_file) else {
-        return Vec::new();
-    };
-    let Ok(m) = raw.validate(model_file) else {
-        return Vec::new();
-    };
-    let mut files = vec![m.stiffness, m.mass, m.dofs];
-    for p in m.parameters {
-        files.push(p.dk);
-        files.extend(p.dm);
-    }
-    files
-}
 
 /// What a shard file says about itself.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -318,28 +272,6 @@ fn parse_header(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn fnv1a_reference_vectors() {
-        // Published test vectors of FNV-1a 64 (isthe.com/chongo/src/fnv/test_fnv.c).
-        assert_eq!(fnv1a(FNV_OFFSET, b""), 0xcbf29ce484222325);
-        assert_eq!(fnv1a(FNV_OFFSET, b"a"), 0xaf63dc4c8601ec8c);
-        assert_eq!(fnv1a(FNV_OFFSET, b"foobar"), 0x85944171f73967e8);
-    }
-
-    #[test]
-    fn fingerprint_sees_every_part_and_their_boundaries() {
-        let base = fingerprint("jointid 0.1.0", &[b"study", b"model"]);
-        assert_eq!(base.len(), 16);
-        assert_ne!(base, fingerprint("jointid 0.1.1", &[b"study", b"model"]));
-        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"study ", b"model"]));
-        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"study", b"model2"]));
-        assert_ne!(base, fingerprint("jointid 0.1.0", &[b"studym", b"odel"]));
-        assert_ne!(
-            base,
-            fingerprint("jointid 0.1.0", &[b"study", b"model", b"K"])
-        );
-    }
 
     #[test]
     fn the_header_reads_back_and_a_bad_one_names_its_line() {

@@ -11,6 +11,9 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::input::SettingError;
+use crate::study::Study;
+
 /// What the scripts run and where.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SlurmPlan {
@@ -38,6 +41,34 @@ pub struct SlurmPlan {
     pub cpus_per_task: usize,
     /// Further `#SBATCH` options, verbatim, e.g. `--qos=short`.
     pub extra: Vec<String>,
+}
+
+/// Checks the settings of a plan for `study`: `shards` (N) from 1 to its number of cells,
+/// `cpus_per_task` at least 1.
+pub fn check_settings(
+    study: &Study,
+    shards: usize,
+    cpus_per_task: usize,
+) -> Result<(), SettingError> {
+    let cells = study.cells().len();
+    if shards == 0 || shards > cells {
+        return Err(SettingError::new(
+            "shards",
+            shards,
+            format!(
+                "{} has {cells} cell(s), so N must be from 1 to {cells}",
+                study.file.display()
+            ),
+        ));
+    }
+    if cpus_per_task == 0 {
+        return Err(SettingError::new(
+            "cpus_per_task",
+            0,
+            "it must be at least 1",
+        ));
+    }
+    Ok(())
 }
 
 /// The three scripts.
@@ -170,6 +201,21 @@ impl SlurmPlan {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn shards_and_cpus_are_checked_against_the_study() {
+        let study = Study::from_path(Path::new("studies/ci-bias.toml")).unwrap();
+        assert!(check_settings(&study, 8, 1).is_ok());
+        assert_eq!(
+            check_settings(&study, 9, 1).unwrap_err().to_string(),
+            "shards = 9 is invalid: studies/ci-bias.toml has 8 cell(s), so N must be from 1 to 8"
+        );
+        assert_eq!(check_settings(&study, 0, 1).unwrap_err().setting, "shards");
+        assert_eq!(
+            check_settings(&study, 2, 0).unwrap_err().to_string(),
+            "cpus_per_task = 0 is invalid: it must be at least 1"
+        );
+    }
 
     fn plan() -> SlurmPlan {
         SlurmPlan {

@@ -9,8 +9,8 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use jointid::identify::{LANES, Lanes};
+use jointid::random::{LaneRng, NoiseKind};
 use jointid::study::CellPlan;
-use jointid::study::noise::{LaneRng, NoiseKind};
 
 /// The measured parts of the limit.
 pub struct Limit {

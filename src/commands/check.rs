@@ -9,7 +9,7 @@ use anyhow::bail;
 use crate::cli::CheckArgs;
 use crate::commands::run_study::run_studies;
 use jointid::cluster::read_results_path;
-use jointid::study::check::{evaluate, selected_rows};
+use jointid::study::check::{evaluate, gate};
 use jointid::study::{CellResult, Study};
 
 /// Exit 1 when any study fails its gate; every study is run and reported.
@@ -31,24 +31,8 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
                 bail!("--results reads a result: --out and --trials-csv have nothing to write");
             }
             let study = Study::from_path(file)?;
-            let names: Vec<String> = study
-                .model
-                .identified()
-                .into_iter()
-                .map(|p| p.name)
-                .collect();
-            let Some(spec) = &study.check else {
-                bail!(
-                    "{}: there is no [check] table: nothing to hold the study to",
-                    study.file.display()
-                );
-            };
-            if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
-                bail!(
-                    "{}: [check].where selects no (cell, mode, parameter) of the grid",
-                    study.file.display()
-                );
-            }
+            gate(&study)?;
+            let names = study.model.identified_names();
             let results = read_results_path(path, &study)?;
             !check_one(&study, &results, &names)?
         }

@@ -2,10 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 
 use crate::cli::{ClusterCommand, SlurmArgs};
-use jointid::cluster::SlurmPlan;
+use crate::commands::flagged;
+use jointid::cluster::{SlurmPlan, check_settings};
 use jointid::output::write_atomically;
 use jointid::study::Study;
 
@@ -22,16 +23,12 @@ fn absolute(path: &Path) -> anyhow::Result<PathBuf> {
 fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
     let study = Study::from_path(&args.study)?;
     let cells = study.cells().len();
-    if args.shards == 0 || args.shards > cells {
-        bail!(
-            "--shards {} is invalid: {} has {cells} cell(s), so N must be from 1 to {cells}",
-            args.shards,
-            args.study.display()
-        );
-    }
-    if args.cpus_per_task == 0 {
-        bail!("--cpus-per-task 0 is invalid: it must be at least 1");
-    }
+    check_settings(&study, args.shards, args.cpus_per_task).map_err(|e| {
+        flagged(
+            e,
+            &[("shards", "--shards"), ("cpus_per_task", "--cpus-per-task")],
+        )
+    })?;
     let jointid = match &args.jointid {
         Some(p) => absolute(p)?,
         None => std::env::current_exe().context("cannot find this jointid binary")?,

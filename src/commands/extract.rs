@@ -4,10 +4,13 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 
 use crate::cli::{ExtractArgs, FrfQuantity};
-use jointid::extract::{Quantity, Settings, csv, extract, universal};
+use crate::commands::flagged;
+use jointid::extract::{
+    ExtractError, Extraction, FrfSet, Quantity, Settings, csv, extract, universal,
+};
 use jointid::output::stabilization::stabilization_svg;
 use jointid::output::{check_outputs, commit_all, stage};
 
@@ -15,6 +18,53 @@ use jointid::uff::{Record, read_path};
 
 /// Below this MPC a mode is named on stderr as complex.
 const MPC_WARN: f64 = 0.9;
+
+/// Says the band and every mode found, and notes the complex ones.
+fn describe(ex: &Extraction, say: &dyn Fn(String)) {
+    say(format!(
+        "band {:.3}..{:.3} Hz, {} modes:",
+        ex.band_hz.0,
+        ex.band_hz.1,
+        ex.modes.len()
+    ));
+    for (r, m) in ex.modes.iter().enumerate() {
+        say(format!(
+            "  mode {}: {:.4} Hz, damping {:.4}%, MPC {:.4}, MPD {:.2} deg, stable orders {}..{}",
+            r + 1,
+            m.frequency_hz,
+            100.0 * m.damping_ratio,
+            m.mpc,
+            m.mpd_deg,
+            m.stable_orders.0,
+            m.stable_orders.1
+        ));
+    }
+    for (r, m) in ex.modes.iter().enumerate() {
+        if m.mpc < MPC_WARN {
+            say(format!(
+                "  note: mode {} has MPC {:.2} < {MPC_WARN}: a complex mode (noise, a mode out of \
+                 the bending plane, a spurious pole, or a band wider than the well-excited \
+                 one); see the chart, narrow --band or fix --modes",
+                r + 1,
+                m.mpc
+            ));
+        }
+    }
+}
+
+/// The stabilisation chart of the extraction, titled with the FRF files' names.
+fn draw_chart(args: &ExtractArgs, frf: &FrfSet, ex: &Extraction) -> anyhow::Result<String> {
+    let names: Vec<String> = args
+        .frf
+        .iter()
+        .map(|p| {
+            p.file_name()
+                .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
+        })
+        .collect();
+    let title = format!("Stabilisation chart: {}", names.join(", "));
+    stabilization_svg(frf, ex, &title).context("cannot draw the chart")
+}
 
 pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     let say = |text: String| {
@@ -71,15 +121,18 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             "absent"
         }
     ));
-    if args.modes == Some(0) {
-        bail!("--modes 0 is invalid: at least one mode is needed");
-    }
+    let failed = || format!("{inputs}: extraction failed");
     let settings = Settings {
         band_hz: args.band,
         n_modes: args.modes,
         max_order: args.max_order,
         ..Settings::default()
     };
+    // --modes is refused as the flag it is; any other setting as the extraction refuses it.
+    settings.check().map_err(|e| match e.setting {
+        "n_modes" => flagged(e, &[("n_modes", "--modes")]),
+        _ => anyhow::Error::new(ExtractError::Setting(e)).context(failed()),
+    })?;
     let last = std::cell::Cell::new(0);
     let ex = extract(&input.set, &settings, &|done, total| {
         let tenth = 10 * done / total.max(1);
@@ -88,49 +141,10 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             say(format!("extracting: {}%", 10 * tenth));
         }
     })
-    .with_context(|| format!("{inputs}: extraction failed"))?;
-    say(format!(
-        "band {:.3}..{:.3} Hz, {} modes:",
-        ex.band_hz.0,
-        ex.band_hz.1,
-        ex.modes.len()
-    ));
-    for (r, m) in ex.modes.iter().enumerate() {
-        say(format!(
-            "  mode {}: {:.4} Hz, damping {:.4}%, MPC {:.4}, MPD {:.2} deg, stable orders {}..{}",
-            r + 1,
-            m.frequency_hz,
-            100.0 * m.damping_ratio,
-            m.mpc,
-            m.mpd_deg,
-            m.stable_orders.0,
-            m.stable_orders.1
-        ));
-    }
-    for (r, m) in ex.modes.iter().enumerate() {
-        if m.mpc < MPC_WARN {
-            say(format!(
-                "  note: mode {} has MPC {:.2} < {MPC_WARN}: a complex mode (noise, a mode out of \
-                 the bending plane, a spurious pole, or a band wider than the well-excited \
-                 one); see the chart, narrow --band or fix --modes",
-                r + 1,
-                m.mpc
-            ));
-        }
-    }
+    .with_context(failed)?;
+    describe(&ex, &say);
     let chart = match &args.chart {
-        Some(_) => {
-            let names: Vec<String> = args
-                .frf
-                .iter()
-                .map(|p| {
-                    p.file_name()
-                        .map_or_else(|| p.display().to_string(), |n| n.to_string_lossy().into())
-                })
-                .collect();
-            let title = format!("Stabilisation chart: {}", names.join(", "));
-            Some(stabilization_svg(&input.set, &ex, &title).context("cannot draw the chart")?)
-        }
+        Some(_) => Some(draw_chart(args, &input.set, &ex)?),
         None => None,
     };
     let mut staged = vec![

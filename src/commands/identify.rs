@@ -5,11 +5,11 @@ use std::io::Write;
 use anyhow::{Context, bail};
 
 use crate::cli::IdentifyArgs;
+use crate::commands::flagged;
 use jointid::identify::{Identifier, Selection, Settings};
 use jointid::measured::MeasuredModes;
-use jointid::modal::ModalSolution;
+use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::{check_outputs, identify as out, write_atomically};
-use jointid::structure::check_elastic;
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();
@@ -17,23 +17,12 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let matrices = model.assemble();
-    let dofs = model.dof_count();
-    if args.n <= model.rigid || args.n > dofs {
-        bail!(
-            "--n {} is invalid: it must be from {} to {dofs} (the model's DOFs), rigid-body modes included",
-            args.n,
-            model.rigid + 1
-        );
-    }
+    let settings = Settings::new(args.n, args.m, args.weighting, &model)
+        .map_err(|e| flagged(e, &[("n", "--n")]))?;
     let modal = ModalSolution::lowest_of(&matrices, args.n)
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     check_elastic(&matrices, &modal, model.rigid)
         .with_context(|| format!("{}", args.model.display()))?;
-    let settings = Settings {
-        n: args.n,
-        m: args.m,
-        weighting: args.weighting,
-    };
     let all = model.identified();
     let (params, selection) = match args.params.as_deref() {
         None => (all, Selection::All),

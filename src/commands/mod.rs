@@ -17,7 +17,19 @@ mod study;
 
 use std::process::ExitCode;
 
+use jointid::input::SettingError;
+
 use crate::cli::{Cli, Command};
+
+/// A setting the library refused, said as the command line takes it: named by its flag when
+/// `flags` (library setting, flag) has one (`--n 39 is invalid: ...`), else as the library
+/// names it.
+fn flagged(e: SettingError, flags: &[(&str, &str)]) -> anyhow::Error {
+    match flags.iter().find(|(setting, _)| *setting == e.setting) {
+        Some((_, flag)) => anyhow::anyhow!(e.with_name(flag)),
+        None => e.into(),
+    }
+}
 
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {

@@ -9,15 +9,15 @@ use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
-use jointid::cluster::{
-    ShardHeader, ShardSpec, fingerprint, model_data_files, study_assignment, write_shard,
-};
-use jointid::output::study::{TrialsWriter, write_results};
+use jointid::cluster::{ShardHeader, ShardSpec, study_assignment, write_shard};
+use jointid::output::study::TrialsWriter;
 use jointid::output::{check_outputs, commit_all, stage};
-use jointid::study::check::selected_rows;
+use jointid::study::check;
 
 use crate::commands::resources::check_memory;
+use jointid::study::fingerprint::{study_fingerprint, tool_version};
 use jointid::study::resources::peak_bytes;
+use jointid::study::results::write_results;
 use jointid::study::{CellResult, Study, StudyRun};
 
 /// A finished study (or shard of a study).
@@ -29,11 +29,6 @@ pub struct Finished {
     pub out: PathBuf,
     /// The shard run, if any.
     pub shard: Option<ShardSpec>,
-}
-
-/// The tool's version as the fingerprint records it.
-pub fn tool_version() -> String {
-    format!("jointid {}", env!("CARGO_PKG_VERSION"))
 }
 
 /// The default shard file of `output_csv`: `NAME.shard-K-of-N.csv` beside it.
@@ -51,22 +46,6 @@ fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
         (None, Some(spec)) => shard_path(&study.output_csv, spec),
         (None, None) => study.output_csv.clone(),
     }
-}
-
-/// The fingerprint of a study: this tool's version, the study file, its model file and the
-/// files the model names.
-pub fn study_fingerprint(study: &Study) -> anyhow::Result<String> {
-    let read = |path: &Path| {
-        std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))
-    };
-    let model = read(&study.model_file)?;
-    let mut files = vec![read(&study.file)?];
-    for path in model_data_files(&String::from_utf8_lossy(&model), &study.model_file) {
-        files.push(read(&path)?);
-    }
-    files.insert(1, model);
-    let parts: Vec<&[u8]> = files.iter().map(|f| f.as_slice()).collect();
-    Ok(fingerprint(&tool_version(), &parts))
 }
 
 /// Reads and validates every study of `args` (with its `[check]` when `gate`), then runs
@@ -118,24 +97,7 @@ fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
 fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow::Result<StudyRun> {
     let study = Study::from_path(path)?;
     if gate {
-        let Some(spec) = &study.check else {
-            bail!(
-                "{}: there is no [check] table: nothing to hold the study to",
-                study.file.display()
-            );
-        };
-        let names: Vec<String> = study
-            .model
-            .identified()
-            .into_iter()
-            .map(|p| p.name)
-            .collect();
-        if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
-            bail!(
-                "{}: [check].where selects no (cell, mode, parameter) of the grid",
-                study.file.display()
-            );
-        }
+        check::gate(&study)?;
     }
     let out = output_path(&study, args);
     let mut outputs = vec![out.as_path()];

@@ -3,33 +3,30 @@
 use anyhow::{Context, bail};
 
 use crate::cli::{Measure, SimulateArgs};
+use crate::commands::flagged;
+use jointid::input::SettingError;
 use jointid::output::{check_outputs, write_atomically};
-use jointid::simulate::{Errors, simulate};
+use jointid::simulate::{Errors, first_modes, simulate};
 use jointid::structure::Observation;
 use jointid::study::NoiseKind;
+
+/// The library's settings by their flags.
+const FLAGS: &[(&str, &str)] = &[
+    ("modes", "--modes"),
+    ("noise", "--noise"),
+    ("shape_noise", "--shape-noise"),
+    ("frequency_noise", "--frequency-noise"),
+];
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     check_outputs(&[&args.out], &[&args.model])?;
     let model = jointid::model::from_path(&args.model)?;
-    let deformable = model.dof_count() - model.rigid;
-    if args.modes == 0 || args.modes > deformable {
-        bail!(
-            "--modes {} is invalid: the model has deformable modes 1 to {deformable}",
-            args.modes
-        );
-    }
-    for (name, v) in [
-        ("--shape-noise", args.shape_noise),
-        ("--frequency-noise", args.frequency_noise),
-    ] {
-        if !(v.is_finite() && (0.0..1.0).contains(&v)) {
-            bail!("{name} {v} is invalid: it must be a relative level from 0 to below 1");
-        }
-    }
-    let kind: NoiseKind = args
-        .noise
-        .parse()
-        .map_err(|e: String| anyhow::anyhow!("--noise {} is invalid: {e}", args.noise))?;
+    let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
+    let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {
+        flagged(SettingError::new("noise", &args.noise, allowed), FLAGS)
+    })?;
+    let errors = Errors::new(args.shape_noise, args.frequency_noise, kind, args.seed)
+        .map_err(|e| flagged(e, FLAGS))?;
     let points: Vec<Observation> = match args.measure {
         Measure::Sensors if model.sensors.is_empty() => bail!(
             "--measure sensors: {} declares no [[sensor]]",
@@ -47,13 +44,6 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
             })
             .map(|d| Observation::dof(&model.dofs, d))
             .collect(),
-    };
-    let modes: Vec<usize> = (1..=args.modes).collect();
-    let errors = Errors {
-        shape: args.shape_noise,
-        frequency: args.frequency_noise,
-        kind,
-        seed: args.seed,
     };
     let measured = simulate(&model, &args.effects, &modes, &points, errors)?;
     write_atomically(&args.out, |w| {

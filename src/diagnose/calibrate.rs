@@ -8,9 +8,9 @@ use super::fit::{self, Calibration, Fitted};
 use super::settings::DiagnoseSettings;
 use crate::identify::Identifier;
 use crate::measured::MeasuredModes;
-use crate::modal::ModalSolution;
+use crate::modal::{ModalSolution, check_elastic};
 use crate::model::effects::EffectContext;
-use crate::structure::{Structure, check_elastic};
+use crate::structure::Structure;
 
 /// The effects' context of `model` measured as `measured`, after checking that the model has
 /// joint parameters to calibrate and at most as many as measured modes, an elastic nominal

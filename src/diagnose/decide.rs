@@ -2,8 +2,8 @@
 //! models explain the data, which candidate is named, and when the data cannot tell two apart.
 //!
 //! - **Multiple testing.** A candidate is significant when its likelihood-ratio p-value,
-//!   times the number of hypotheses tried ([`hypotheses`]: one per candidate, the members of
-//!   a scan), is below [`ALPHA`] (Bonferroni).
+//!   times the number of hypotheses tried (one per candidate, the members of
+//!   a scan: `super::candidate::hypotheses`), is below [`ALPHA`] (Bonferroni).
 //! - **Explains the data.** A model explains the data when P(F(dof, nu) > chi^2 / dof), its
 //!   frequencies alone and the whiteness of its shape residuals are all >= [`FIT_ALPHA`], and
 //!   the estimated noise is within `noise::LARGEST_FACTOR` of the stated ([`Judgement`]).
@@ -19,12 +19,8 @@
 //!
 //! Layer: diagnose; pure functions of the candidates' reports.
 
-use std::sync::Arc;
-
-use super::candidate::Candidate;
 use super::noise::{LARGEST_FACTOR, NoiseEstimate};
 use super::report::{CandidateReport, Verdict};
-use crate::model::effects::EffectContext;
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -35,11 +31,6 @@ pub const AMBIGUITY_MARGIN: f64 = 6.0;
 /// A per-mode correction whose slope against frequency exceeds this many standard errors
 /// is reported as a trend (`Report::trend`; shown, not the test).
 pub const TREND_SIGMAS: f64 = 3.0;
-
-/// The hypotheses a search of `library` tests: the multiple-testing count.
-pub fn hypotheses(library: &[Arc<dyn Candidate>], ctx: &EffectContext) -> usize {
-    library.iter().map(|c| c.hypotheses(ctx)).sum()
-}
 
 /// A likelihood-ratio p-value adjusted for `tried` hypotheses (Bonferroni, at most 1).
 pub fn adjusted(p: f64, tried: usize) -> f64 {

@@ -12,7 +12,7 @@
 //!    the frequencies, whiteness of the shape residuals ([`whiteness`]);
 //! 5. [`decide`]: the rules: multiple testing, what explains the data, the selection by
 //!    likelihood ratio and information criterion, the verdict;
-//! 6. [`report`]: the report assembled: errors before and after, the paper's per-mode
+//! 6. [`assemble`]: the [`report`] assembled: errors before and after, the paper's per-mode
 //!    corrections, the misfit's pattern.
 //!
 //! Beside them: [`settings`] (checked where set), [`pairing`] (MAC pairing of measured and
@@ -26,10 +26,14 @@
 //! still not physically plausible (`Effect::plausible`, `Effect::admissible`) is excluded,
 //! with the reason.
 //!
-//! Layer: diagnose; imports the model, measured data, modal solutions, identify (the paper's
-//! per-mode corrections) and stats; never output or the binary.
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::report`], [`crate::cluster`].
 
 pub mod along;
+pub mod assemble;
 pub mod bounds;
 pub mod calibrate;
 pub mod candidate;
@@ -55,8 +59,8 @@ pub use whiteness::Whiteness;
 use crate::measured::MeasuredModes;
 use crate::modal::ModalError;
 use crate::structure::Structure;
+use assemble::Findings;
 use candidate::Stage;
-use report::Findings;
 use score::Judge;
 
 /// Why a diagnosis cannot be made.
@@ -83,7 +87,7 @@ pub enum DiagnoseError {
     },
     /// The nominal model is a mechanism.
     #[error("the model as given")]
-    Mechanism(#[from] crate::structure::Mechanism),
+    Mechanism(#[from] crate::modal::Mechanism),
     /// The model has nothing to calibrate.
     #[error(
         "the model identifies no joint parameter (no joint, or every parameter held fixed): there is nothing to calibrate"
@@ -127,7 +131,11 @@ pub fn diagnose(
         base: &first_base,
     };
     let first = candidate::fit_all(&library, &first_stage, None);
-    let estimate = noise::from_largest(&first, &first_base, measured, settings.noise);
+    let physical = first.iter().filter_map(|(c, outcome)| {
+        let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
+        Some((c.name(), fit.model.as_ref()?))
+    });
+    let estimate = noise::from_largest(physical, &first_base, measured, settings.noise);
     // Under the working noise: the joint calibrated again, every candidate refitted, judged.
     let working = Calibration {
         noise: estimate.working,
@@ -141,7 +149,7 @@ pub fn diagnose(
         ..first_stage
     };
     let fits = candidate::fit_all(&library, &stage, Some(&first));
-    let tried = decide::hypotheses(&library, &ctx);
+    let tried = candidate::hypotheses(&library, &ctx);
     let judge = Judge {
         estimate: &estimate,
         measured,
@@ -156,7 +164,7 @@ pub fn diagnose(
         judge.of_model(&calibrated.base),
         &estimate,
     );
-    Ok(report::assemble(Findings {
+    Ok(assemble::assemble(Findings {
         measured,
         stated: settings.noise,
         criterion: decide::criterion(&estimate, tried, library.len()),

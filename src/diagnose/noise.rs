@@ -33,7 +33,6 @@
 use serde::Serialize;
 
 use super::along;
-use super::candidate::Tried;
 use super::fit::{Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use crate::measured::MeasuredModes;
 use crate::stats::{chi2_sf, f_isf, f_sf};
@@ -77,22 +76,17 @@ pub struct NoiseEstimate {
 }
 
 /// The noise estimated from the largest physical model fitted under the `stated` noise: among
-/// the candidates `tried` that have a model of their own and a physical size, the one with
-/// the smallest chi^2 when below the joint-only fit `base`'s, else `base` (a fit outside its
-/// effect's plausible range absorbs misfit no physical effect explains, and would pass it off
-/// as noise).
-pub fn from_largest(
-    tried: &[Tried],
-    base: &Fitted,
+/// `models` (each candidate's name and its fitted model, for the candidates that have a model
+/// of their own and a physical size), the one with the smallest chi^2 when below the
+/// joint-only fit `base`'s, else `base` (a fit outside its effect's plausible range absorbs
+/// misfit no physical effect explains, and would pass it off as noise).
+pub fn from_largest<'a>(
+    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
+    base: &'a Fitted,
     measured: &MeasuredModes,
     stated: Noise,
 ) -> NoiseEstimate {
-    let (name, largest) = tried
-        .iter()
-        .filter_map(|(c, outcome)| {
-            let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
-            Some((c.name(), fit.model.as_ref()?))
-        })
+    let (name, largest) = models
         .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
         .filter(|(_, f)| f.chi2 < base.chi2)
         .unwrap_or(("joint only", base));
@@ -490,7 +484,7 @@ mod tests {
     /// matches the second moment): 20000 draws, within 4 standard errors of each.
     #[test]
     fn pseudo_dof_matches_the_variance_of_the_normalised_sum() {
-        use crate::study::noise::TrialRng;
+        use crate::random::TrialRng;
         use rand_distr::{Distribution, StandardNormal};
         let x: Vec<f64> = (0..15)
             .map(|j| f64::from(j) + 0.4 * f64::from(j % 3))

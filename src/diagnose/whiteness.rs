@@ -100,7 +100,7 @@ pub fn of_sequences(sequences: &[Vec<f64>]) -> Whiteness {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::noise::TrialRng;
+    use crate::random::TrialRng;
     use rand_distr::{Distribution, StandardNormal, StudentT};
 
     /// Sequences of 6 modes x 20 sensors drawn from `draw`.

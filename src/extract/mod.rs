@@ -24,6 +24,10 @@
 //! Contract of [`Mode`]: frequency_hz is the undamped natural frequency |lambda| / 2 pi, the
 //! damping ratio -Re(lambda) / |lambda|; the residues are receptance residues (displacement per
 //! unit reference, times rad/s) whatever the quantity of the FRFs; modes ascend in frequency.
+//!
+//! Layer 3 (models and measurements; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`]) and, without a circle, [`crate::model`], [`crate::measured`].
 
 pub mod csv;
 pub mod frf;
@@ -38,6 +42,8 @@ pub mod universal;
 mod run;
 
 use faer::c64;
+
+use crate::input::SettingError;
 
 pub use frf::{FrfSet, Quantity};
 pub use run::extract;
@@ -95,6 +101,50 @@ impl Default for Settings {
             residual_terms: 2,
             refine: true,
         }
+    }
+}
+
+impl Settings {
+    /// Checks every setting against the range its field's docs give; [`extract`] does too.
+    pub fn check(&self) -> Result<(), SettingError> {
+        let invalid = |setting, value: &dyn std::fmt::Display, allowed| {
+            Err(SettingError::new(setting, value, allowed))
+        };
+        let open_unit = |v: f64| v > 0.0 && v < 1.0;
+        if self.n_modes == Some(0) {
+            return invalid("n_modes", &0, "at least one mode is needed");
+        }
+        if self.max_order < 2 {
+            return invalid("max_order", &self.max_order, "it must be an integer >= 2");
+        }
+        if let Some(m) = self.min_stable
+            && (m == 0 || m > self.max_order)
+        {
+            return invalid("min_stable", &m, "it must be an integer in 1..=max_order");
+        }
+        for (setting, value) in [
+            ("frequency_tolerance", self.frequency_tolerance),
+            ("damping_tolerance", self.damping_tolerance),
+            ("mac_min", self.mac_min),
+        ] {
+            if !open_unit(value) {
+                return invalid(setting, &value, "it must be in (0, 1)");
+            }
+        }
+        if !(self.max_damping > 0.0 && self.max_damping <= 1.0) {
+            return invalid("max_damping", &self.max_damping, "it must be in (0, 1]");
+        }
+        if self.residual_terms > 2 {
+            return invalid(
+                "residual_terms",
+                &self.residual_terms,
+                "it must be 0, 1 or 2",
+            );
+        }
+        if !(0.0..=1.0).contains(&self.coherence_min) {
+            return invalid("coherence_min", &self.coherence_min, "it must be in [0, 1]");
+        }
+        Ok(())
     }
 }
 
@@ -252,13 +302,9 @@ pub enum ExtractError {
         needed: usize,
         max_order: usize,
     },
-    /// A setting out of its range.
-    #[error("setting {name} = {value} is invalid: it must be {allowed}")]
-    InvalidSetting {
-        name: &'static str,
-        value: String,
-        allowed: &'static str,
-    },
+    /// A setting out of its range ([`Settings::check`]).
+    #[error("setting {0}")]
+    Setting(SettingError),
     /// No chain of poles qualified as physical.
     #[error(
         "no mode found in {lo}..{hi} Hz: no chain of poles was stable (frequency, damping and \
@@ -283,4 +329,36 @@ pub enum ExtractError {
         lo: f64,
         hi: f64,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_are_checked_against_their_ranges() {
+        assert_eq!(Settings::default().check(), Ok(()));
+        let check = |settings: Settings| settings.check().unwrap_err().to_string();
+        assert_eq!(
+            check(Settings {
+                n_modes: Some(0),
+                ..Settings::default()
+            }),
+            "n_modes = 0 is invalid: at least one mode is needed"
+        );
+        assert_eq!(
+            check(Settings {
+                max_order: 1,
+                ..Settings::default()
+            }),
+            "max_order = 1 is invalid: it must be an integer >= 2"
+        );
+        assert_eq!(
+            check(Settings {
+                mac_min: 1.0,
+                ..Settings::default()
+            }),
+            "mac_min = 1 is invalid: it must be in (0, 1)"
+        );
+    }
 }

@@ -5,67 +5,8 @@ use std::f64::consts::PI;
 use faer::c64;
 
 use super::lscf::{self, Lscf};
-use super::stabilization::{self, Criteria, OrderPoles};
+use super::stabilization::{self, Chosen, Criteria, OrderPoles};
 use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
-
-fn invalid(name: &'static str, value: impl ToString, allowed: &'static str) -> ExtractError {
-    ExtractError::InvalidSetting {
-        name,
-        value: value.to_string(),
-        allowed,
-    }
-}
-
-/// Checks every setting against its range.
-fn check(settings: &Settings) -> Result<(), ExtractError> {
-    let open_unit = |v: f64| v > 0.0 && v < 1.0;
-    if settings.max_order < 2 {
-        return Err(invalid("max_order", settings.max_order, "an integer >= 2"));
-    }
-    if settings.n_modes == Some(0) {
-        return Err(invalid("n_modes", 0, "an integer >= 1"));
-    }
-    if let Some(m) = settings.min_stable
-        && (m == 0 || m > settings.max_order)
-    {
-        return Err(invalid("min_stable", m, "an integer in 1..=max_order"));
-    }
-    if !open_unit(settings.frequency_tolerance) {
-        return Err(invalid(
-            "frequency_tolerance",
-            settings.frequency_tolerance,
-            "in (0, 1)",
-        ));
-    }
-    if !open_unit(settings.damping_tolerance) {
-        return Err(invalid(
-            "damping_tolerance",
-            settings.damping_tolerance,
-            "in (0, 1)",
-        ));
-    }
-    if !open_unit(settings.mac_min) {
-        return Err(invalid("mac_min", settings.mac_min, "in (0, 1)"));
-    }
-    if !(settings.max_damping > 0.0 && settings.max_damping <= 1.0) {
-        return Err(invalid("max_damping", settings.max_damping, "in (0, 1]"));
-    }
-    if settings.residual_terms > 2 {
-        return Err(invalid(
-            "residual_terms",
-            settings.residual_terms,
-            "0, 1 or 2",
-        ));
-    }
-    if !(0.0..=1.0).contains(&settings.coherence_min) {
-        return Err(invalid(
-            "coherence_min",
-            settings.coherence_min,
-            "in [0, 1]",
-        ));
-    }
-    Ok(())
-}
 
 fn frequency(s: c64) -> f64 {
     s.norm() / (2.0 * PI)
@@ -92,6 +33,103 @@ fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Crite
     each && distinct
 }
 
+/// The responses scaled to unit RMS over the band (`lo`, `hi` in Hz, for the error).
+fn unit_rms(responses: &[Vec<c64>], (lo, hi): (f64, f64)) -> Result<Vec<Vec<c64>>, ExtractError> {
+    let mut scaled = Vec::with_capacity(responses.len());
+    for (response, h) in responses.iter().enumerate() {
+        let rms = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / h.len() as f64).sqrt();
+        if rms == 0.0 || !rms.is_finite() {
+            return Err(ExtractError::ZeroResponse { response, lo, hi });
+        }
+        scaled.push(h.iter().map(|v| v / rms).collect::<Vec<c64>>());
+    }
+    Ok(scaled)
+}
+
+/// The poles of model order `order`: positive frequency, stable, in the band (`lo`, `hi` in
+/// Hz), ascending in |s|.
+fn band_poles(lscf: &Lscf, order: usize, (lo, hi): (f64, f64)) -> Vec<c64> {
+    let alpha = lscf.denominator(order);
+    let mut poles: Vec<c64> = lscf::poles(&alpha, lscf.dt)
+        .into_iter()
+        .filter(|s| {
+            let fs = frequency(*s);
+            s.im > 0.0 && s.re < 0.0 && fs >= lo && fs <= hi
+        })
+        .collect();
+    poles.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
+    poles
+}
+
+/// Whether `found` chains are enough: at least one, and the modes `settings` asks for.
+fn enough_modes(
+    found: usize,
+    settings: &Settings,
+    criteria: &Criteria,
+    (lo, hi): (f64, f64),
+) -> Result<(), ExtractError> {
+    if found == 0 {
+        return Err(ExtractError::NoModes {
+            lo,
+            hi,
+            min_stable: criteria.min_stable,
+            max_order: settings.max_order,
+        });
+    }
+    if let Some(requested) = settings.n_modes
+        && found < requested
+    {
+        return Err(ExtractError::TooFewModes {
+            requested,
+            found,
+            min_stable: criteria.min_stable,
+            lo,
+            hi,
+        });
+    }
+    Ok(())
+}
+
+/// ||H - H_model|| / ||H|| of every response over the band.
+fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64> {
+    responses
+        .iter()
+        .zip(synthesized)
+        .map(|(h, m)| {
+            let num: f64 = h.iter().zip(m).map(|(a, b)| (a - b).norm_sqr()).sum();
+            let den: f64 = h.iter().map(|a| a.norm_sqr()).sum();
+            (num / den).sqrt()
+        })
+        .collect()
+}
+
+/// The modes of the chosen chains with their final poles and residues, ascending in
+/// frequency.
+fn modes_of(chosen: &[Chosen], poles: &[c64], residues: &[Vec<c64>]) -> Vec<Mode> {
+    let mut modes: Vec<Mode> = chosen
+        .iter()
+        .zip(poles)
+        .zip(residues)
+        .map(|((c, &pole), residues)| {
+            let real = shapes::real_mode(residues);
+            Mode {
+                frequency_hz: frequency(pole),
+                damping_ratio: -pole.re / pole.norm(),
+                pole,
+                residues: residues.clone(),
+                complex_shape: shapes::complex_unit_peak(residues),
+                real_shape: real.shape,
+                mpc: real.mpc,
+                mpd_deg: real.mpd_deg,
+                stable_orders: c.orders,
+                stable_count: c.stable_count,
+            }
+        })
+        .collect();
+    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    modes
+}
+
 /// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
 /// called after each response of the reduction, each model order and at the end.
 pub fn extract(
@@ -99,7 +137,7 @@ pub fn extract(
     settings: &Settings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Extraction, ExtractError> {
-    check(settings)?;
+    settings.check().map_err(ExtractError::Setting)?;
     frf.validate()?;
     let band = frf::band(frf, settings)?;
     let max_order = settings.max_order;
@@ -120,14 +158,7 @@ pub fn extract(
         .iter()
         .map(|h| band.lines.iter().map(|&k| h[k]).collect())
         .collect();
-    let mut scaled = Vec::with_capacity(responses.len());
-    for (response, h) in responses.iter().enumerate() {
-        let rms = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / h.len() as f64).sqrt();
-        if rms == 0.0 || !rms.is_finite() {
-            return Err(ExtractError::ZeroResponse { response, lo, hi });
-        }
-        scaled.push(h.iter().map(|v| v / rms).collect::<Vec<c64>>());
-    }
+    let scaled = unit_rms(&responses, (lo, hi))?;
     let basis = lsfd::Basis {
         power: frf.quantity.power(),
         terms: settings.residual_terms,
@@ -142,15 +173,7 @@ pub fn extract(
 
     let mut orders = Vec::with_capacity(max_order);
     for order in 1..=max_order {
-        let alpha = lscf.denominator(order);
-        let mut poles: Vec<c64> = lscf::poles(&alpha, lscf.dt)
-            .into_iter()
-            .filter(|s| {
-                let fs = frequency(*s);
-                s.im > 0.0 && s.re < 0.0 && fs >= lo && fs <= hi
-            })
-            .collect();
-        poles.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
+        let poles = band_poles(&lscf, order, (lo, hi));
         let residues = if poles.is_empty() {
             Vec::new()
         } else {
@@ -180,25 +203,7 @@ pub fn extract(
         .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
         .collect();
     let chosen = stabilization::choose(&mut chart, &residue_refs, &criteria, settings.n_modes);
-    if chosen.is_empty() {
-        return Err(ExtractError::NoModes {
-            lo,
-            hi,
-            min_stable: criteria.min_stable,
-            max_order,
-        });
-    }
-    if let Some(requested) = settings.n_modes
-        && chosen.len() < requested
-    {
-        return Err(ExtractError::TooFewModes {
-            requested,
-            found: chosen.len(),
-            min_stable: criteria.min_stable,
-            lo,
-            hi,
-        });
-    }
+    enough_modes(chosen.len(), settings, &criteria, (lo, hi))?;
 
     let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
     let (poles, refined) = if settings.refine {
@@ -213,36 +218,8 @@ pub fn extract(
     };
     let fit = lsfd::fit(&omega, &band.weights, &poles, basis, &responses);
     let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
-    let fit_error = responses
-        .iter()
-        .zip(&synthesized)
-        .map(|(h, m)| {
-            let num: f64 = h.iter().zip(m).map(|(a, b)| (a - b).norm_sqr()).sum();
-            let den: f64 = h.iter().map(|a| a.norm_sqr()).sum();
-            (num / den).sqrt()
-        })
-        .collect();
-    let mut modes: Vec<Mode> = chosen
-        .iter()
-        .zip(&poles)
-        .zip(&fit.residues)
-        .map(|((c, &pole), residues)| {
-            let real = shapes::real_mode(residues);
-            Mode {
-                frequency_hz: frequency(pole),
-                damping_ratio: -pole.re / pole.norm(),
-                pole,
-                residues: residues.clone(),
-                complex_shape: shapes::complex_unit_peak(residues),
-                real_shape: real.shape,
-                mpc: real.mpc,
-                mpd_deg: real.mpd_deg,
-                stable_orders: c.orders,
-                stable_count: c.stable_count,
-            }
-        })
-        .collect();
-    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    let fit_error = relative_errors(&responses, &synthesized);
+    let modes = modes_of(&chosen, &poles, &fit.residues);
     let mean_coherence = frf.coherence.as_ref().map(|c| {
         c.iter()
             .map(|r| band.lines.iter().map(|&k| r[k]).sum::<f64>() / band.lines.len() as f64)

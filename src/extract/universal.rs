@@ -189,17 +189,16 @@ fn quantity_of(f: &Function) -> Option<Quantity> {
     }
 }
 
-/// Gathers the FRFs of `files` (path and records, in the order given). `quantity` overrides
-/// the one the files declare.
-pub fn frfs(
-    files: &[(PathBuf, Vec<Record>)],
-    quantity: Option<Quantity>,
-) -> Result<UffFrfs, UffInputError> {
-    struct Found<'a> {
-        file: &'a Path,
-        record: usize,
-        f: &'a Function,
-    }
+/// A function record found in one of the files.
+struct Found<'a> {
+    file: &'a Path,
+    /// 1-based index of the record in its file.
+    record: usize,
+    f: &'a Function,
+}
+
+/// The FRFs and the coherences of `files`, in file and record order.
+fn gather(files: &[(PathBuf, Vec<Record>)]) -> (Vec<Found<'_>>, Vec<Found<'_>>) {
     let mut frf: Vec<Found> = Vec::new();
     let mut coherence: Vec<Found> = Vec::new();
     for (file, records) in files {
@@ -218,57 +217,49 @@ pub fn frfs(
             }
         }
     }
-    let Some(first) = frf.first() else {
-        return Err(UffInputError::NoFrf {
-            files: files
-                .iter()
-                .map(|(p, _)| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
-        });
-    };
-    let axis = axis_of(first.f).ok_or_else(|| UffInputError::UnevenAxis {
-        file: first.file.to_path_buf(),
-        record: first.record,
-    })?;
-    let first_quantity = quantity_of(first.f);
-    let quantity = match quantity.or(first_quantity) {
-        Some(q) => q,
-        None => {
-            return Err(UffInputError::UnknownQuantity {
-                file: first.file.to_path_buf(),
-                record: first.record,
-                data_type: first.f.ordinate_axis.data_type,
-                units: first.f.ordinate_axis.units.clone(),
-            });
-        }
-    };
-    let reference = (first.f.reference.node, first.f.reference.direction);
-    let units = first.f.ordinate_axis.units.clone();
-    let describe = |a: (f64, f64, usize)| format!("{} points from {} Hz by {} Hz", a.2, a.0, a.1);
-    let check_axis = |x: &Found| -> Result<(), UffInputError> {
+    (frf, coherence)
+}
+
+/// What the first FRF sets and every other function must share.
+struct Frame<'a> {
+    first: &'a Found<'a>,
+    /// The abscissa: start (Hz), step (Hz), points.
+    axis: (f64, f64, usize),
+    /// The reference DOF (node, direction).
+    reference: (u64, i32),
+    /// The ordinate units.
+    units: String,
+    /// The quantity the first FRF declares.
+    quantity: Option<Quantity>,
+}
+
+impl Frame<'_> {
+    /// The function's abscissa must be the first FRF's.
+    fn check_axis(&self, x: &Found) -> Result<(), UffInputError> {
+        let describe =
+            |a: (f64, f64, usize)| format!("{} points from {} Hz by {} Hz", a.2, a.0, a.1);
         let here = axis_of(x.f).ok_or_else(|| UffInputError::UnevenAxis {
             file: x.file.to_path_buf(),
             record: x.record,
         })?;
-        if same_axis(axis, here) {
+        if same_axis(self.axis, here) {
             Ok(())
         } else {
             Err(UffInputError::MixedAxis {
                 file: x.file.to_path_buf(),
                 record: x.record,
                 what: describe(here),
-                expected: describe(axis),
+                expected: describe(self.axis),
             })
         }
-    };
+    }
 
-    let mut channels: Vec<Channel> = Vec::new();
-    let mut responses = Vec::new();
-    for x in &frf {
-        let f = x.f;
+    /// The channel of FRF `x`, after checking it against the first FRF (reference, axis,
+    /// units) and the `channels` before it (a bending DOF not measured twice).
+    fn channel(&self, x: &Found, channels: &[Channel]) -> Result<Channel, UffInputError> {
+        let (f, first) = (x.f, self.first);
         let here = (f.reference.node, f.reference.direction);
-        if here != reference {
+        if here != self.reference {
             return Err(UffInputError::MixedReference {
                 file: x.file.to_path_buf(),
                 record: x.record,
@@ -276,13 +267,12 @@ pub fn frfs(
                 direction: here.1,
                 first_file: first.file.to_path_buf(),
                 first_record: first.record,
-                first_node: reference.0,
-                first_direction: reference.1,
+                first_node: self.reference.0,
+                first_direction: self.reference.1,
             });
         }
-        check_axis(x)?;
-        let q = quantity_of(f);
-        if f.ordinate_axis.units != units || q != first_quantity {
+        self.check_axis(x)?;
+        if f.ordinate_axis.units != self.units || quantity_of(f) != self.quantity {
             return Err(UffInputError::MixedUnits {
                 file: x.file.to_path_buf(),
                 record: x.record,
@@ -292,7 +282,7 @@ pub fn frfs(
                 ),
                 expected: format!(
                     "{:?} (data type {})",
-                    units, first.f.ordinate_axis.data_type
+                    self.units, first.f.ordinate_axis.data_type
                 ),
             });
         }
@@ -318,39 +308,94 @@ pub fn frfs(
                 first_record: c.record,
             });
         }
-        let sign = if direction < 0 { -1.0 } else { 1.0 };
-        responses.push(f.ordinate.to_complex().iter().map(|v| v * sign).collect());
-        channels.push(Channel {
+        Ok(Channel {
             file: x.file.to_path_buf(),
             record: x.record,
             node,
             direction,
-        });
+        })
     }
 
-    // Coherence: used when every response has one (same response and reference DOF).
-    let mut matched = Vec::with_capacity(channels.len());
-    for c in &channels {
-        let hit = coherence.iter().find(|x| {
-            x.f.response.node == c.node
-                && x.f.response.direction == c.direction
-                && (x.f.reference.node, x.f.reference.direction) == reference
-        });
-        match hit {
-            Some(x) => {
-                check_axis(x)?;
-                matched.push(
-                    x.f.ordinate
-                        .to_complex()
-                        .iter()
-                        .map(|v| v.re)
-                        .collect::<Vec<f64>>(),
-                );
+    /// The coherence of every channel (same response and reference DOF), or None when some
+    /// channel has none.
+    fn coherence(
+        &self,
+        coherence: &[Found],
+        channels: &[Channel],
+    ) -> Result<Option<Vec<Vec<f64>>>, UffInputError> {
+        let mut matched = Vec::with_capacity(channels.len());
+        for c in channels {
+            let hit = coherence.iter().find(|x| {
+                x.f.response.node == c.node
+                    && x.f.response.direction == c.direction
+                    && (x.f.reference.node, x.f.reference.direction) == self.reference
+            });
+            match hit {
+                Some(x) => {
+                    self.check_axis(x)?;
+                    matched.push(
+                        x.f.ordinate
+                            .to_complex()
+                            .iter()
+                            .map(|v| v.re)
+                            .collect::<Vec<f64>>(),
+                    );
+                }
+                None => break,
             }
-            None => break,
         }
+        Ok((matched.len() == channels.len()).then_some(matched))
     }
-    let coherence = (matched.len() == channels.len()).then_some(matched);
+}
+
+/// Gathers the FRFs of `files` (path and records, in the order given). `quantity` overrides
+/// the one the files declare.
+pub fn frfs(
+    files: &[(PathBuf, Vec<Record>)],
+    quantity: Option<Quantity>,
+) -> Result<UffFrfs, UffInputError> {
+    let (frf, coherence) = gather(files);
+    let Some(first) = frf.first() else {
+        return Err(UffInputError::NoFrf {
+            files: files
+                .iter()
+                .map(|(p, _)| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+        });
+    };
+    let axis = axis_of(first.f).ok_or_else(|| UffInputError::UnevenAxis {
+        file: first.file.to_path_buf(),
+        record: first.record,
+    })?;
+    let first_quantity = quantity_of(first.f);
+    let quantity = match quantity.or(first_quantity) {
+        Some(q) => q,
+        None => {
+            return Err(UffInputError::UnknownQuantity {
+                file: first.file.to_path_buf(),
+                record: first.record,
+                data_type: first.f.ordinate_axis.data_type,
+                units: first.f.ordinate_axis.units.clone(),
+            });
+        }
+    };
+    let frame = Frame {
+        first,
+        axis,
+        reference: (first.f.reference.node, first.f.reference.direction),
+        units: first.f.ordinate_axis.units.clone(),
+        quantity: first_quantity,
+    };
+    let mut channels: Vec<Channel> = Vec::new();
+    let mut responses = Vec::new();
+    for x in &frf {
+        let channel = frame.channel(x, &channels)?;
+        let sign = if channel.direction < 0 { -1.0 } else { 1.0 };
+        responses.push(x.f.ordinate.to_complex().iter().map(|v| v * sign).collect());
+        channels.push(channel);
+    }
+    let coherence = frame.coherence(&coherence, &channels)?;
     let frequencies_hz = (0..axis.2).map(|i| axis.0 + i as f64 * axis.1).collect();
     Ok(UffFrfs {
         set: FrfSet {
@@ -360,8 +405,8 @@ pub fn frfs(
             quantity,
         },
         channels,
-        reference,
-        units,
+        reference: frame.reference,
+        units: frame.units,
     })
 }
 

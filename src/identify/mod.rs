@@ -10,6 +10,10 @@
 //!    [`weighting`]).
 //! 4. Z_r: weighted least squares (13) by QR ([`wls`]); the correction of parameter i is
 //!    Delta p_i = p_i Z_r(i) (eq. (8)).
+//!
+//! Layer 4 (identification; see the crate docs): may import the layers below: [`crate::stats`],
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
+//! [`crate::model`], [`crate::measured`], [`crate::extract`].
 
 pub mod identifiability;
 pub mod projection;
@@ -26,6 +30,7 @@ pub use system::{LANES, Lanes, ModeSystem};
 pub use weighting::{RetainedRows, Weighting};
 pub use wls::RankDeficient;
 
+use crate::input::SettingError;
 use crate::measured::MeasuredMode;
 use crate::modal::{ModalSolution, lambda_to_hz};
 use crate::structure::{Parameter, Structure, observe};
@@ -41,46 +46,70 @@ pub struct Settings {
     pub weighting: Weighting,
 }
 
+impl Settings {
+    /// The settings for `structure`, with n checked against it (from its rigid-body modes + 1
+    /// to its DOFs). m depends on the parameters identified too: [`Identifier::new`] checks it.
+    pub fn new(
+        n: usize,
+        m: usize,
+        weighting: Weighting,
+        structure: &Structure,
+    ) -> Result<Settings, SettingError> {
+        check_basis_size(n, structure.rigid, structure.dof_count())?;
+        Ok(Settings { n, m, weighting })
+    }
+}
+
+/// n must leave one deformable mode and not exceed the `dofs` pairs available.
+fn check_basis_size(n: usize, rigid: usize, dofs: usize) -> Result<(), SettingError> {
+    if n <= rigid || n > dofs {
+        return Err(SettingError::new(
+            "n",
+            n,
+            format!(
+                "it must be from {} to {dofs} (the model's DOFs), rigid-body modes included",
+                rigid + 1
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// m must give at least one equation per parameter (`q` of them) and use only the deformable
+/// rows of a basis of `n` pairs, `rigid` of them rigid-body modes.
+fn check_equations(m: usize, q: usize, n: usize, rigid: usize) -> Result<(), SettingError> {
+    if m < q {
+        return Err(SettingError::new(
+            "m",
+            m,
+            format!("it must be at least the number of parameters q = {q}"),
+        ));
+    }
+    if m > n - rigid {
+        return Err(SettingError::new(
+            "m",
+            m,
+            format!(
+                "a basis of n = {n} has only {} deformable rows (rigid-body rows are never retained)",
+                n - rigid
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Settings or data the method cannot work with.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum IdentifyError {
-    /// n outside what the model offers.
-    #[error(
-        "n = {n} is invalid: it must be from {min} to {dofs} (the model's DOFs), rigid-body modes included"
-    )]
-    BasisSize {
-        /// Requested n.
-        n: usize,
-        /// Smallest useful n (one deformable mode).
-        min: usize,
-        /// N.
-        dofs: usize,
-    },
+    /// n outside what the model offers, or m outside what the basis and the parameters allow
+    /// (the setting is named).
+    #[error(transparent)]
+    Setting(#[from] SettingError),
     /// Nothing to identify.
     #[error(
         "the model identifies no parameter (no joint, or every parameter held fixed): there is nothing to identify"
     )]
     NoParameters,
-    /// m below the number of parameters.
-    #[error("m = {m} is invalid: it must be at least the number of parameters q = {q}")]
-    TooFewEquations {
-        /// Requested m.
-        m: usize,
-        /// q.
-        q: usize,
-    },
-    /// m above the deformable rows of the basis.
-    #[error(
-        "m = {m} is invalid: a basis of n = {n} has only {available} deformable rows (rigid-body rows are never retained)"
-    )]
-    TooManyEquations {
-        /// Requested m.
-        m: usize,
-        /// Basis size n.
-        n: usize,
-        /// n - rigid-body modes.
-        available: usize,
-    },
     /// The mode's own basis vector is not in the sub-basis.
     #[error(
         "mode {mode} pairs with basis index {index} (1-based, after {rigid} rigid-body modes), beyond n = {n}: increase n"
@@ -163,23 +192,8 @@ impl Identifier {
         if params.is_empty() {
             return Err(IdentifyError::NoParameters);
         }
-        if n <= rigid || n > modal.len() {
-            return Err(IdentifyError::BasisSize {
-                n,
-                min: rigid + 1,
-                dofs: modal.len(),
-            });
-        }
-        if m < params.len() {
-            return Err(IdentifyError::TooFewEquations { m, q: params.len() });
-        }
-        if m > n - rigid {
-            return Err(IdentifyError::TooManyEquations {
-                m,
-                n,
-                available: n - rigid,
-            });
-        }
+        check_basis_size(n, rigid, modal.len())?;
+        check_equations(m, params.len(), n, rigid)?;
         let (y, lambdas) = modal.sub_basis(n);
         Ok(Self {
             y,
@@ -319,5 +333,37 @@ pub fn condition_number(a: &[f64], m: usize, q: usize) -> f64 {
     match mat.singular_values() {
         Ok(s) if s[q - 1] > 0.0 => s[0] / s[q - 1],
         _ => f64::INFINITY,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::fixtures::paper_model;
+
+    #[test]
+    fn settings_are_checked_where_they_are_set() {
+        let model = paper_model(1e7, 1e4);
+        let ok = Settings::new(10, 5, Weighting::Inverse, &model).unwrap();
+        assert_eq!((ok.n, ok.m), (10, 5));
+        for n in [2, 39] {
+            let e = Settings::new(n, 5, Weighting::Inverse, &model).unwrap_err();
+            assert_eq!(e.setting, "n");
+            assert_eq!(
+                e.to_string(),
+                format!(
+                    "n = {n} is invalid: it must be from 3 to 38 (the model's DOFs), rigid-body modes included"
+                )
+            );
+        }
+        let modal = ModalSolution::solve(&model.assemble()).unwrap();
+        let too_many = Settings::new(10, 9, Weighting::Inverse, &model).unwrap();
+        match Identifier::for_structure(&model, &modal, too_many) {
+            Err(IdentifyError::Setting(e)) => assert_eq!(
+                e.with_name("--m"),
+                "--m 9 is invalid: a basis of n = 10 has only 8 deformable rows (rigid-body rows are never retained)"
+            ),
+            other => panic!("{:?}", other.err()),
+        }
     }
 }

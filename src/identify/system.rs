@@ -103,11 +103,9 @@ impl ModeSystem {
     }
 }
 
-/// Number of systems assembled together by [`ModeSystem::assemble_lanes`].
-pub const LANES: usize = 8;
-
-/// One value per lane.
-pub type Lanes = [f64; LANES];
+/// Number of systems assembled together by [`ModeSystem::assemble_lanes`]: the lanes of the
+/// random streams, [`crate::random::LANES`].
+pub use crate::random::{LANES, Lanes};
 
 impl ModeSystem {
     /// [`ModeSystem::assemble`] for `LANES` independent data sets at once: `g[t][l]` is g_t of

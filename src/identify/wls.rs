@@ -177,8 +177,9 @@ fn project_out_lanes(u: &[Lanes], x: &mut [Lanes]) -> Lanes {
     ux
 }
 
-/// Largest number of parameters the solver takes (eight joints of two parameters).
-pub const MAX_Q: usize = 16;
+/// Largest number of parameters the solver takes: a structure's
+/// [`crate::structure::MAX_IDENTIFIED`].
+pub const MAX_Q: usize = crate::structure::MAX_IDENTIFIED;
 
 /// x <- x - (u . x) u for a unit vector u; returns u . x.
 #[inline]

@@ -10,8 +10,9 @@
 //! [`read`] chooses a file's format (its extension, else its content) among [`FORMATS`]. A new
 //! format is one file implementing [`Format`], its `mod` line and its entry in [`FORMATS`].
 //!
-//! May import: the structure and the modal conversions; nothing above them (commands, output,
-//! diagnose, ...).
+//! Layer 3 (models and measurements; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`]) and, without a circle, [`crate::model`], [`crate::extract`].
 
 pub mod csv;
 pub mod error;

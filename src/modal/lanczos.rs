@@ -76,7 +76,7 @@ use faer::{Accum, Mat, MatRef, Par, Side};
 
 use super::refine::refine;
 use super::sparse_llt::{Ordering, SparseLlt};
-use super::{ModalError, fix_sign};
+use super::{ModalError, fix_sign, sparse_mul};
 
 /// How many factorisations of K - sigma M are tried, |sigma| growing 100-fold each time.
 pub const SHIFT_ATTEMPTS: usize = 6;
@@ -352,17 +352,6 @@ fn norm_1(a: SparseColMatRef<'_, usize, f64>) -> f64 {
     (0..a.ncols())
         .map(|j| a.val_of_col(j).iter().map(|v| v.abs()).sum::<f64>())
         .fold(0.0, f64::max)
-}
-
-/// `y = A x` for a matrix stored with both triangles.
-pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    y.fill(0.0);
-    for (j, &xj) in x.iter().enumerate() {
-        let rows = a.symbolic().row_idx_of_col_raw(j);
-        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            y[i] += v * xj;
-        }
-    }
 }
 
 /// The M-orthonormal Krylov basis in Krylov-Schur form: OP V = V H + beta v_size e^T.

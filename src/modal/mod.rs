@@ -16,7 +16,11 @@
 //! A x = lambda x, y = L^-T x. A is scaled to unit largest entry before the symmetric solver
 //! and the eigenvalues rescaled after: faer's solver loses accuracy on entries of order
 //! 1e12 (as L^-1 K L^-T of a fine beam mesh is) without it.
+//!
+//! Layer 2 (eigensolution; see the crate docs): may import the layers below: [`crate::stats`],
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
+pub mod elastic;
 pub mod lanczos;
 pub mod nelson;
 pub mod refine;
@@ -26,6 +30,8 @@ use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
 use crate::structure::Matrices;
+
+pub use elastic::{Mechanism, check_elastic};
 
 /// Largest number of DOFs solved densely (all pairs); larger models get their lowest pairs by
 /// shift-invert Lanczos. Measured with `cargo run --release --example dense_threshold` on the
@@ -273,6 +279,17 @@ pub fn lambda_to_hz(lambda: f64) -> f64 {
 pub fn hz_to_lambda(f: f64) -> f64 {
     let w = 2.0 * std::f64::consts::PI * f;
     w * w
+}
+
+/// `y = A x` for a matrix stored with both triangles.
+pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
+    y.fill(0.0);
+    for (j, &xj) in x.iter().enumerate() {
+        let rows = a.symbolic().row_idx_of_col_raw(j);
+        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
+            y[i] += v * xj;
+        }
+    }
 }
 
 fn fix_sign(v: &mut Mat<f64>, j: usize) {

@@ -27,7 +27,7 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 
 use super::ModalError;
-use super::lanczos::sparse_mul;
+use super::sparse_mul;
 use crate::structure::SparseSym;
 
 /// Largest allowed |y^T M y - 1| of the vector handed to [`NelsonMode::new`].

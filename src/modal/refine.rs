@@ -29,8 +29,8 @@
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
-use super::lanczos::sparse_mul;
 use super::sparse_llt::SparseLlt;
+use super::sparse_mul;
 
 /// Corrections of M-norm below this (for M-normalised vectors) are left out: their content is
 /// the rounding of the vector, whose Rayleigh quotient is of the element scale.

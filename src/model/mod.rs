@@ -9,6 +9,10 @@
 //!
 //! A model file is TOML; `kind` says which builder reads it: `"chain"` (the default) or
 //! `"matrices"`.
+//!
+//! Layer 3 (models and measurements; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`]) and, without a circle, [`crate::measured`], [`crate::extract`].
 
 pub mod chain;
 pub mod effects;

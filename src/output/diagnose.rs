@@ -3,7 +3,7 @@
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
-use crate::diagnose::candidate::Profile;
+use crate::diagnose::report::Profile;
 use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
 

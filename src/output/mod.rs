@@ -1,5 +1,11 @@
 //! Exporters: CSV tables and terminal tables, written into any `io::Write`, and the atomic
 //! file writer that puts them on disk whole or not at all.
+//!
+//! Layer 7 (outputs; see the crate docs): may import the layers below: [`crate::stats`],
+//! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
+//! [`crate::model`], [`crate::measured`], [`crate::extract`], [`crate::identify`],
+//! [`crate::simulate`], [`crate::study`], [`crate::diagnose`], [`crate::report`],
+//! [`crate::cluster`].
 
 pub mod atomic;
 pub mod catalogue;

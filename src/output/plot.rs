@@ -5,6 +5,7 @@
 use std::ops::Range;
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 
 /// Series colours, in order.
@@ -315,34 +316,19 @@ fn with_legend_strip<'a>(
     whole.split_horizontally(width - strip)
 }
 
-/// Lines with markers (and error bars), log axes on request; the legend in a strip on the
-/// right.
-pub fn lines(
-    whole: &DrawingArea<SVGBackend, Shift>,
-    title: &str,
-    axes: &LineAxes,
-    series: &[Series],
-) -> Result<(), PlotError> {
-    let mut entries: Vec<(String, RGBColor, bool)> = Vec::new();
-    if let Some((_, label)) = &axes.reference {
-        entries.push((label.clone(), PALETTE[1], true));
+/// The colour of series `k` of a line plot (the reference line, when there is one, takes the
+/// second colour of the palette).
+fn series_colour(axes: &LineAxes, k: usize) -> RGBColor {
+    if axes.reference.is_some() {
+        PALETTE[(k + 2) % PALETTE.len()]
+    } else {
+        PALETTE[k % PALETTE.len()]
     }
-    for (k, s) in series.iter().enumerate() {
-        let colour = if axes.reference.is_some() {
-            PALETTE[(k + 2) % PALETTE.len()]
-        } else {
-            PALETTE[k % PALETTE.len()]
-        };
-        entries.push((s.name.clone(), colour, false));
-    }
-    let (area, legend_area) = with_legend_strip(whole, &entries);
-    legend(&legend_area, &entries)?;
-    let whole_x = integer_x(series);
-    let area = &area;
-    let xs = span(
-        series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
-        axes.log_x,
-    );
+}
+
+/// The y range of a line plot: every point with its error bar (without, when the bars are
+/// clipped: then padded by 30% on a linear axis) and the reference value.
+fn line_y_range(axes: &LineAxes, series: &[Series]) -> Range<f64> {
     let y_span = span(
         series
             .iter()
@@ -359,105 +345,149 @@ pub fn lines(
             .chain(axes.reference.iter().map(|r| r.0)),
         axes.log_y,
     );
-    let ys = if axes.clip_errors && !axes.log_y {
+    if axes.clip_errors && !axes.log_y {
         let pad = 0.3 * (y_span.end - y_span.start);
         (y_span.start - pad)..(y_span.end + pad)
     } else {
         y_span
-    };
-    let (y_lo, y_hi) = (ys.start, ys.end);
-    macro_rules! draw {
-        ($chart:expr) => {{
-            let mut chart = $chart;
-            chart
-                .configure_mesh()
-                .light_line_style(RGBColor(245, 245, 245))
-                .y_labels(if axes.log_y { 6 } else { 10 })
-                .x_labels(if axes.log_x { 6 } else { 10 })
-                .x_desc(axes.x_desc.as_str())
-                .y_desc(axes.y_desc.as_str())
-                .x_label_formatter(&|v| {
-                    if whole_x && v.fract().abs() > 1e-9 {
-                        String::new()
-                    } else {
-                        tick(*v)
-                    }
-                })
-                .y_label_formatter(&|v| tick(*v))
-                .axis_desc_style((FONT, 14))
-                .draw()
-                .map_err(err)?;
-            if let Some((value, label)) = &axes.reference {
-                let red = PALETTE[1];
-                let _ = label;
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        vec![(xs.start, *value), (xs.end, *value)],
-                        8,
-                        5,
-                        red.stroke_width(2),
-                    ))
-                    .map_err(err)?;
-            }
-            for (k, s) in series.iter().enumerate() {
-                let colour = if axes.reference.is_some() {
-                    PALETTE[(k + 2) % PALETTE.len()]
-                } else {
-                    PALETTE[k % PALETTE.len()]
-                };
-                let ok = |p: &(f64, f64)| {
-                    (!axes.log_x || p.0 > 0.0) && (!axes.log_y || p.1 > 0.0) && p.1.is_finite()
-                };
-                let points: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
-                if let Some(errors) = &s.errors {
-                    for (p, e) in s.points.iter().zip(errors) {
-                        let (lo, hi) = ((p.1 - e).max(y_lo), (p.1 + e).min(y_hi));
-                        if ok(p) && (!axes.log_y || lo > 0.0) {
-                            chart
-                                .draw_series(std::iter::once(PathElement::new(
-                                    vec![(p.0, lo), (p.0, hi)],
-                                    colour.stroke_width(1),
-                                )))
-                                .map_err(err)?;
-                        }
-                    }
-                }
-                if s.line {
-                    chart
-                        .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
-                        .map_err(err)?;
-                }
-                chart
-                    .draw_series(points.iter().map(|p| Circle::new(*p, 4, colour.filled())))
-                    .map_err(err)?;
-            }
-        }};
     }
-    let mut builder = ChartBuilder::on(area);
+}
+
+/// Lines with markers (and error bars), log axes on request; the legend in a strip on the
+/// right.
+pub fn lines(
+    whole: &DrawingArea<SVGBackend, Shift>,
+    title: &str,
+    axes: &LineAxes,
+    series: &[Series],
+) -> Result<(), PlotError> {
+    let mut entries: Vec<(String, RGBColor, bool)> = Vec::new();
+    if let Some((_, label)) = &axes.reference {
+        entries.push((label.clone(), PALETTE[1], true));
+    }
+    for (k, s) in series.iter().enumerate() {
+        entries.push((s.name.clone(), series_colour(axes, k), false));
+    }
+    let (area, legend_area) = with_legend_strip(whole, &entries);
+    legend(&legend_area, &entries)?;
+    let plot = LinePlot {
+        axes,
+        series,
+        xs: span(
+            series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+            axes.log_x,
+        ),
+        ys: line_y_range(axes, series),
+        whole_x: integer_x(series),
+    };
+    let (xs, ys) = (plot.xs.clone(), plot.ys.clone());
+    let mut builder = ChartBuilder::on(&area);
     builder
         .caption(title, (FONT, 16))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(80);
     match (axes.log_x, axes.log_y) {
-        (false, false) => draw!(builder.build_cartesian_2d(xs.clone(), ys).map_err(err)?),
-        (true, false) => draw!(
+        (false, false) => plot.draw(builder.build_cartesian_2d(xs, ys).map_err(err)?),
+        (true, false) => plot.draw(
             builder
-                .build_cartesian_2d(xs.clone().log_scale(), ys)
-                .map_err(err)?
+                .build_cartesian_2d(xs.log_scale(), ys)
+                .map_err(err)?,
         ),
-        (false, true) => draw!(
+        (false, true) => plot.draw(
             builder
-                .build_cartesian_2d(xs.clone(), ys.log_scale())
-                .map_err(err)?
+                .build_cartesian_2d(xs, ys.log_scale())
+                .map_err(err)?,
         ),
-        (true, true) => draw!(
+        (true, true) => plot.draw(
             builder
-                .build_cartesian_2d(xs.clone().log_scale(), ys.log_scale())
-                .map_err(err)?
+                .build_cartesian_2d(xs.log_scale(), ys.log_scale())
+                .map_err(err)?,
         ),
     }
-    Ok(())
+}
+
+/// What a line plot draws inside its axes.
+struct LinePlot<'s> {
+    axes: &'s LineAxes,
+    series: &'s [Series],
+    xs: Range<f64>,
+    ys: Range<f64>,
+    /// Whether every x is an integer (then only integer ticks are labelled).
+    whole_x: bool,
+}
+
+impl LinePlot<'_> {
+    /// Draws the mesh, the reference line and every series (error bars, line, markers) on
+    /// `chart`, whatever its axes' scales.
+    fn draw<X, Y>(
+        &self,
+        mut chart: ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, Y>>,
+    ) -> Result<(), PlotError>
+    where
+        X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+        Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    {
+        let axes = self.axes;
+        let (y_lo, y_hi) = (self.ys.start, self.ys.end);
+        chart
+            .configure_mesh()
+            .light_line_style(RGBColor(245, 245, 245))
+            .y_labels(if axes.log_y { 6 } else { 10 })
+            .x_labels(if axes.log_x { 6 } else { 10 })
+            .x_desc(axes.x_desc.as_str())
+            .y_desc(axes.y_desc.as_str())
+            .x_label_formatter(&|v| {
+                if self.whole_x && v.fract().abs() > 1e-9 {
+                    String::new()
+                } else {
+                    tick(*v)
+                }
+            })
+            .y_label_formatter(&|v| tick(*v))
+            .axis_desc_style((FONT, 14))
+            .draw()
+            .map_err(err)?;
+        if let Some((value, _)) = &axes.reference {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(self.xs.start, *value), (self.xs.end, *value)],
+                    8,
+                    5,
+                    PALETTE[1].stroke_width(2),
+                ))
+                .map_err(err)?;
+        }
+        for (k, s) in self.series.iter().enumerate() {
+            let colour = series_colour(axes, k);
+            let ok = |p: &(f64, f64)| {
+                (!axes.log_x || p.0 > 0.0) && (!axes.log_y || p.1 > 0.0) && p.1.is_finite()
+            };
+            let points: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
+            if let Some(errors) = &s.errors {
+                for (p, e) in s.points.iter().zip(errors) {
+                    let (lo, hi) = ((p.1 - e).max(y_lo), (p.1 + e).min(y_hi));
+                    if ok(p) && (!axes.log_y || lo > 0.0) {
+                        chart
+                            .draw_series(std::iter::once(PathElement::new(
+                                vec![(p.0, lo), (p.0, hi)],
+                                colour.stroke_width(1),
+                            )))
+                            .map_err(err)?;
+                    }
+                }
+            }
+            if s.line {
+                chart
+                    .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
+                    .map_err(err)?;
+            }
+            chart
+                .draw_series(points.iter().map(|p| Circle::new(*p, 4, colour.filled())))
+                .map_err(err)?;
+        }
+        Ok(())
+    }
 }
 
 /// Vertical bars on a log axis with a horizontal threshold line.

@@ -55,15 +55,8 @@ fn magnitude_sum(series: impl Iterator<Item = Vec<f64>>, len: usize) -> Vec<f64>
     sum
 }
 
-/// Draws the chart of `ex` (extracted from `frf`) on `area`.
-pub fn draw(
-    area: &DrawingArea<SVGBackend, Shift>,
-    frf: &FrfSet,
-    ex: &Extraction,
-    title: &str,
-) -> Result<(), PlotError> {
-    let (width, _) = area.dim_in_pixel();
-    let (plot_area, legend_area) = area.split_horizontally(width as i32 - 300);
+/// The sums over responses of |H|, measured and of the identified model, on the band's lines.
+fn band_magnitudes(frf: &FrfSet, ex: &Extraction) -> (Vec<f64>, Vec<f64>) {
     let n = ex.frequencies_hz.len();
     let measured = magnitude_sum(
         frf.responses
@@ -77,16 +70,31 @@ pub fn draw(
             .map(|h| h.iter().map(|v| v.norm()).collect()),
         n,
     );
-    let positive = measured
-        .iter()
-        .chain(&model)
-        .copied()
-        .filter(|v| *v > 0.0 && v.is_finite());
-    let (mut lo, mut hi) =
-        positive.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+    (measured, model)
+}
+
+/// The smallest and largest positive finite values, or (1e-12, 1) when there is none.
+fn positive_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let positive = values.filter(|v| *v > 0.0 && v.is_finite());
+    let (lo, hi) = positive.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
     if !lo.is_finite() || hi <= 0.0 {
-        (lo, hi) = (1e-12, 1.0);
+        (1e-12, 1.0)
+    } else {
+        (lo, hi)
     }
+}
+
+/// Draws the chart of `ex` (extracted from `frf`) on `area`.
+pub fn draw(
+    area: &DrawingArea<SVGBackend, Shift>,
+    frf: &FrfSet,
+    ex: &Extraction,
+    title: &str,
+) -> Result<(), PlotError> {
+    let (width, _) = area.dim_in_pixel();
+    let (plot_area, legend_area) = area.split_horizontally(width as i32 - 300);
+    let (measured, model) = band_magnitudes(frf, ex);
+    let (lo, hi) = positive_range(measured.iter().chain(&model).copied());
     let (x0, x1) = ex.band_hz;
     let top = ex.max_order as f64 + 1.0;
     let mut chart = ChartBuilder::on(&plot_area)

@@ -1,109 +1,11 @@
-//! Study outputs: the tidy result CSV (one row per (cell, mode, parameter)), the optional
-//! per-trial CSV, and the summary in the paper's table layout.
-//!
-//! Result columns: `cell,mode,param,n,m,nf,weighting,shape_noise,frequency_noise,noise,
-//! introduced,trials,failures,mean,bias,relative_bias,std,rmse,median,mad,q05,q25,q75,q95,
-//! bias_se,predicted_std,median_se,unidentified`. Statistics are over the `trials - failures`
-//! successful trials; a statistic that does not exist (every trial failed, a relative bias
-//! of a zero introduction) is an empty field, never NaN.
+//! Study outputs beside the result CSV (whose schema and writer are the study's,
+//! [`crate::study::results`]): the optional per-trial CSV, and the summary in the paper's
+//! table layout.
 
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
-use crate::study::{CellResult, CellSamples, NoiseKind, RowStats};
-
-/// Columns of the result CSV.
-pub const RESULT_HEADER: [&str; 28] = [
-    "cell",
-    "mode",
-    "param",
-    "n",
-    "m",
-    "nf",
-    "weighting",
-    "shape_noise",
-    "frequency_noise",
-    "noise",
-    "introduced",
-    "trials",
-    "failures",
-    "mean",
-    "bias",
-    "relative_bias",
-    "std",
-    "rmse",
-    "median",
-    "mad",
-    "q05",
-    "q25",
-    "q75",
-    "q95",
-    "bias_se",
-    "predicted_std",
-    "median_se",
-    "unidentified",
-];
-
-fn opt(x: Option<f64>) -> String {
-    x.map(|v| v.to_string()).unwrap_or_default()
-}
-
-fn stat_fields(row: &RowStats) -> Vec<String> {
-    match &row.summary {
-        None => vec![String::new(); 12],
-        Some(s) => vec![
-            s.mean.to_string(),
-            s.bias.to_string(),
-            opt(s.relative_bias),
-            s.std.to_string(),
-            s.rmse.to_string(),
-            s.median.to_string(),
-            s.mad.to_string(),
-            s.q05.to_string(),
-            s.q25.to_string(),
-            s.q75.to_string(),
-            s.q95.to_string(),
-            s.bias_se.to_string(),
-        ],
-    }
-}
-
-/// Writes the result CSV.
-pub fn write_results(
-    out: &mut dyn Write,
-    results: &[CellResult],
-    names: &[String],
-    noise: NoiseKind,
-) -> io::Result<()> {
-    let mut w = csv::Writer::from_writer(out);
-    w.write_record(RESULT_HEADER)?;
-    for r in results {
-        let c = &r.cell;
-        for row in &r.rows {
-            let mut record = vec![
-                c.index.to_string(),
-                row.mode.to_string(),
-                names[row.param].clone(),
-                c.n.0.to_string(),
-                c.m.0.to_string(),
-                c.nf().to_string(),
-                c.weighting.to_string(),
-                c.shape_noise.to_string(),
-                c.frequency_noise.to_string(),
-                noise.to_string(),
-                row.introduced.to_string(),
-                row.trials.to_string(),
-                row.failures.to_string(),
-            ];
-            record.extend(stat_fields(row));
-            record.push(opt(row.predicted_std));
-            record.push(opt(row.summary.as_ref().map(|s| s.median_se)));
-            record.push(c.unidentified_names());
-            w.write_record(&record)?;
-        }
-    }
-    w.flush()
-}
+use crate::study::{CellResult, CellSamples};
 
 /// Header of the per-trial CSV.
 pub const TRIALS_HEADER: [&str; 6] = ["cell", "trial", "mode", "param", "correction", "failed"];
@@ -180,15 +82,8 @@ pub fn write_paper_table(
         .iter()
         .map(|res| {
             let c = &res.cell;
-            let mut cells = vec![
-                c.index.to_string(),
-                c.n.0.to_string(),
-                c.m.0.to_string(),
-                c.nf().to_string(),
-                c.weighting.to_string(),
-                c.shape_noise.to_string(),
-                c.frequency_noise.to_string(),
-            ];
+            let mut cells = vec![c.index.to_string()];
+            cells.extend(c.condition_fields());
             for row in &res.rows {
                 cells.push(match &row.summary {
                     Some(s) => format!("{} [{}, {}]", sci(s.median), sci(s.q05), sci(s.q95)),

@@ -1,32 +1,36 @@
 //! Reading a study result CSV back for reports: the rows, the conditions of every cell, and
 //! which grid axes vary.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
+//! [`crate::diagnose`], [`crate::cluster`].
 
 use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-/// Columns a report needs from a study CSV.
-pub const REQUIRED: [&str; 19] = [
-    "cell",
-    "mode",
-    "param",
-    "n",
-    "m",
-    "nf",
-    "weighting",
-    "shape_noise",
-    "frequency_noise",
-    "noise",
-    "introduced",
-    "trials",
-    "failures",
-    "median",
-    "q05",
-    "q25",
-    "q75",
-    "q95",
-    "relative_bias",
-];
+use crate::study::results::Column;
+
+/// Columns a report needs from a study CSV (of [`crate::study::results`]): those that say
+/// which row it is and how it was run (`cell` to `failures`), the quantiles and the relative
+/// bias.
+pub fn required() -> Vec<Column> {
+    let conditions = &Column::ALL[..=Column::Failures.index()];
+    conditions
+        .iter()
+        .copied()
+        .chain([
+            Column::Median,
+            Column::Q05,
+            Column::Q25,
+            Column::Q75,
+            Column::Q95,
+            Column::RelativeBias,
+        ])
+        .collect()
+}
 
 /// A study CSV that cannot be reported.
 #[derive(Debug, thiserror::Error)]
@@ -131,6 +135,37 @@ pub struct StudyResults {
     pub noise: String,
 }
 
+/// Where each [`required`] column is in `header`; the missing ones named when some are.
+fn required_columns(
+    header: &csv::StringRecord,
+    file: &Path,
+) -> Result<BTreeMap<Column, usize>, ReportError> {
+    let required = required();
+    let missing: Vec<&str> = required
+        .iter()
+        .map(|c| c.name())
+        .filter(|c| !header.iter().any(|h| h == *c))
+        .collect();
+    if !missing.is_empty() {
+        return Err(ReportError::MissingColumns {
+            file: file.into(),
+            missing: missing.join(", "),
+        });
+    }
+    Ok(required
+        .iter()
+        .map(|&c| {
+            (
+                c,
+                header
+                    .iter()
+                    .position(|h| h == c.name())
+                    .expect("checked above"),
+            )
+        })
+        .collect())
+}
+
 impl StudyResults {
     /// Reads a study CSV.
     pub fn from_path(path: &Path) -> Result<Self, ReportError> {
@@ -153,67 +188,62 @@ impl StudyResults {
             .headers()
             .map_err(|e| line_error(1, e.to_string()))?
             .clone();
-        let missing: Vec<&str> = REQUIRED
-            .iter()
-            .copied()
-            .filter(|c| !header.iter().any(|h| h == *c))
-            .collect();
-        if !missing.is_empty() {
-            return Err(ReportError::MissingColumns {
-                file: file.into(),
-                missing: missing.join(", "),
-            });
-        }
-        let at: BTreeMap<&str, usize> = REQUIRED
-            .iter()
-            .map(|c| {
-                (
-                    *c,
-                    header.iter().position(|h| h == *c).expect("checked above"),
-                )
-            })
-            .collect();
+        let at = required_columns(&header, file)?;
         let (mut rows, mut cells, mut noise) = (Vec::new(), BTreeMap::new(), String::new());
         for record in csv.records() {
             let record = record
                 .map_err(|e| line_error(e.position().map_or(0, |p| p.line()), e.to_string()))?;
             let line = record.position().map_or(0, |p| p.line());
-            let field = |name: &str| record.get(at[name]).unwrap_or("");
-            let number = |name: &str| -> Result<f64, ReportError> {
-                field(name)
+            let field = |column: Column| record.get(at[&column]).unwrap_or("");
+            let number = |column: Column| -> Result<f64, ReportError> {
+                field(column)
                     .parse::<f64>()
                     .ok()
                     .filter(|v| v.is_finite())
                     .ok_or_else(|| {
                         line_error(
                             line,
-                            format!("{name} = `{}` is not a finite number", field(name)),
+                            format!(
+                                "{} = `{}` is not a finite number",
+                                column.name(),
+                                field(column)
+                            ),
                         )
                     })
             };
-            let optional = |name: &str| -> Result<Option<f64>, ReportError> {
-                if field(name).is_empty() {
+            let optional = |column: Column| -> Result<Option<f64>, ReportError> {
+                if field(column).is_empty() {
                     Ok(None)
                 } else {
-                    number(name).map(Some)
+                    number(column).map(Some)
                 }
             };
-            let integer = |name: &str| -> Result<usize, ReportError> {
-                field(name).parse().map_err(|_| {
-                    line_error(line, format!("{name} = `{}` is not a count", field(name)))
+            let integer = |column: Column| -> Result<usize, ReportError> {
+                field(column).parse().map_err(|_| {
+                    line_error(
+                        line,
+                        format!("{} = `{}` is not a count", column.name(), field(column)),
+                    )
                 })
             };
-            let cell = integer("cell")?;
+            let cell = integer(Column::Cell)?;
             cells.entry(cell).or_insert(Conditions {
-                n: integer("n")?,
-                m: integer("m")?,
-                nf: integer("nf")?,
-                weighting: field("weighting").to_string(),
-                shape_noise: number("shape_noise")?,
-                frequency_noise: number("frequency_noise")?,
+                n: integer(Column::N)?,
+                m: integer(Column::M)?,
+                nf: integer(Column::Nf)?,
+                weighting: field(Column::Weighting).to_string(),
+                shape_noise: number(Column::ShapeNoise)?,
+                frequency_noise: number(Column::FrequencyNoise)?,
             });
-            noise = field("noise").to_string();
-            let q = ["q05", "q25", "median", "q75", "q95"].map(optional);
+            noise = field(Column::Noise).to_string();
+            let q = [
+                Column::Q05,
+                Column::Q25,
+                Column::Median,
+                Column::Q75,
+                Column::Q95,
+            ]
+            .map(optional);
             let quantiles = match q {
                 [
                     Ok(Some(a)),
@@ -231,13 +261,13 @@ impl StudyResults {
             };
             rows.push(ResultRow {
                 cell,
-                mode: integer("mode")?,
-                param: field("param").to_string(),
-                introduced: number("introduced")?,
-                trials: integer("trials")?,
-                failures: integer("failures")?,
+                mode: integer(Column::Mode)?,
+                param: field(Column::Param).to_string(),
+                introduced: number(Column::Introduced)?,
+                trials: integer(Column::Trials)?,
+                failures: integer(Column::Failures)?,
                 quantiles,
-                relative_bias: optional("relative_bias")?,
+                relative_bias: optional(Column::RelativeBias)?,
             });
         }
         if rows.is_empty() {
@@ -352,10 +382,10 @@ mod tests {
 
     #[test]
     fn every_required_column_is_written_by_the_study() {
-        for column in REQUIRED {
+        for column in required() {
             assert!(
-                crate::output::study::RESULT_HEADER.contains(&column),
-                "{column}"
+                crate::study::results::RESULT_HEADER.contains(&column.name()),
+                "{column:?}"
             );
         }
     }

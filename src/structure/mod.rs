@@ -12,6 +12,9 @@
 //! - [`dofs`]: the DOF map (labels, positions, directions, line elements);
 //! - [`observation`]: what a sensor reads, c^T u, at a DOF or between nodes;
 //! - [`sites`]: joints, elements and free ends, for the effects.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::uff`].
 
 pub mod dofs;
 pub mod matrix;
@@ -27,7 +30,10 @@ pub use sites::{
 };
 pub use sparse::SparseSym;
 
-use crate::modal::{ModalError, ModalSolution};
+/// Largest number of identified parameters a structure may have: the most the per-mode
+/// identification solves for (eight joints of two parameters; its least-squares solver keeps
+/// R on the stack, [`crate::identify::wls::MAX_Q`]). The beam-chain builder refuses more.
+pub const MAX_IDENTIFIED: usize = 16;
 
 /// Whether a parameter is identified or held at its value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -96,50 +102,6 @@ impl Matrices {
     }
 }
 
-/// A structure whose first deformable eigenvalue is zero to round-off: it moves without
-/// deforming more ways than its rigid-body count says.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "deformable mode {mode} has frequency {frequency_hz:.3e} Hz, at the round-off level of zero: the structure is a mechanism (a joint or support stiffness too small for the rest of the model, or all stiffness removed somewhere)"
-)]
-pub struct Mechanism {
-    /// The deformable mode (1-based).
-    pub mode: usize,
-    /// Its computed frequency, Hz.
-    pub frequency_hz: f64,
-}
-
-/// How far above the computed rigid-body eigenvalues (the sparse solver's zero) the first
-/// deformable one must stand.
-const RIGID_MARGIN: f64 = 1e2;
-
-/// Checks that the first deformable eigenvalue of `modal` (the solution of `matrices`, with
-/// `rigid` rigid-body modes first) stands above the solver's zero: for the dense solve of a
-/// small model, the round-off level [`Matrices::zero_eigenvalue_level`]; for the sparse
-/// solver of a large one, whose low eigenvalues are accurate relative to themselves,
-/// [`RIGID_MARGIN`] times the largest computed rigid-body eigenvalue. Never at or below 0.
-pub fn check_elastic(
-    matrices: &Matrices,
-    modal: &ModalSolution,
-    rigid: usize,
-) -> Result<(), Mechanism> {
-    let zero = if matrices.size() <= crate::modal::DENSE_MAX_DOFS {
-        matrices.zero_eigenvalue_level()
-    } else {
-        RIGID_MARGIN
-            * modal.values()[..rigid.min(modal.len())]
-                .iter()
-                .fold(0.0, |a: f64, l| a.max(l.abs()))
-    };
-    match modal.values().get(rigid) {
-        Some(&lambda) if lambda <= zero => Err(Mechanism {
-            mode: 1,
-            frequency_hz: modal.frequency_hz(rigid),
-        }),
-        _ => Ok(()),
-    }
-}
-
 /// A structure: see the module docs.
 #[derive(Debug, Clone)]
 pub struct Structure {
@@ -183,6 +145,11 @@ impl Structure {
             .collect()
     }
 
+    /// The names of the identified parameters, in model order.
+    pub fn identified_names(&self) -> Vec<String> {
+        self.identified().into_iter().map(|p| p.name).collect()
+    }
+
     /// Positions in [`Structure::parameters`] of the identified parameters.
     pub fn identified_indices(&self) -> Vec<usize> {
         (0..self.parameters.len())
@@ -211,11 +178,5 @@ impl Structure {
             out.parameters[i].value = *v;
         }
         out
-    }
-
-    /// The lowest `count` eigenpairs (at least: a dense solution returns all N), rigid-body
-    /// modes included; see [`ModalSolution`].
-    pub fn modes(&self, count: usize) -> Result<ModalSolution, ModalError> {
-        ModalSolution::lowest_of(&self.assemble(), count)
     }
 }

@@ -7,8 +7,10 @@
 //! ```
 //! with x the mean (se = bias_se) or the median (se = median_se) and t the introduced value.
 
+use std::path::PathBuf;
+
 use super::CellResult;
-use super::config::{CheckSpec, GateStatistic};
+use super::config::{CheckSpec, GateStatistic, Study};
 use super::plan::Cell;
 
 /// Number of Monte-Carlo standard errors the gate allows beyond the threshold.
@@ -58,6 +60,43 @@ pub fn selected_rows(spec: &CheckSpec, cells: &[Cell], modes: &[usize], names: &
     cells * modes * params
 }
 
+/// A study that cannot be held to a gate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GateError {
+    /// The study file has no `[check]` table.
+    #[error("{}: there is no [check] table: nothing to hold the study to", file.display())]
+    NoCheck {
+        /// The study file.
+        file: PathBuf,
+    },
+    /// `[check].where` selects nothing of the grid.
+    #[error(
+        "{}: [check].where selects no (cell, mode, parameter) of the grid",
+        file.display()
+    )]
+    SelectsNothing {
+        /// The study file.
+        file: PathBuf,
+    },
+}
+
+/// The gate of `study`, checked before anything is computed: its `[check]` table, which must
+/// select some (cell, mode, parameter) of the grid.
+pub fn gate(study: &Study) -> Result<&CheckSpec, GateError> {
+    let Some(spec) = &study.check else {
+        return Err(GateError::NoCheck {
+            file: study.file.clone(),
+        });
+    };
+    let names = study.model.identified_names();
+    if selected_rows(spec, &study.cells(), &study.modes, &names) == 0 {
+        return Err(GateError::SelectsNothing {
+            file: study.file.clone(),
+        });
+    }
+    Ok(spec)
+}
+
 /// Evaluates the gate over the results of a study; `names` are the parameter names.
 pub fn evaluate(spec: &CheckSpec, results: &[CellResult], names: &[String]) -> GateReport {
     let mut checked = 0;
@@ -104,4 +143,29 @@ pub fn evaluate(spec: &CheckSpec, results: &[CellResult], names: &[String]) -> G
         }
     }
     GateReport { checked, failures }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+
+    #[test]
+    fn a_gate_must_exist_and_select_some_row() {
+        let mut study = Study::from_path(Path::new("studies/ci-bias.toml")).unwrap();
+        assert_eq!(gate(&study).unwrap().max_abs_relative_bias, 0.05);
+        if let Some(spec) = &mut study.check {
+            spec.modes = Some(vec![99]);
+        }
+        assert_eq!(
+            gate(&study).unwrap_err().to_string(),
+            "studies/ci-bias.toml: [check].where selects no (cell, mode, parameter) of the grid"
+        );
+        study.check = None;
+        assert_eq!(
+            gate(&study).unwrap_err().to_string(),
+            "studies/ci-bias.toml: there is no [check] table: nothing to hold the study to"
+        );
+    }
 }

@@ -37,9 +37,9 @@ use serde::Deserialize;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{MapAccess, SeqAccess, Visitor};
 
-use super::noise::NoiseKind;
 use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
+use crate::random::NoiseKind;
 use crate::structure::{Direction, DofMap, Structure};
 
 /// Largest number of trials per cell: a cell keeps every trial's corrections in memory

@@ -4,7 +4,7 @@
 //! every identified element of the exact truth shape by (1 + e), perturb the frequency,
 //! project (eq. (15)), assemble (eq. (10)-(12)) and solve (eq. (13)); keep
 //! Delta p_i = p_i Z_r(i). Trials run on rayon's pool; each draws from its own stream
-//! ([`super::noise`]) and writes its own slot, so the result does not depend on the number of
+//! ([`crate::random`]) and writes its own slot, so the result does not depend on the number of
 //! threads. A trial allocates nothing: buffers are per worker.
 //!
 //! Trials go `LANES` at a time through the projection and the assembly, whose loops then
@@ -13,15 +13,15 @@
 //! on the same data). On x86-64 with AVX2 the block kernel is compiled a second time with
 //! AVX2 enabled and chosen at run time; both builds give the same bits. The AVX2 build
 //! draws uniform shape errors with the explicit AVX2 generator
-//! ([`super::noise::LaneRng::uniform_shape_errors_avx2`], bitwise the portable one).
+//! ([`crate::random::LaneRng::uniform_shape_errors_avx2`], bitwise the portable one).
 
 use rayon::prelude::*;
 
 use super::config::Study;
-use super::noise::{LaneRng, NoiseKind};
 use super::plan::{Cell, CellPlan};
 use super::predicted::predicted_std;
 use crate::identify::{LANES, Lanes, wls};
+use crate::random::{LaneRng, NoiseKind};
 use crate::stats::{Summary, summarize};
 
 /// Trials handed to a worker at a time (and the granularity of progress reports).

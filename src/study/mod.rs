@@ -5,23 +5,31 @@
 //! - [`config`]: the study file;
 //! - [`unidentified`]: the NF rule;
 //! - [`plan`]: cells and the per-cell precomputation;
-//! - [`noise`]: the error model and the per-trial random streams;
+//! - the error model and the per-trial random streams are [`crate::random`]'s;
 //! - [`engine`]: the parallel trials and their statistics;
 //! - [`predicted`]: first-order predicted standard deviations;
-//! - [`check`]: the CI gate on estimator bias.
+//! - [`results`]: the result CSV, its columns and its writer;
+//! - [`check`]: the CI gate on estimator bias;
+//! - [`fingerprint`]: what makes two runs of a study the same computation.
+//!
+//! Layer 5 (simulation and studies; see the crate docs): may import the layers below
+//! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
+//! [`crate::modal`], [`crate::model`], [`crate::measured`], [`crate::extract`],
+//! [`crate::identify`]) and, without a circle, [`crate::simulate`].
 
 pub mod check;
 pub mod config;
 pub mod engine;
-pub mod noise;
+pub mod fingerprint;
 pub mod plan;
 pub mod predicted;
 pub mod resources;
+pub mod results;
 pub mod unidentified;
 
+pub use crate::random::NoiseKind;
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
 pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
-pub use noise::NoiseKind;
 pub use plan::{Cell, CellPlan, StudyContext};
 
 /// The statistics of one cell.
@@ -55,7 +63,7 @@ pub enum StudyError {
         /// `nominal` or `modified (truth.delta)`.
         which: &'static str,
         /// The zero frequency.
-        cause: crate::structure::Mechanism,
+        cause: crate::modal::Mechanism,
     },
     /// Some cells of the grid cannot be computed.
     #[error("{file}: {count} impossible cell(s) in the grid, nothing was computed:\n{list}", count = problems.len(), list = problems.join("\n"))]

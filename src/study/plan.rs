@@ -5,8 +5,8 @@
 //! The nominal and truth eigensolutions are shared by every cell: the model is the same.
 
 use crate::identify::{Identifier, IdentifyError, ModeSystem, Projector, Settings, Weighting};
-use crate::modal::ModalSolution;
-use crate::structure::{Parameter, Structure, check_elastic};
+use crate::modal::{ModalSolution, check_elastic};
+use crate::structure::{Parameter, Structure};
 
 use super::StudyError;
 use super::config::{NfSpec, Study};
@@ -47,6 +47,19 @@ impl Cell {
     /// The unidentified DOFs as their labels (`node:dof` on a chain) separated by spaces.
     pub fn unidentified_names(&self) -> String {
         self.unidentified_labels.join(" ")
+    }
+
+    /// The cell's conditions as the result CSV writes them: n, m, nf, weighting, shape noise,
+    /// frequency noise.
+    pub fn condition_fields(&self) -> [String; 6] {
+        [
+            self.n.0.to_string(),
+            self.m.0.to_string(),
+            self.nf().to_string(),
+            self.weighting.to_string(),
+            self.shape_noise.to_string(),
+            self.frequency_noise.to_string(),
+        ]
     }
 
     /// `n = 10, m = 5, nf = 5, weighting = inverse, shape_noise = 0.04, frequency_noise = 0`.
@@ -195,7 +208,9 @@ impl CellPlan {
         };
         let identifier = Identifier::new(&ctx.nominal, ctx.params.clone(), ctx.rigid, settings)
             .map_err(|e| match e {
-                IdentifyError::BasisSize { .. } => at("n", cell.n.1, cell.n.0, &e),
+                IdentifyError::Setting(ref s) if s.setting == "n" => {
+                    at("n", cell.n.1, cell.n.0, &e)
+                }
                 _ => at("m", cell.m.1, cell.m.0, &e),
             })?;
         let identified = unidentified::complement(study.model.dof_count(), &cell.unidentified);

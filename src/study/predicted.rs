@@ -2,9 +2,9 @@
 //! model propagated linearly through g, S and b at the noise-free point
 //! ([`crate::identify::propagation`]).
 
-use super::noise::NoiseKind;
 use super::plan::{Cell, CellPlan, ModePlan};
 use crate::identify::propagation::{jacobian, propagated_std};
+use crate::random::NoiseKind;
 
 pub use crate::identify::propagation::Jacobian;
 

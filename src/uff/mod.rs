@@ -25,6 +25,9 @@
 //! issue tracker taught which liberties real files take (blank-separated fields, values run
 //! together, zero padding of the last line, a line terminator before the closing `-1` of a
 //! 58b). No code is taken from it.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`].
 
 pub mod error;
 mod fields;
@@ -109,10 +112,24 @@ pub enum Record {
     },
 }
 
+/// The payload lengths of the binary datasets whose layout is known here: 58b, from its record
+/// 7 ([`function`]); the declared byte count of any other.
+fn payload_lengths(
+    kind: u32,
+    header: &[fields::Line<'_>],
+    line: usize,
+) -> Result<Option<Vec<usize>>, error::Located> {
+    if kind == 58 {
+        function::binary_lengths(header, line).map(Some)
+    } else {
+        Ok(None)
+    }
+}
+
 /// Reads every dataset of a universal file held in `bytes`; `file` names it in errors.
 pub fn read(bytes: &[u8], file: &Path) -> Result<Vec<Record>, UffError> {
     let mut records = Vec::new();
-    for raw in split::Splitter::new(bytes) {
+    for raw in split::Splitter::new(bytes, payload_lengths) {
         let raw = raw.map_err(|(record, located)| match record {
             Some((record, dataset)) => UffError::Record {
                 file: file.to_path_buf(),

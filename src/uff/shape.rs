@@ -257,11 +257,35 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
         }));
     }
 
+    let analysis = parameters(&mut cursor, analysis_code)?;
+
+    let per_node = ndv.saturating_mul(1 + usize::from(complex));
+    let (nodes, flat) = node_values(&mut cursor, per_node)?;
+    let values = if complex {
+        Values::Complex(flat.chunks_exact(2).map(|p| c64::new(p[0], p[1])).collect())
+    } else {
+        Values::Real(flat)
+    };
+    Ok(ModeShape {
+        id_lines,
+        model_type,
+        analysis,
+        characteristic,
+        specific_data_type,
+        precision,
+        values_per_node: ndv,
+        nodes,
+        values,
+    })
+}
+
+/// Records 7 and 8: the integer and real parameters of the analysis of type `code`.
+fn parameters(cursor: &mut Cursor, code: i32) -> Result<Analysis, Located> {
     let r7_line = cursor
         .rest()
         .first()
         .map_or(cursor.end_line(), |l| l.number);
-    let head = collect_ints(&mut cursor, 2, "the parameter counts (record 7)")?;
+    let head = collect_ints(cursor, 2, "the parameter counts (record 7)")?;
     let allowed = "it must be >= 0";
     let nint = count(
         head[0],
@@ -278,7 +302,7 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
     let mut ints = head[2..].to_vec();
     if ints.len() < nint {
         ints.extend(collect_ints(
-            &mut cursor,
+            cursor,
             nint - ints.len(),
             "the integer parameters (record 7)",
         )?);
@@ -294,16 +318,18 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
         ));
     }
     let reals = collect_reals(
-        &mut cursor,
+        cursor,
         nrval,
         1,
         &[13],
         "real parameters (record 8)",
         "real parameter (record 8)",
     )?;
-    let analysis = analysis(analysis_code, ints, reals, r7_line)?;
+    analysis(code, ints, reals, r7_line)
+}
 
-    let per_node = ndv.saturating_mul(1 + usize::from(complex));
+/// Records 9 and 10 of every node: its number and its `per_node` values.
+fn node_values(cursor: &mut Cursor, per_node: usize) -> Result<(Vec<u64>, Vec<f64>), Located> {
     let mut nodes = Vec::new();
     let mut flat = Vec::new();
     while let Some(line) = cursor.next_non_blank() {
@@ -323,7 +349,7 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
             "a node number must be >= 0",
         )? as u64);
         flat.extend(collect_reals(
-            &mut cursor,
+            cursor,
             per_node,
             1,
             &[13],
@@ -331,22 +357,7 @@ pub(crate) fn parse(ds: &RawDataset) -> Result<ModeShape, Located> {
             "data value (record 10)",
         )?);
     }
-    let values = if complex {
-        Values::Complex(flat.chunks_exact(2).map(|p| c64::new(p[0], p[1])).collect())
-    } else {
-        Values::Real(flat)
-    };
-    Ok(ModeShape {
-        id_lines,
-        model_type,
-        analysis,
-        characteristic,
-        specific_data_type,
-        precision,
-        values_per_node: ndv,
-        nodes,
-        values,
-    })
+    Ok((nodes, flat))
 }
 
 fn analysis(code: i32, ints: Vec<i64>, reals: Vec<f64>, line: usize) -> Result<Analysis, Located> {

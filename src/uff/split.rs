@@ -9,7 +9,8 @@
 //! directly or after a line terminator (both are found in practice). The byte count of the
 //! header is not trusted (pyuff writes half the count for complex data): for dataset 58 the
 //! payload length comes from record 7, and the layout after which the closing `-1` stands is
-//! taken (see [`super::function`]).
+//! taken. The splitter knows no dataset's layout: its caller gives the lengths
+//! ([`PayloadLengths`]; [`super::read`] asks [`super::function`] for dataset 58).
 //!
 //! Layout of the binary variant after the UC-SDRL description "The Binary 58 Universal File
 //! Format" (reproduced in pyuff's `dataset_58.py`).
@@ -18,7 +19,6 @@ use std::borrow::Cow;
 
 use super::error::{Located, Problem};
 use super::fields::{Line, integer};
-use super::function;
 
 /// The binary header of a `58b`-style dataset number line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -52,6 +52,12 @@ pub(crate) struct RawDataset<'a> {
 /// A splitting error: the record it happened in (index, dataset), if any.
 pub(crate) type SplitError = (Option<(usize, u32)>, Located);
 
+/// The candidate payload lengths (bytes) of a binary dataset of number `kind`, from its ASCII
+/// header lines (`line`: the line after them, for errors), in the order to try them; `None`
+/// to take the byte count the dataset's number line declares.
+pub(crate) type PayloadLengths =
+    fn(kind: u32, header: &[Line<'_>], line: usize) -> Result<Option<Vec<usize>>, Located>;
+
 /// Walks a file dataset by dataset.
 pub(crate) struct Splitter<'a> {
     bytes: &'a [u8],
@@ -60,6 +66,7 @@ pub(crate) struct Splitter<'a> {
     line: usize,
     index: usize,
     failed: bool,
+    lengths: PayloadLengths,
 }
 
 fn text(bytes: &[u8]) -> Cow<'_, str> {
@@ -71,7 +78,8 @@ fn is_delimiter(bytes: &[u8]) -> bool {
 }
 
 impl<'a> Splitter<'a> {
-    pub(crate) fn new(bytes: &'a [u8]) -> Self {
+    /// The splitter of `bytes`, which asks `lengths` for the payload of a binary dataset.
+    pub(crate) fn new(bytes: &'a [u8], lengths: PayloadLengths) -> Self {
         Splitter {
             // A UTF-8 byte-order mark, as some Windows programs write, is no content.
             bytes: bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes),
@@ -79,6 +87,7 @@ impl<'a> Splitter<'a> {
             line: 1,
             index: 0,
             failed: false,
+            lengths,
         }
     }
 
@@ -183,11 +192,9 @@ impl<'a> Splitter<'a> {
                 text: text(content),
             });
         }
-        let lengths = if kind == 58 {
-            function::binary_lengths(&lines, self.line).map_err(in_record)?
-        } else {
-            vec![header.declared_bytes]
-        };
+        let lengths = (self.lengths)(kind, &lines, self.line)
+            .map_err(in_record)?
+            .unwrap_or_else(|| vec![header.declared_bytes]);
         let start_line = self.line;
         let (payload, end_line) = self.payload(&lengths).map_err(in_record)?;
         Ok(Some(RawDataset {
@@ -322,8 +329,13 @@ impl<'a> Iterator for Splitter<'a> {
 mod tests {
     use super::*;
 
+    /// No dataset's layout known: every payload as long as its header declares.
+    fn declared(_: u32, _: &[Line<'_>], _: usize) -> Result<Option<Vec<usize>>, Located> {
+        Ok(None)
+    }
+
     fn kinds(bytes: &[u8]) -> Vec<(u32, usize, usize, usize)> {
-        Splitter::new(bytes)
+        Splitter::new(bytes, declared)
             .map(|d| {
                 let d = d.unwrap();
                 (d.kind, d.number_line, d.lines.len(), d.end_line)
@@ -348,7 +360,7 @@ mod tests {
 
     #[test]
     fn structural_errors_carry_lines() {
-        let err = |b: &[u8]| Splitter::new(b).find_map(Result::err).unwrap();
+        let err = |b: &[u8]| Splitter::new(b, declared).find_map(Result::err).unwrap();
         let (rec, loc) = err(b"    -1\n    15\n 1 0 0 0 1 2 3\n");
         assert_eq!(rec, Some((1, 15)));
         assert_eq!(loc.problem, Problem::Unterminated);
@@ -366,7 +378,7 @@ mod tests {
         let mut file = b"    -1\n  2414b     1     2           1           5\nhead\n".to_vec();
         file.extend_from_slice(&[0, b'\n', 2, 3, 4]);
         file.extend_from_slice(b"    -1\n    -1\n    15\n    -1\n");
-        let sets: Vec<_> = Splitter::new(&file).map(Result::unwrap).collect();
+        let sets: Vec<_> = Splitter::new(&file, declared).map(Result::unwrap).collect();
         assert_eq!(sets.len(), 2);
         assert_eq!(sets[0].payload.unwrap().0, &[0, b'\n', 2, 3, 4]);
         // the payload's newline counts: payload starts on line 4, `-1` on line 5

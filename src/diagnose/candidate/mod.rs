@@ -28,7 +28,7 @@ use serde::Serialize;
 
 pub use effect::EffectCandidate;
 pub use frequency_dependence::FrequencyDependence;
-pub use scan::{Profile, Scan};
+pub use scan::Scan;
 
 use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
 use super::report::Verdict;
@@ -78,7 +78,7 @@ pub struct Fit {
     /// Why the fitted size is not a physical explanation, if it is not.
     pub excluded: Option<String>,
     /// A scan's chi^2 along its coordinate.
-    pub profile: Option<Profile>,
+    pub profile: Option<super::report::Profile>,
     /// A scan's member optima (None where a member failed): the starts of its refits on the
     /// next stage.
     pub members: Vec<Option<Fitted>>,
@@ -126,6 +126,11 @@ pub trait Candidate: Send + Sync + std::fmt::Debug {
 
 /// A candidate with the outcome of its fit on a stage.
 pub type Tried = (Arc<dyn Candidate>, Result<Fit, CandidateError>);
+
+/// The hypotheses a search of `library` on `ctx` tests: the multiple-testing count.
+pub fn hypotheses(library: &[Arc<dyn Candidate>], ctx: &EffectContext) -> usize {
+    library.iter().map(|c| c.hypotheses(ctx)).sum()
+}
 
 /// Every candidate, in report order: the registered effects of the default and extended
 /// tiers, the frequency-dependent joint, the scans.

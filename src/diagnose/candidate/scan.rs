@@ -13,11 +13,11 @@
 use std::sync::Arc;
 
 use rayon::prelude::*;
-use serde::Serialize;
 
 use super::effect::fit_effect;
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
 use crate::diagnose::fit::{Estimate, Fitted};
+use crate::diagnose::report::Profile;
 use crate::model::effects::{Effect, EffectContext, region_lengths, scan};
 
 /// The members of a scan on a structure: each with its coordinate.
@@ -72,21 +72,6 @@ pub fn local_stiffness() -> Scan {
                 .collect()
         },
     }
-}
-
-/// chi^2 of a scan along its coordinate.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Profile {
-    /// Name of the coordinate.
-    pub coordinate: String,
-    /// Its unit.
-    pub unit: &'static str,
-    /// Every member: (coordinate, chi^2 of its fit; None when it failed or is not physical).
-    pub points: Vec<(f64, Option<f64>)>,
-    /// The best member's coordinate.
-    pub best: f64,
-    /// The coordinates where chi^2 <= chi^2_min + 1: (lowest, highest).
-    pub interval: (f64, f64),
 }
 
 impl Scan {

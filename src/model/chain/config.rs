@@ -58,8 +58,8 @@ use crate::input::{FieldCheck, InputError, TaggedTable};
 use crate::structure::{Direction, Role};
 
 /// Largest number of beams: the identification takes at most
-/// [`crate::identify::wls::MAX_Q`] parameters, two per joint.
-pub const MAX_BEAMS: usize = crate::identify::wls::MAX_Q / 2 + 1;
+/// [`crate::structure::MAX_IDENTIFIED`] parameters, two per joint.
+pub const MAX_BEAMS: usize = crate::structure::MAX_IDENTIFIED / 2 + 1;
 
 /// Largest number of elements per beam (above 120 DOFs the lowest modes come from the sparse
 /// solver; beyond about 2 x 2000 elements the rounding of K itself limits the low modes).
@@ -315,13 +315,13 @@ impl RawChain {
                 .filter(|&b| b)
                 .count()
             + masses.iter().filter(|m| m.identify).count();
-        if identified > crate::identify::wls::MAX_Q {
+        if identified > crate::structure::MAX_IDENTIFIED {
             return Err(check.invalid(
                 "joint",
                 format!("{identified} identified parameters"),
                 format!(
                     "at most {} parameters can be identified: hold some fixed (`fixed = [...]`)",
-                    crate::identify::wls::MAX_Q
+                    crate::structure::MAX_IDENTIFIED
                 ),
             ));
         }

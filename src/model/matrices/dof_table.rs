@@ -64,6 +64,40 @@ pub fn from_path(path: &Path, size: usize) -> Result<Vec<DofInfo>, DofTableError
     read(file, path, size)
 }
 
+/// The 0-based index of the `dof` field (1 to `size`); the message when it is invalid.
+fn dof_index(dof: &str, size: usize) -> Result<usize, String> {
+    match dof.parse::<usize>() {
+        Ok(i) if (1..=size).contains(&i) => Ok(i - 1),
+        _ => Err(format!(
+            "dof = `{dof}` is invalid: it must be an integer from 1 to {size} (the size of the matrices)"
+        )),
+    }
+}
+
+/// The position (the `x`, `y`, `z` fields, m) and the direction of a row; the message when
+/// one is invalid.
+fn placement(xyz: [&str; 3], direction: &str) -> Result<([f64; 3], Direction), String> {
+    let mut position = [0.0; 3];
+    for ((p, text), name) in position.iter_mut().zip(xyz).zip(["x", "y", "z"]) {
+        *p = match text.parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            _ => {
+                return Err(format!(
+                    "{name} = `{text}` is invalid: it must be a finite number (m)"
+                ));
+            }
+        };
+    }
+    let Some(direction) = Direction::parse(direction) else {
+        let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
+        return Err(format!(
+            "direction = `{direction}` is invalid: it must be one of {}",
+            names.join(", ")
+        ));
+    };
+    Ok((position, direction))
+}
+
 /// Reads a DOF table from `reader` for matrices of size `size`; `file` names it in errors.
 pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>, DofTableError> {
     let line_err = |line: u64, message: String| DofTableError::Line {
@@ -111,17 +145,7 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
                 format!("{} fields: a row has 6 ({})", f.len(), HEADER.join(",")),
             ));
         };
-        let index = match dof.parse::<usize>() {
-            Ok(i) if (1..=size).contains(&i) => i - 1,
-            _ => {
-                return Err(line_err(
-                    line,
-                    format!(
-                        "dof = `{dof}` is invalid: it must be an integer from 1 to {size} (the size of the matrices)"
-                    ),
-                ));
-            }
-        };
+        let index = dof_index(dof, size).map_err(|message| line_err(line, message))?;
         if slots[index].is_some() {
             return Err(line_err(
                 line,
@@ -145,28 +169,8 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
                 ),
             ));
         }
-        let coordinate = |text: &str, name: &str| match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(line_err(
-                line,
-                format!("{name} = `{text}` is invalid: it must be a finite number (m)"),
-            )),
-        };
-        let position = [
-            coordinate(x, "x")?,
-            coordinate(y, "y")?,
-            coordinate(z, "z")?,
-        ];
-        let Some(direction) = Direction::parse(direction) else {
-            let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
-            return Err(line_err(
-                line,
-                format!(
-                    "direction = `{direction}` is invalid: it must be one of {}",
-                    names.join(", ")
-                ),
-            ));
-        };
+        let (position, direction) =
+            placement([x, y, z], direction).map_err(|message| line_err(line, message))?;
         slots[index] = Some(DofInfo {
             label: label.to_string(),
             position,

@@ -121,6 +121,88 @@ pub fn from_path(path: &Path) -> Result<LowerEntries, MatrixMarketError> {
     read(io::BufReader::new(file), path)
 }
 
+/// What the header line may be.
+const HEADER_ALLOWED: &str = "the first line must be `%%MatrixMarket matrix coordinate real symmetric` (or `integer` for `real`, `general` for `symmetric`)";
+
+/// Whether the header line declares a `general` matrix (else `symmetric`); the message when
+/// it is not a header this reader takes.
+fn is_general(header: &str) -> Result<bool, String> {
+    let words: Vec<String> = header
+        .split_whitespace()
+        .map(str::to_ascii_lowercase)
+        .collect();
+    match words.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+        [
+            "%%matrixmarket",
+            "matrix",
+            "coordinate",
+            "real" | "integer",
+            "symmetric",
+        ] => Ok(false),
+        [
+            "%%matrixmarket",
+            "matrix",
+            "coordinate",
+            "real" | "integer",
+            "general",
+        ] => Ok(true),
+        _ => Err(format!(
+            "header `{}` is invalid: {HEADER_ALLOWED}",
+            header.trim()
+        )),
+    }
+}
+
+/// The size N and the declared number of entries of the size line `t` (trimmed, not a
+/// comment); the message when it is not `N N entries`.
+fn size_line(t: &str) -> Result<(usize, usize), String> {
+    let fields: Vec<&str> = t.split_whitespace().collect();
+    let parsed: Vec<Option<usize>> = fields.iter().map(|f| f.parse().ok()).collect();
+    match parsed[..] {
+        [Some(r), Some(c), Some(nnz)] if r == c && r > 0 => Ok((r, nnz)),
+        [Some(r), Some(c), Some(_)] if r != c => Err(format!(
+            "size `{t}` is invalid: the matrix is {r} x {c}; it must be square"
+        )),
+        _ => Err(format!(
+            "size line `{t}` is invalid: it must be `rows columns entries`, three integers, rows = columns > 0"
+        )),
+    }
+}
+
+/// The entry (row, column, value), 0-based, of the entry line `t` of a matrix of size
+/// `size` (`general`: any triangle, else the lower one); the message when it is invalid.
+fn entry(t: &str, size: usize, general: bool) -> Result<(usize, usize, f64), String> {
+    let fields: Vec<&str> = t.split_whitespace().collect();
+    let [ri, ci, vi] = fields[..] else {
+        return Err(format!(
+            "entry `{t}` is invalid: it must be `row column value`"
+        ));
+    };
+    let index = |text: &str, name: &str| -> Result<usize, String> {
+        match text.parse::<usize>() {
+            Ok(k) if (1..=size).contains(&k) => Ok(k - 1),
+            _ => Err(format!(
+                "{name} = `{text}` is invalid: it must be an integer from 1 to {size}"
+            )),
+        }
+    };
+    let (i, j) = (index(ri, "row")?, index(ci, "column")?);
+    let value = match vi.parse::<f64>() {
+        Ok(v) if v.is_finite() => v,
+        _ => {
+            return Err(format!(
+                "value = `{vi}` at ({ri}, {ci}) is invalid: it must be a finite number"
+            ));
+        }
+    };
+    if !general && i < j {
+        return Err(format!(
+            "entry ({ri}, {ci}) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)"
+        ));
+    }
+    Ok((i, j, value))
+}
+
 /// Reads Matrix Market text from `reader`; `file` names it in errors.
 pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMarketError> {
     let err = |line: usize, message: String| MatrixMarketError::Line {
@@ -139,36 +221,10 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
             }),
         }
     };
-    let header_allowed = "the first line must be `%%MatrixMarket matrix coordinate real symmetric` (or `integer` for `real`, `general` for `symmetric`)";
     let Some((_, header)) = next()? else {
-        return Err(err(1, format!("the file is empty: {header_allowed}")));
+        return Err(err(1, format!("the file is empty: {HEADER_ALLOWED}")));
     };
-    let words: Vec<String> = header
-        .split_whitespace()
-        .map(str::to_ascii_lowercase)
-        .collect();
-    let general = match words.iter().map(String::as_str).collect::<Vec<_>>()[..] {
-        [
-            "%%matrixmarket",
-            "matrix",
-            "coordinate",
-            "real" | "integer",
-            "symmetric",
-        ] => false,
-        [
-            "%%matrixmarket",
-            "matrix",
-            "coordinate",
-            "real" | "integer",
-            "general",
-        ] => true,
-        _ => {
-            return Err(err(
-                1,
-                format!("header `{}` is invalid: {header_allowed}", header.trim()),
-            ));
-        }
-    };
+    let general = is_general(&header).map_err(|message| err(1, message))?;
     // Size line: the first line that is neither a comment nor blank.
     let (size, declared) = loop {
         let Some((n, text)) = next()? else {
@@ -181,25 +237,7 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
         if t.is_empty() || t.starts_with('%') {
             continue;
         }
-        let fields: Vec<&str> = t.split_whitespace().collect();
-        let parsed: Vec<Option<usize>> = fields.iter().map(|f| f.parse().ok()).collect();
-        match parsed[..] {
-            [Some(r), Some(c), Some(nnz)] if r == c && r > 0 => break (r, nnz),
-            [Some(r), Some(c), Some(_)] if r != c => {
-                return Err(err(
-                    n,
-                    format!("size `{t}` is invalid: the matrix is {r} x {c}; it must be square"),
-                ));
-            }
-            _ => {
-                return Err(err(
-                    n,
-                    format!(
-                        "size line `{t}` is invalid: it must be `rows columns entries`, three integers, rows = columns > 0"
-                    ),
-                ));
-            }
-        }
+        break size_line(t).map_err(|message| err(n, message))?;
     };
     let mut entries = Vec::with_capacity(declared.min(1 << 24));
     let mut at_line = Vec::with_capacity(declared.min(1 << 24));
@@ -213,43 +251,7 @@ pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMar
             excess += 1;
             continue;
         }
-        let fields: Vec<&str> = t.split_whitespace().collect();
-        let [ri, ci, vi] = fields[..] else {
-            return Err(err(
-                n,
-                format!("entry `{t}` is invalid: it must be `row column value`"),
-            ));
-        };
-        let index = |text: &str, name: &str| -> Result<usize, MatrixMarketError> {
-            match text.parse::<usize>() {
-                Ok(k) if (1..=size).contains(&k) => Ok(k - 1),
-                _ => Err(err(
-                    n,
-                    format!("{name} = `{text}` is invalid: it must be an integer from 1 to {size}"),
-                )),
-            }
-        };
-        let (i, j) = (index(ri, "row")?, index(ci, "column")?);
-        let value = match vi.parse::<f64>() {
-            Ok(v) if v.is_finite() => v,
-            _ => {
-                return Err(err(
-                    n,
-                    format!(
-                        "value = `{vi}` at ({ri}, {ci}) is invalid: it must be a finite number"
-                    ),
-                ));
-            }
-        };
-        if !general && i < j {
-            return Err(err(
-                n,
-                format!(
-                    "entry ({ri}, {ci}) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)"
-                ),
-            ));
-        }
-        entries.push((i, j, value));
+        entries.push(entry(t, size, general).map_err(|message| err(n, message))?);
         at_line.push(n);
     }
     if entries.len() + excess != declared {

@@ -14,7 +14,7 @@ use std::arch::x86_64::{
 };
 
 use super::LaneRng;
-use crate::identify::{LANES, Lanes};
+use super::{LANES, Lanes};
 
 /// Registers per word of state (`LANES` / 4).
 const HALVES: usize = LANES / 4;

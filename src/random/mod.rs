@@ -1,4 +1,5 @@
-//! The measurement-error model of a trial, and the per-trial random streams.
+//! The random streams shared by [`crate::study`] and [`crate::simulate`], and the
+//! measurement-error model they draw.
 //!
 //! Shape: every identified element is multiplied by (1 + e). `uniform` (the paper's
 //! "random errors of maximum value +-4%"): e uniform on [-a, a], a = shape_noise, variance
@@ -19,9 +20,12 @@
 //! e = a (2u - 1). Normal variates are rand_distr's `StandardNormal`. The output is thus a
 //! function of (seed, cell, trial) alone, whatever the number of threads.
 //!
-//! [`LaneRng`] runs the streams of `LANES` consecutive trials side by side (structure of
+//! [`LaneRng`] runs the streams of [`LANES`] consecutive trials side by side (structure of
 //! arrays, so that uniform draws vectorise); lane l is exactly the stream of [`TrialRng`] for
 //! its trial.
+//!
+//! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
+//! [`crate::stats`], [`crate::input`], [`crate::structure`], [`crate::uff`].
 
 use std::fmt;
 use std::str::FromStr;
@@ -30,10 +34,15 @@ use std::convert::Infallible;
 
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::identify::{LANES, Lanes};
-
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+
+/// Number of trials drawn side by side by [`LaneRng`], and solved side by side by the study
+/// engine's batched systems (`identify::ModeSystem::assemble_lanes`).
+pub const LANES: usize = 8;
+
+/// One value per lane.
+pub type Lanes = [f64; LANES];
 
 /// The noise distribution of a study.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
