@@ -19,6 +19,9 @@
 //! (universal files: measured FRFs and geometry in, mode shapes out), [`extract`] (modal
 //! parameters from measured FRFs: LSCF poles, stabilisation chart, LSFD residues, real modes and
 //! their complexity).
+//!
+//! Beneath them all: [`optim`] (linear and bounded nonlinear least squares: the one
+//! Levenberg-Marquardt solver that diagnose and extract share).
 
 pub mod cluster;
 pub mod diagnose;
@@ -28,6 +31,7 @@ pub mod input;
 pub mod measured;
 pub mod modal;
 pub mod model;
+pub mod optim;
 pub mod output;
 pub mod report;
 pub mod simulate;

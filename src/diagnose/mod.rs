@@ -12,7 +12,7 @@
 //! are all >= [`FIT_ALPHA`] and the estimated noise is within `noise::LARGEST_FACTOR` of the
 //! stated. The fits keep what of the plausible range is a linear inequality (non-negative
 //! masses and springs, a rotary inertia within its mass's largest gyration:
-//! `EffectParameter::non_negative`, `Effect::inequalities`, module [`bounds`]); a candidate
+//! `EffectParameter::non_negative`, `Effect::inequalities`, module [`crate::optim::bounds`]); a candidate
 //! whose fitted size is still not physically plausible (a joint or sensor mass above the
 //! beams' mass, an inadmissible theta: `Effect::plausible`, `Effect::admissible`) is
 //! excluded, with the reason.
@@ -27,11 +27,9 @@
 //! - [`pairing`]: MAC pairing of measured and model modes;
 //! - [`sensitivity`]: eigenpair derivatives;
 //! - [`fit`]: the weighted nonlinear least squares (Levenberg-Marquardt);
-//! - [`bounds`]: the fit's feasible region (linear inequalities, active set);
 //! - [`report`]: summaries, per-mode corrections, the report.
 
 pub mod along;
-pub mod bounds;
 pub mod fit;
 pub mod frequency_dependence;
 pub mod noise;
