@@ -21,8 +21,7 @@
 //! The solver is [`crate::optim::lm`]'s, with the pairing fixed (re-paired after convergence,
 //! and solved again if the pairing changed); converged when a full Gauss-Newton step would
 //! lower chi^2 by less than 1e-8 of it (an absolute 1e-8 below chi^2 = 1), or when no step
-//! lowers it (a minimum, or one on a bound), a trial of equal chi^2 accepted; not converged
-//! after [`MAX_ITERATIONS`]. A trial point that is inadmissible (`Configured::admissible`) or
+//! lowers it (a minimum, or one on a bound); not converged after [`MAX_ITERATIONS`]. A trial point that is inadmissible (`Configured::admissible`) or
 //! has no eigensolution is a step too long. The standard errors come from (J^T J)^-1 at the
 //! optimum, formed as R^-1 R^-T from a QR of J ([`crate::optim::lstsq::inverse_gram`]).
 
@@ -36,7 +35,7 @@ use super::sensitivity::ModeDerivative;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
-use crate::optim::{self, Acceptance, Bounds, LevenbergMarquardt, Termination};
+use crate::optim::{self, Bounds, LevenbergMarquardt, Termination};
 use crate::structure::{Matrices, Parameter};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
@@ -677,7 +676,6 @@ impl optim::Problem for Paired<'_, '_> {
 fn solver() -> LevenbergMarquardt {
     LevenbergMarquardt::new(MAX_ITERATIONS)
         .and_then(|s| s.with_decrement(DECREMENT_TOLERANCE))
-        .map(|s| s.with_acceptance(Acceptance::NotHigher))
         .expect("the fit's settings are within the solver's ranges")
 }
 

@@ -12,9 +12,11 @@
 //! 3. trial steps s(mu) (QR with Marquardt's column scaling), x + s projected back onto the
 //!    feasible side: a trial that cannot be projected, that the problem finds inadmissible
 //!    ([`Problem::admissible`]) or cannot evaluate ([`Problem::evaluate`] fails) is a step too
-//!    long, mu x [`GROW_REFUSED`]; a trial whose cost is not lower (or, with
-//!    [`Acceptance::NotHigher`], higher) than the current, mu x [`GROW_REJECTED`]; an accepted
-//!    trial becomes x and mu / [`SHRINK`] (not below [`MU_MIN`]);
+//!    long, mu x [`GROW_REFUSED`]; a trial whose cost is not lower than the current (or not a
+//!    number), mu x [`GROW_REJECTED`]; an accepted trial becomes x and mu / [`SHRINK`] (not
+//!    below [`MU_MIN`]). A trial of equal cost is refused: where the evaluations' round-off
+//!    is all that is left, steps of vanishing length and equal cost could otherwise be taken
+//!    until the iteration limit (seen in a calibration, which then failed at its minimum);
 //! 4. no trial accepted before mu reaches [`MU_MAX`]: no step lowers the cost, x is a minimum
 //!    (inside, on a bound, or at the edge of the evaluable region: [`Termination::NoDescent`]);
 //! 5. with a gain tolerance set: converged ([`Termination::SmallGain`]) when the accepted step
@@ -22,9 +24,8 @@
 //! 6. after the last allowed iteration: [`Termination::MaxIterations`] (not converged).
 //!
 //! Settings ([`LevenbergMarquardt`]): the iteration limit (at least 1), the decrement and gain
-//! tolerances (each off unless set; within (0, 1)), the acceptance rule (default
-//! [`Acceptance::Lower`]) and the starting damping (default [`MU_START`], within
-//! [`MU_MIN`]..[`MU_MAX`]).
+//! tolerances (each off unless set; within (0, 1)) and the starting damping (default
+//! [`MU_START`], within [`MU_MIN`]..[`MU_MAX`]).
 //!
 //! Imports: faer and the modules of `optim`; nothing else of the crate.
 
@@ -71,25 +72,6 @@ pub trait Problem {
     /// Whether a feasible trial point may be evaluated at all (default: always).
     fn admissible(&self, _x: &[f64]) -> bool {
         true
-    }
-}
-
-/// When a trial point replaces the current one.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Acceptance {
-    /// Its cost is lower.
-    Lower,
-    /// Its cost is not higher (an equal cost is accepted).
-    NotHigher,
-}
-
-impl Acceptance {
-    fn accepts(self, trial: f64, current: f64) -> bool {
-        trial.is_finite()
-            && match self {
-                Acceptance::Lower => trial < current,
-                Acceptance::NotHigher => trial <= current,
-            }
     }
 }
 
@@ -183,7 +165,6 @@ pub struct LevenbergMarquardt {
     max_iterations: usize,
     decrement: Option<f64>,
     gain: Option<f64>,
-    acceptance: Acceptance,
     mu_start: f64,
 }
 
@@ -211,8 +192,7 @@ fn tolerance(name: &'static str, value: f64) -> Result<f64, SettingError> {
 
 impl LevenbergMarquardt {
     /// At most `max_iterations` iterations (at least 1), no convergence test (set one with
-    /// [`Self::with_decrement`] or [`Self::with_gain`]), [`Acceptance::Lower`], damping from
-    /// [`MU_START`].
+    /// [`Self::with_decrement`] or [`Self::with_gain`]), damping from [`MU_START`].
     pub fn new(max_iterations: usize) -> Result<Self, SettingError> {
         if max_iterations == 0 {
             return Err(SettingError {
@@ -225,7 +205,6 @@ impl LevenbergMarquardt {
             max_iterations,
             decrement: None,
             gain: None,
-            acceptance: Acceptance::Lower,
             mu_start: MU_START,
         })
     }
@@ -242,12 +221,6 @@ impl LevenbergMarquardt {
     pub fn with_gain(mut self, tolerance: f64) -> Result<Self, SettingError> {
         self.gain = Some(self::tolerance("gain tolerance", tolerance)?);
         Ok(self)
-    }
-
-    /// The acceptance rule of trial points.
-    pub fn with_acceptance(mut self, acceptance: Acceptance) -> Self {
-        self.acceptance = acceptance;
-        self
     }
 
     /// The starting damping, within [`MU_MIN`]..[`MU_MAX`] (a tiny one makes the first step
@@ -304,6 +277,7 @@ impl LevenbergMarquardt {
                 break;
             }
             let search = self.search(problem, &sub, &bounds, &x, cost, &mut mu);
+
             let gain = search
                 .step
                 .as_ref()
@@ -377,7 +351,7 @@ impl LevenbergMarquardt {
                 continue;
             };
             let value = problem.cost(&candidate);
-            if self.acceptance.accepts(value, cost) {
+            if value < cost {
                 *mu = (*mu / SHRINK).max(MU_MIN);
                 search.step = Some((trial, candidate, value));
                 return search;

@@ -19,7 +19,6 @@ pub mod step;
 
 pub use bounds::Bounds;
 pub use lm::{
-    Acceptance, LevenbergMarquardt, Observer, Problem, Progress, SettingError, Silent, Solution,
-    Termination,
+    LevenbergMarquardt, Observer, Problem, Progress, SettingError, Silent, Solution, Termination,
 };
 pub use step::Linearisation;
