@@ -116,38 +116,52 @@ impl Bounds {
 }
 
 /// An orthonormal basis Z (n x (n - k)) of the null space of the k orthonormal vectors `basis`
-/// (of length n, as [`Bounds::active_basis`] gives them): Gram-Schmidt, twice, of the
-/// coordinate vectors, taking at every step the one that keeps the most of its length (the
-/// lowest index of equals). For coordinate vectors in `basis` it is exactly the other
+/// (of length n, as [`Bounds::active_basis`] gives them): the coordinate vectors with `basis`
+/// projected out, orthonormalised by Gram-Schmidt with pivoting (at every step the one that
+/// kept the most of its length, the lowest index of equals; each chosen vector
+/// re-orthogonalised once more). For coordinate vectors in `basis` it is exactly the other
 /// coordinate vectors, in ascending order.
 pub fn null_space(basis: &[Vec<f64>], n: usize) -> Mat<f64> {
     let dim = n.saturating_sub(basis.len());
-    let mut chosen: Vec<Vec<f64>> = Vec::new();
-    let mut left: Vec<usize> = (0..n).collect();
-    while chosen.len() < dim && !left.is_empty() {
-        let mut best: Option<(usize, Vec<f64>, f64)> = None;
-        for (at, &i) in left.iter().enumerate() {
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let remove = |v: &mut [f64], q: &[f64]| {
+        let d = dot(q, v);
+        for (vi, qi) in v.iter_mut().zip(q) {
+            *vi -= d * qi;
+        }
+    };
+    let mut columns: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
             let mut v = vec![0.0; n];
             v[i] = 1.0;
-            for _ in 0..2 {
-                for q in basis.iter().chain(&chosen) {
-                    let d: f64 = q.iter().zip(&v).map(|(a, b)| a * b).sum();
-                    for (vi, qi) in v.iter_mut().zip(q) {
-                        *vi -= d * qi;
-                    }
-                }
+            for q in basis {
+                remove(&mut v, q);
             }
-            let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
-            if best.as_ref().is_none_or(|b| norm > b.2) {
-                best = Some((at, v, norm));
-            }
+            v
+        })
+        .collect();
+    let mut left: Vec<usize> = (0..n).collect();
+    let mut chosen: Vec<Vec<f64>> = Vec::new();
+    while chosen.len() < dim {
+        let norm = |i: usize| dot(&columns[i], &columns[i]).sqrt();
+        let Some(at) =
+            (0..left.len()).reduce(|a, b| if norm(left[b]) > norm(left[a]) { b } else { a })
+        else {
+            break;
+        };
+        let mut v = std::mem::take(&mut columns[left.remove(at)]);
+        for q in basis.iter().chain(&chosen) {
+            remove(&mut v, q);
         }
-        let Some((at, v, norm)) = best else { break };
-        if norm <= 1e-10 {
+        let length = dot(&v, &v).sqrt();
+        if length <= 1e-10 {
             break;
         }
-        left.remove(at);
-        chosen.push(v.into_iter().map(|a| a / norm).collect());
+        v.iter_mut().for_each(|a| *a /= length);
+        for &i in &left {
+            remove(&mut columns[i], &v);
+        }
+        chosen.push(v);
     }
     Mat::from_fn(n, chosen.len(), |i, j| chosen[j][i])
 }
