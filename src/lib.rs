@@ -20,7 +20,8 @@
 //! rehearsals of a test campaign), [`uff`] (universal files: measured FRFs and geometry in, mode
 //! shapes out), [`extract`] (modal parameters from measured FRFs: LSCF poles, stabilisation
 //! chart, LSFD residues, real modes and their complexity), [`cluster`] (studies split into
-//! shards that run anywhere).
+//! shards that run anywhere), [`optim`] (linear and bounded nonlinear least squares: the one
+//! Levenberg-Marquardt solver that diagnose and extract share).
 //!
 //! # Layers
 //!
@@ -30,7 +31,7 @@
 //! `#[cfg(test)]` code may take fixtures from anywhere. `tests/layers.rs` reads this list and
 //! holds every `use crate::...` and every `crate::`/`super::` path of `src/` to it.
 //!
-//! 1. foundations: [`stats`], [`input`], [`random`], [`structure`], [`uff`]
+//! 1. foundations: [`stats`], [`input`], [`random`], [`structure`], [`uff`], [`optim`]
 //! 2. eigensolution: [`modal`]
 //! 3. models and measurements: [`model`], [`measured`], [`extract`]
 //! 4. identification: [`identify`]
@@ -48,6 +49,7 @@ pub mod input;
 pub mod measured;
 pub mod modal;
 pub mod model;
+pub mod optim;
 pub mod output;
 pub mod random;
 pub mod report;

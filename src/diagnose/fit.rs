@@ -16,26 +16,35 @@
 //! components near a node of the mode, whose multiplicative error vanishes, from dominating.
 //! Unknowns: x = ln(p / p_0) for the joints (they stay positive), theta / scale for the
 //! effects (kept in the effect's feasible region: non-negative where it must be, within its
-//! inequalities, module `bounds`), and c_r.
+//! inequalities, module [`crate::optim::bounds`]), and c_r.
+//!
+//! The solver is [`crate::optim::lm`]'s, with the pairing fixed (re-paired after convergence,
+//! and solved again if the pairing changed); converged when a full Gauss-Newton step would
+//! lower chi^2 by less than 1e-8 of it (an absolute 1e-8 below chi^2 = 1), or when no step
+//! lowers it (a minimum, or one on a bound); not converged after [`MAX_ITERATIONS`]. A trial point that is inadmissible (`Configured::admissible`) or
+//! has no eigensolution is a step too long. The standard errors come from (J^T J)^-1 at the
+//! optimum, formed as R^-1 R^-T from a QR of J ([`crate::optim::lstsq::inverse_gram`]).
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use faer::linalg::solvers::Solve;
-use faer::{Mat, Side};
+use faer::Mat;
 
-use super::bounds::{self, Bounds};
 use super::pairing::{Pairing, PairingRule, Unpaired, pair};
 use super::sensitivity::ModeDerivative;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
+use crate::optim::{self, Bounds, LevenbergMarquardt, Termination};
 use crate::structure::{Matrices, Parameter};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
 pub const SHAPE_FLOOR: f64 = 0.02;
 /// Largest number of Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 200;
+/// Converged when a full Gauss-Newton step would lower chi^2 by less than this fraction of it
+/// (of 1 for chi^2 below 1).
+const DECREMENT_TOLERANCE: f64 = 1e-8;
 
 /// The stated measurement noise: relative standard deviations.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -573,18 +582,22 @@ fn run(
     let mut last_chi2 = f64::INFINITY;
     // Levenberg-Marquardt; once converged, re-pair with the fitted model and go on if the
     // pairing changed (a mode swap the nominal model hid).
+    let solver = solver();
     for _ in 0..3 {
-        let (x_new, iterations) =
-            levenberg_marquardt(&problem, x, &pairing).map_err(|e| match e {
-                LmError::Modal(m) => FitError::Modal(m),
-                LmError::NotConverged(iterations, chi2) => FitError::NotConverged {
-                    effect: name.clone(),
-                    iterations,
-                    chi2,
-                },
-            })?;
-        x = x_new;
-        total_iterations += iterations;
+        let fixed = Paired {
+            problem: &problem,
+            pairing: &pairing,
+        };
+        let solution = solver.minimise(&fixed, x)?;
+        if solution.termination == Termination::MaxIterations {
+            return Err(FitError::NotConverged {
+                effect: name,
+                iterations: solution.iterations,
+                chi2: solution.cost,
+            });
+        }
+        x = solution.x;
+        total_iterations += solution.iterations;
         let eval = problem.evaluate(&x, &pairing)?;
         last_chi2 = chi2(&eval.residual);
         let repaired = pair(&eval.modal, measured, problem.rigid(), problem.pairing)?;
@@ -625,93 +638,45 @@ fn initial_scales(problem: &Problem, modal: &ModalSolution, pairing: &Pairing, x
     }
 }
 
-enum LmError {
-    Modal(ModalError),
-    NotConverged(usize, f64),
+/// The fit with its pairing fixed, as the solver sees it.
+struct Paired<'p, 'a> {
+    problem: &'p Problem<'a>,
+    pairing: &'p Pairing,
 }
 
-fn levenberg_marquardt(
-    problem: &Problem,
-    mut x: Vec<f64>,
-    pairing: &Pairing,
-) -> Result<(Vec<f64>, usize), LmError> {
-    let mut eval = problem.evaluate(&x, pairing).map_err(LmError::Modal)?;
-    let mut current = chi2(&eval.residual);
-    let mut mu = 1e-3;
-    let bounds = problem.bounds();
-    for iteration in 1..=MAX_ITERATIONS {
-        let jac = problem.jacobian(&x, &eval, pairing);
-        let jtj = jac.transpose() * &jac;
-        let r = Mat::from_fn(eval.residual.len(), 1, |i, _| eval.residual[i]);
-        let mut g = jac.transpose() * &r;
-        let n = x.len();
-        // Active set (module `bounds`): the step stays in the null space of the constraints
-        // at their bound whose descent direction points out of the feasible side (clamping a
-        // full step instead stalls the iteration at the bound).
-        let gradient: Vec<f64> = (0..n).map(|i| g[(i, 0)]).collect();
-        let active = bounds.active_basis(&x, &gradient);
-        // Converged when a full Gauss-Newton step would lower chi^2 by less than 1e-8 of it
-        // (an absolute 1e-8 for chi^2 below 1).
-        let regularised = Mat::from_fn(n, n, |i, j| {
-            jtj[(i, j)] + if i == j { 1e-12 * jtj[(i, i)] } else { 0.0 }
-        });
-        let (free, pg) = bounds::projected(&regularised, &g, &active);
-        g = pg;
-        if let Ok(llt) = free.llt(Side::Lower) {
-            let newton = llt.solve(&g);
-            let decrement: f64 = (0..n).map(|i| g[(i, 0)] * newton[(i, 0)]).sum();
-            if decrement < 1e-8 * current.max(1.0) {
-                return Ok((x, iteration));
-            }
-        }
-        let mut accepted = false;
-        while mu < 1e12 {
-            let damped = Mat::from_fn(n, n, |i, j| {
-                jtj[(i, j)]
-                    + if i == j {
-                        mu * jtj[(i, i)].max(1e-12)
-                    } else {
-                        0.0
-                    }
-            });
-            let (a, _) = bounds::projected(&damped, &g, &active);
-            let Ok(llt) = a.llt(Side::Lower) else {
-                mu *= 10.0;
-                continue;
-            };
-            let step = llt.solve(-&g);
-            let trial: Vec<f64> = (0..n).map(|i| x[i] + step[(i, 0)]).collect();
-            let Some(trial) = bounds.project(trial) else {
-                mu *= 10.0;
-                continue;
-            };
-            if !problem.configured(&trial).admissible() {
-                mu *= 10.0;
-                continue;
-            }
-            // A trial point without an eigensolution (a step into a structure the solver
-            // refuses) is a step too long, as an inadmissible one is.
-            let Ok(candidate) = problem.evaluate(&trial, pairing) else {
-                mu *= 10.0;
-                continue;
-            };
-            let value = chi2(&candidate.residual);
-            if value <= current {
-                x = trial;
-                eval = candidate;
-                current = value;
-                mu = (mu / 3.0).max(1e-12);
-                accepted = true;
-                break;
-            }
-            mu *= 4.0;
-        }
-        if !accepted {
-            // No step lowers chi^2 even at tiny lengths: a minimum (or a bound).
-            return Ok((x, iteration));
+impl optim::Problem for Paired<'_, '_> {
+    type State = Evaluation;
+    type Error = ModalError;
+
+    fn evaluate(&self, x: &[f64]) -> Result<Evaluation, ModalError> {
+        self.problem.evaluate(x, self.pairing)
+    }
+
+    fn cost(&self, state: &Evaluation) -> f64 {
+        chi2(&state.residual)
+    }
+
+    fn linearise(&self, x: &[f64], state: &Evaluation) -> optim::Linearisation {
+        optim::Linearisation::Jacobian {
+            residual: state.residual.clone(),
+            jacobian: self.problem.jacobian(x, state, self.pairing),
         }
     }
-    Err(LmError::NotConverged(MAX_ITERATIONS, current))
+
+    fn bounds(&self) -> Bounds {
+        self.problem.bounds()
+    }
+
+    fn admissible(&self, x: &[f64]) -> bool {
+        self.problem.configured(x).admissible()
+    }
+}
+
+/// The fit's solver (module docs).
+fn solver() -> LevenbergMarquardt {
+    LevenbergMarquardt::new(MAX_ITERATIONS)
+        .and_then(|s| s.with_decrement(DECREMENT_TOLERANCE))
+        .expect("the fit's settings are within the solver's ranges")
 }
 
 fn finish(
@@ -723,12 +688,10 @@ fn finish(
     dof: usize,
 ) -> Fitted {
     let jac = problem.jacobian(&x, &eval, &pairing);
-    let jtj = jac.transpose() * &jac;
     let n = x.len();
-    let covariance = jtj
-        .llt(Side::Lower)
-        .map(|llt| llt.solve(Mat::<f64>::identity(n, n)))
-        .unwrap_or_else(|_| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
+    // (J^T J)^-1 from the R of a QR of J; infinite variances when J has a dependent column.
+    let covariance = optim::lstsq::inverse_gram(jac.as_ref())
+        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
     let mut estimates: Vec<Estimate> = eval
         .configured
         .structure

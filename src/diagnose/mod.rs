@@ -17,7 +17,7 @@
 //!
 //! Beside them: [`settings`] (checked where set), [`pairing`] (MAC pairing of measured and
 //! model modes), [`sensitivity`] (eigenpair derivatives), [`fit`] (the weighted nonlinear
-//! least squares of a model on the data), [`bounds`] (the fit's feasible region), [`along`]
+//! least squares of a model on the data, on the solver of [`crate::optim`]), [`along`]
 //! (residuals in sensor order).
 //!
 //! The fits keep what of the plausible range is a linear inequality (non-negative masses and
@@ -34,7 +34,6 @@
 
 pub mod along;
 pub mod assemble;
-pub mod bounds;
 pub mod calibrate;
 pub mod candidate;
 pub mod decide;

@@ -25,7 +25,7 @@
 
 use faer::{Mat, c64};
 
-use super::lstsq;
+use crate::optim::lstsq;
 
 /// The LSCF problem reduced for every order up to `max_order`.
 pub struct Lscf {

@@ -32,12 +32,12 @@
 //! grows as w^2. (Damping adds odd powers, (iw)^-3 below and (iw)^1 above, of relative size
 //! zeta: neglected.) Unknowns per response: Re R_r, Im R_r for every pole and the residual
 //! coefficients, all real; the complex equations are stacked as real and imaginary rows,
-//! weighted by the line weight, and solved by QR ([`super::lstsq`]); the design matrix is
-//! common to every response.
+//! weighted by the line weight, and solved by QR ([`crate::optim::lstsq`]); the design matrix
+//! is common to every response.
 
 use faer::{Mat, c64};
 
-use super::lstsq;
+use crate::optim::lstsq;
 
 /// The form of the model: the quantity and the number of residual terms.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

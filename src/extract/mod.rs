@@ -33,7 +33,6 @@ pub mod csv;
 pub mod frf;
 pub mod lscf;
 pub mod lsfd;
-pub mod lstsq;
 pub mod refine;
 pub mod shapes;
 pub mod stabilization;

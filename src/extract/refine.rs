@@ -12,14 +12,19 @@
 //! theta = (Re lambda_r, Im lambda_r) for every chosen pole, A the design matrix of the LSFD
 //! (columns of the poles and the residual terms), P_perp the projector off its range. With
 //! T_j = dA/dtheta_j X the Gauss-Newton Jacobian is -P_perp T (the full Gauss-Newton step on
-//! (theta, x) with x eliminated), and grad phi = -2 T^T P_perp B exactly. Steps are
-//! Levenberg-Marquardt with Marquardt's column scaling; the normal equations are never formed:
-//! the Jacobian rows of every response are compressed into one triangle by QR.
+//! (theta, x) with x eliminated), and grad phi = -2 T^T P_perp B exactly. The Jacobian rows of
+//! every response are compressed into one triangle by QR (the normal equations are never
+//! formed), which the Levenberg-Marquardt solver of [`crate::optim::lm`] takes as it is: no
+//! bounds, a trial accepted when its cost is strictly lower, stopped when an accepted step
+//! gains less than [`COST_TOLERANCE`] of the cost, when no step lowers it, or after
+//! [`MAX_ITERATIONS`].
+
+use std::convert::Infallible;
 
 use faer::{Mat, c64};
 
 use super::lsfd::{Basis, column_derivatives, data, design};
-use super::lstsq;
+use crate::optim::{self, LevenbergMarquardt, Termination, lstsq};
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 50;
@@ -37,6 +42,8 @@ pub struct Refined {
     pub cost_end: f64,
     /// Accepted iterations.
     pub iterations: usize,
+    /// Why the iteration stopped.
+    pub termination: Termination,
 }
 
 /// The cost at theta, the compressed Jacobian [R g; 0 rho] (2K + 1 square) and the gradient.
@@ -111,28 +118,39 @@ pub(crate) fn linearise(
     }
 }
 
-/// One Levenberg-Marquardt step: min || R delta - g ||^2 + mu || D delta ||^2, D the column
-/// norms of R (of the Jacobian).
-fn step(triangle: &Mat<f64>, mu: f64) -> Vec<f64> {
-    let n = triangle.ncols() - 1;
-    let rows = triangle.nrows().min(n);
-    let mut a = Mat::<f64>::zeros(rows + n, n);
-    let mut g = Mat::<f64>::zeros(rows + n, 1);
-    for i in 0..rows {
-        for j in 0..n {
-            a[(i, j)] = triangle[(i, j)];
-        }
-        g[(i, 0)] = triangle[(i, n)];
+/// The refinement as the solver sees it: x = (Re lambda_1, Im lambda_1, Re lambda_2, ...).
+struct Poles<'a> {
+    omega: &'a [f64],
+    weights: &'a [f64],
+    basis: Basis,
+    responses: &'a [Vec<c64>],
+}
+
+fn poles_of(x: &[f64]) -> Vec<c64> {
+    x.chunks(2).map(|p| c64::new(p[0], p[1])).collect()
+}
+
+impl optim::Problem for Poles<'_> {
+    type State = Linearised;
+    type Error = Infallible;
+
+    fn evaluate(&self, x: &[f64]) -> Result<Linearised, Infallible> {
+        Ok(linearise(
+            self.omega,
+            self.weights,
+            &poles_of(x),
+            self.basis,
+            self.responses,
+        ))
     }
-    for j in 0..n {
-        let norm = (0..rows)
-            .map(|i| triangle[(i, j)].powi(2))
-            .sum::<f64>()
-            .sqrt();
-        a[(rows + j, j)] = mu.sqrt() * norm;
+
+    fn cost(&self, state: &Linearised) -> f64 {
+        state.cost
     }
-    let ls = lstsq::solve(a.as_ref(), g.as_ref());
-    (0..n).map(|j| ls.x[(j, 0)]).collect()
+
+    fn linearise(&self, _x: &[f64], state: &Linearised) -> optim::Linearisation {
+        optim::Linearisation::Triangle(state.triangle.clone())
+    }
 }
 
 /// Refines `poles` (see the module docs). The caller checks that the result is physical.
@@ -143,42 +161,23 @@ pub fn refine(
     basis: Basis,
     responses: &[Vec<c64>],
 ) -> Refined {
-    let mut current = poles.to_vec();
-    let mut lin = linearise(omega, weights, &current, basis, responses);
-    let cost_start = lin.cost;
-    let mut mu = 1e-3;
-    let mut iterations = 0;
-    'outer: for _ in 0..MAX_ITERATIONS {
-        loop {
-            let delta = step(&lin.triangle, mu);
-            let trial: Vec<c64> = current
-                .iter()
-                .enumerate()
-                .map(|(r, s)| s + c64::new(delta[2 * r], delta[2 * r + 1]))
-                .collect();
-            let next = linearise(omega, weights, &trial, basis, responses);
-            if next.cost.is_finite() && next.cost < lin.cost {
-                let gain = (lin.cost - next.cost) / lin.cost.max(f64::MIN_POSITIVE);
-                current = trial;
-                lin = next;
-                iterations += 1;
-                mu = (mu / 3.0).max(1e-12);
-                if gain < COST_TOLERANCE {
-                    break 'outer;
-                }
-                break;
-            }
-            mu *= 4.0;
-            if mu > 1e12 {
-                break 'outer;
-            }
-        }
-    }
+    let problem = Poles {
+        omega,
+        weights,
+        basis,
+        responses,
+    };
+    let solver = LevenbergMarquardt::new(MAX_ITERATIONS)
+        .and_then(|s| s.with_gain(COST_TOLERANCE))
+        .expect("the refinement's settings are within the solver's ranges");
+    let start = poles.iter().flat_map(|p| [p.re, p.im]).collect();
+    let Ok(solution) = solver.minimise(&problem, start);
     Refined {
-        poles: current,
-        cost_start,
-        cost_end: lin.cost,
-        iterations,
+        poles: poles_of(&solution.x),
+        cost_start: solution.start_cost,
+        cost_end: solution.cost,
+        iterations: solution.accepted,
+        termination: solution.termination,
     }
 }
 

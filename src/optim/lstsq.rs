@@ -1,7 +1,9 @@
-//! Real linear least squares for the extraction: Householder QR of the tall matrix, never the
-//! normal equations, then an SVD of the small triangle so that a rank-deficient problem (two
-//! coincident poles of a spurious model order) gives the minimum-norm answer instead of
-//! infinities.
+//! Real linear least squares: Householder QR of the tall matrix, never the normal equations,
+//! then an SVD of the small triangle so that a rank-deficient problem (two coincident poles of
+//! a spurious model order in the extraction, a damped step whose unknowns the data do not see)
+//! gives the minimum-norm answer instead of infinities; and the covariance (A^T A)^-1 of a
+//! least-squares fit from the R of a QR. Used by the extraction (`crate::extract`) and by the
+//! Levenberg-Marquardt steps of [`super::lm`].
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::householder;
@@ -141,9 +143,62 @@ pub fn solve(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> LeastSquares {
     LeastSquares { x, rank, qr }
 }
 
+/// (A^T A)^-1 of a tall A (m >= n) as R^-1 R^-T, R from the QR of A (the normal equations,
+/// whose condition is that of A squared, are never formed): the covariance of the unknowns of
+/// a least-squares fit whose residuals have unit variance. None when A is wide or a column is,
+/// to round-off, a combination of the columns before it (|R_jj| <= [`RCOND`] ||a_j||): the
+/// data do not determine that unknown.
+pub fn inverse_gram(a: MatRef<'_, f64>) -> Option<Mat<f64>> {
+    let (m, n) = (a.nrows(), a.ncols());
+    if m < n {
+        return None;
+    }
+    let r = triangle(a);
+    for j in 0..n {
+        let norm = (0..m).map(|i| a[(i, j)] * a[(i, j)]).sum::<f64>().sqrt();
+        let pivot = r[(j, j)].abs();
+        if !(pivot > RCOND * norm && pivot.is_finite()) {
+            return None;
+        }
+    }
+    // R^-1 by back substitution, one column of the identity at a time.
+    let mut inverse = Mat::<f64>::zeros(n, n);
+    for col in 0..n {
+        for i in (0..=col).rev() {
+            let mut v = if i == col { 1.0 } else { 0.0 };
+            for k in i + 1..=col {
+                v -= r[(i, k)] * inverse[(k, col)];
+            }
+            inverse[(i, col)] = v / r[(i, i)];
+        }
+    }
+    Some(&inverse * inverse.transpose())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// (A^T A)^-1 of a small matrix against its inverse written out, and None for a column
+    /// that repeats another.
+    #[test]
+    fn inverse_gram_is_the_inverse_of_the_normal_matrix() {
+        // A^T A = [[3, 3], [3, 5]] (rows (1, 0), (1, 1), (1, 2)); its inverse is
+        // [[5, -3], [-3, 3]] / 6.
+        let a = Mat::from_fn(3, 2, |i, j| if j == 0 { 1.0 } else { i as f64 });
+        let c = inverse_gram(a.as_ref()).unwrap();
+        let expected = [[5.0 / 6.0, -0.5], [-0.5, 0.5]];
+        for (i, row) in expected.iter().enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                assert!((c[(i, j)] - e).abs() < 1e-14, "{i}, {j}: {}", c[(i, j)]);
+            }
+        }
+        let dependent = Mat::from_fn(3, 2, |i, _| (i + 1) as f64);
+        assert!(inverse_gram(dependent.as_ref()).is_none());
+        let zero = Mat::from_fn(3, 2, |i, j| if j == 0 { 1.0 + i as f64 } else { 0.0 });
+        assert!(inverse_gram(zero.as_ref()).is_none());
+        assert!(inverse_gram(Mat::<f64>::zeros(1, 2).as_ref()).is_none());
+    }
 
     #[test]
     fn recovers_an_exact_solution_whatever_the_column_units() {

@@ -1,12 +1,14 @@
-//! The feasible region of a calibration's unknowns: linear inequalities c . x >= 0 (a
-//! non-negative mass is c = e_i; a sensor whose radius of gyration stays within its bound is
-//! G^2 m - J >= 0), kept by the Levenberg-Marquardt iteration of module `fit` by an active set:
+//! The feasible region of a least-squares problem's unknowns: linear inequalities c . x >= 0
+//! (in a calibration, a non-negative mass is c = e_i; a sensor whose radius of gyration stays
+//! within its bound is G^2 m - J >= 0), kept by the Levenberg-Marquardt iteration of module
+//! [`super::lm`] by an active set:
 //!
 //! - a constraint is active at x when c . x <= 0 (to round-off) and the descent direction -g
-//!   of chi^2 / 2 leaves the feasible side (c . g > 0); the step is taken in the null space of
-//!   the active constraints, by the projected system (P A P + I - P) s = -P g with
-//!   P = I - Q Q^T, Q an orthonormal basis of the active c (for coordinate constraints this
-//!   freezes those unknowns and nothing else);
+//!   of the cost / 2 leaves the feasible side (c . g > 0); the step is taken in the null space
+//!   of the active constraints, s = Z z with Z an orthonormal basis of that null space
+//!   ([`null_space`]; for coordinate constraints, the other coordinate vectors: this freezes
+//!   those unknowns and nothing else); clamping a full step instead would stall the iteration
+//!   at the bound;
 //! - a trial point that violates a constraint is projected back onto the feasible side by
 //!   cyclic orthogonal projections onto the violated hyperplanes (for a coordinate constraint,
 //!   clamping at 0).
@@ -14,6 +16,8 @@
 //! Fitting inside the plausible range, rather than fitting freely and excluding a fit that
 //! oversteps it, keeps an effect whose best plausible size lies on the bound: its fit there is
 //! the likelihood the test should judge.
+//!
+//! Imports: faer only.
 
 use faer::Mat;
 
@@ -111,46 +115,55 @@ impl Bounds {
     }
 }
 
-/// P A P + I - P and P g for P = I - Q Q^T (module docs); with an empty basis, A and g as
-/// they are; with coordinate vectors, A and g with those rows and columns replaced by the
-/// identity and zero (bit for bit).
-pub fn projected(a: &Mat<f64>, g: &Mat<f64>, basis: &[Vec<f64>]) -> (Mat<f64>, Mat<f64>) {
-    let n = a.nrows();
-    if basis.is_empty() {
-        return (a.clone(), g.clone());
-    }
-    let coordinate: Option<Vec<usize>> = basis
-        .iter()
-        .map(|q| {
-            let nonzero: Vec<usize> = (0..n).filter(|&i| q[i] != 0.0).collect();
-            (nonzero.len() == 1 && q[nonzero[0]].abs() == 1.0).then_some(nonzero[0])
+/// An orthonormal basis Z (n x (n - k)) of the null space of the k orthonormal vectors `basis`
+/// (of length n, as [`Bounds::active_basis`] gives them): the coordinate vectors with `basis`
+/// projected out, orthonormalised by Gram-Schmidt with pivoting (at every step the one that
+/// kept the most of its length, the lowest index of equals; each chosen vector
+/// re-orthogonalised once more). For coordinate vectors in `basis` it is exactly the other
+/// coordinate vectors, in ascending order.
+pub fn null_space(basis: &[Vec<f64>], n: usize) -> Mat<f64> {
+    let dim = n.saturating_sub(basis.len());
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let remove = |v: &mut [f64], q: &[f64]| {
+        let d = dot(q, v);
+        for (vi, qi) in v.iter_mut().zip(q) {
+            *vi -= d * qi;
+        }
+    };
+    let mut columns: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            let mut v = vec![0.0; n];
+            v[i] = 1.0;
+            for q in basis {
+                remove(&mut v, q);
+            }
+            v
         })
         .collect();
-    if let Some(frozen) = coordinate {
-        let pa = Mat::from_fn(n, n, |i, j| {
-            if frozen.contains(&i) || frozen.contains(&j) {
-                if i == j { 1.0 } else { 0.0 }
-            } else {
-                a[(i, j)]
-            }
-        });
-        let pg = Mat::from_fn(
-            n,
-            1,
-            |i, _| if frozen.contains(&i) { 0.0 } else { g[(i, 0)] },
-        );
-        return (pa, pg);
+    let mut left: Vec<usize> = (0..n).collect();
+    let mut chosen: Vec<Vec<f64>> = Vec::new();
+    while chosen.len() < dim {
+        let norm = |i: usize| dot(&columns[i], &columns[i]).sqrt();
+        let Some(at) =
+            (0..left.len()).reduce(|a, b| if norm(left[b]) > norm(left[a]) { b } else { a })
+        else {
+            break;
+        };
+        let mut v = std::mem::take(&mut columns[left.remove(at)]);
+        for q in basis.iter().chain(&chosen) {
+            remove(&mut v, q);
+        }
+        let length = dot(&v, &v).sqrt();
+        if length <= 1e-10 {
+            break;
+        }
+        v.iter_mut().for_each(|a| *a /= length);
+        for &i in &left {
+            remove(&mut columns[i], &v);
+        }
+        chosen.push(v);
     }
-    let p = Mat::from_fn(n, n, |i, j| {
-        let qq: f64 = basis.iter().map(|q| q[i] * q[j]).sum();
-        if i == j { 1.0 - qq } else { -qq }
-    });
-    let pap = &p * a * &p;
-    let pa = Mat::from_fn(n, n, |i, j| {
-        pap[(i, j)] + if i == j { 1.0 } else { 0.0 } - p[(i, j)]
-    });
-    let pg = &p * g;
-    (pa, pg)
+    Mat::from_fn(n, chosen.len(), |i, j| chosen[j][i])
 }
 
 #[cfg(test)]
@@ -197,24 +210,36 @@ mod tests {
         assert_eq!(b.active_basis(&[0.0, 0.0], &[1.0, 1.0]).len(), 2);
     }
 
-    /// The projected step stays on the active face and solves the reduced problem.
+    /// The step in the null space stays on the active face and solves the reduced problem.
     #[test]
-    fn the_projected_step_moves_along_the_face() {
+    fn the_null_space_step_moves_along_the_face() {
         let basis = vec![vec![-4.0 / 17.0_f64.sqrt(), 1.0 / 17.0_f64.sqrt()]];
-        let a = Mat::from_fn(2, 2, |i, j| [[2.0, 0.5], [0.5, 1.0]][i][j]);
-        let g = Mat::from_fn(2, 1, |i, _| [-1.0, 1.0][i]);
-        let (pa, pg) = projected(&a, &g, &basis);
-        use faer::linalg::solvers::Solve;
-        let s = pa.llt(faer::Side::Lower).unwrap().solve(-&pg);
+        let a = [[2.0, 0.5], [0.5, 1.0]];
+        let g = [-1.0, 1.0];
+        let z = null_space(&basis, 2);
+        assert_eq!(z.ncols(), 1);
+        let zc = [z[(0, 0)], z[(1, 0)]];
+        assert!((basis[0][0] * zc[0] + basis[0][1] * zc[1]).abs() < 1e-15);
+        // s = Z (Z^T A Z)^-1 Z^T (-g).
+        let zaz: f64 = (0..2)
+            .map(|i| (0..2).map(|j| zc[i] * a[i][j] * zc[j]).sum::<f64>())
+            .sum();
+        let zg = zc[0] * g[0] + zc[1] * g[1];
+        let s = [-zg / zaz * zc[0], -zg / zaz * zc[1]];
         // Along the face direction d = (1, 4) / sqrt(17): s = t d, t = -(d.g) / (d.A d).
         let d = [1.0 / 17.0_f64.sqrt(), 4.0 / 17.0_f64.sqrt()];
         let dg = -d[0] + d[1];
         let dad = 2.0 * d[0] * d[0] + 2.0 * 0.5 * d[0] * d[1] + d[1] * d[1];
         let t = -dg / dad;
-        assert!((s[(0, 0)] - t * d[0]).abs() < 1e-12 && (s[(1, 0)] - t * d[1]).abs() < 1e-12);
-        // Coordinate basis: the frozen row and column become the identity, the rest unchanged.
-        let (pa, pg) = projected(&a, &g, &[vec![1.0, 0.0]]);
-        assert_eq!((pa[(0, 0)], pa[(0, 1)], pa[(1, 1)]), (1.0, 0.0, 1.0));
-        assert_eq!((pg[(0, 0)], pg[(1, 0)]), (0.0, 1.0));
+        assert!((s[0] - t * d[0]).abs() < 1e-12 && (s[1] - t * d[1]).abs() < 1e-12);
+        // Coordinate basis: the null space is the other coordinate vectors (bit for bit), so
+        // the frozen unknown is exactly still and the others are unchanged.
+        let z = null_space(&[vec![1.0, 0.0, 0.0]], 3);
+        assert_eq!(z.ncols(), 2);
+        let entries: Vec<f64> = (0..3).flat_map(|i| [z[(i, 0)], z[(i, 1)]]).collect();
+        assert_eq!(entries, [0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+        // Nothing active: the identity; everything active: empty.
+        assert_eq!(null_space(&[], 2).ncols(), 2);
+        assert_eq!(null_space(&[vec![1.0, 0.0], vec![0.0, 1.0]], 2).ncols(), 0);
     }
 }

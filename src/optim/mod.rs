@@ -1,0 +1,24 @@
+//! Least squares, the numerics beneath the calibration (`crate::diagnose::fit`) and the
+//! extraction (`crate::extract`):
+//! - [`lstsq`]: linear least squares by Householder QR (never the normal equations), and the
+//!   covariance of a fit from the R of a QR;
+//! - [`bounds`]: a feasible region of linear inequalities on the unknowns, kept by an active
+//!   set;
+//! - [`step`]: the damped linear subproblem of one iteration, by QR with Marquardt's column
+//!   scaling in the null space of the active constraints;
+//! - [`lm`]: the one Levenberg-Marquardt solver, behind a problem trait, with typed reasons of
+//!   termination and an observer.
+//!
+//! Layer 1 (foundations; see the crate docs): imports faer, serde and thiserror, nothing of
+//! the crate.
+
+pub mod bounds;
+pub mod lm;
+pub mod lstsq;
+pub mod step;
+
+pub use bounds::Bounds;
+pub use lm::{
+    LevenbergMarquardt, Observer, Problem, Progress, SettingError, Silent, Solution, Termination,
+};
+pub use step::Linearisation;
