@@ -142,10 +142,35 @@ fn each_new_candidate_lands_on_the_truth_from_noise_free_data() {
 // gaussian by Box-Muller), not `simulate`'s. The candidate's pattern code is not used to make
 // the data.
 
+/// Six modes (deformable r = 1..=6, pair `first + r - 1` of `modal`) read at `points` by
+/// `read(point, pair)`, with this test's own gaussian noise (tests/common/frf.rs).
+fn six_modes(
+    modal: &ModalSolution,
+    first: usize,
+    points: &[jointid::structure::Observation],
+    read: impl Fn(&jointid::structure::Observation, usize) -> f64,
+    noise: Noise,
+    seed: u64,
+) -> MeasuredModes {
+    use jointid::measured::MeasuredMode;
+    let mut rng = frf::Rng::new(seed);
+    let modes = (1..=6)
+        .map(|r| {
+            let s = first + r - 1;
+            let f = modal.frequency_hz(s) * (1.0 + noise.frequency * rng.normal());
+            let values = points
+                .iter()
+                .map(|p| read(p, s) * (1.0 + noise.shape * rng.normal()))
+                .collect();
+            MeasuredMode::new(r, f, points.to_vec(), values)
+        })
+        .collect();
+    MeasuredModes::new(modes)
+}
+
 /// Hardware of mass `m` with a radius of gyration `ratio` times the beam's sqrt(I/A): half of
 /// m on each joint node, half of the rotary inertia m ratio^2 I/A on each node's rotation.
 fn hardware_data(m: f64, ratio: f64, noise: Noise, seed: u64) -> MeasuredModes {
-    use jointid::measured::MeasuredMode;
     use jointid::structure::SparseSym;
     let model = paper_model(1e7, 1e4);
     let site = &model.sites.joints[0];
@@ -159,19 +184,8 @@ fn hardware_data(m: f64, ratio: f64, noise: Noise, seed: u64) -> MeasuredModes {
     let truth = model.assemble().plus(&[(&SparseSym::zero(), &dm, 1.0)]);
     let modal = ModalSolution::solve(&truth).unwrap();
     let points = common::translations(&model);
-    let mut rng = frf::Rng::new(seed);
-    let modes = (1..=6)
-        .map(|r| {
-            let s = model.rigid + r - 1;
-            let f = modal.frequency_hz(s) * (1.0 + noise.frequency * rng.normal());
-            let values = points
-                .iter()
-                .map(|p| p.read_column(modal.vectors(), s) * (1.0 + noise.shape * rng.normal()))
-                .collect();
-            MeasuredMode::new(r, f, points.clone(), values)
-        })
-        .collect();
-    MeasuredModes::new(modes)
+    let read = |p: &jointid::structure::Observation, s| p.read_column(modal.vectors(), s);
+    six_modes(&modal, model.rigid, &points, read, noise, seed)
 }
 
 /// The candidate `name` of `report`.
@@ -283,7 +297,6 @@ fn clamp_compliances() -> [f64; 2] {
 
 /// Six modes of the spring-supported chain at the clamped model's translations.
 fn clamp_data(noise: Noise, seed: u64) -> MeasuredModes {
-    use jointid::measured::MeasuredMode;
     let [cw, ct] = clamp_compliances();
     let truth = cantilever(&format!(
         "kind = \"spring\"\ntranslational = {}\nrotational = {}\n",
@@ -293,24 +306,14 @@ fn clamp_data(noise: Noise, seed: u64) -> MeasuredModes {
     let nominal = cantilever("kind = \"clamped\"\n");
     let modal = ModalSolution::solve(&truth.assemble()).unwrap();
     let points = common::translations(&nominal);
-    let mut rng = frf::Rng::new(seed);
-    let modes = (1..=6)
-        .map(|r| {
-            let s = r - 1;
-            let f = modal.frequency_hz(s) * (1.0 + noise.frequency * rng.normal());
-            let values = points
-                .iter()
-                .map(|p| {
-                    let d = (0..truth.dof_count())
-                        .find(|&d| truth.dofs.get(d).label == p.label)
-                        .unwrap();
-                    modal.vectors()[(d, s)] * (1.0 + noise.shape * rng.normal())
-                })
-                .collect();
-            MeasuredMode::new(r, f, points.clone(), values)
-        })
-        .collect();
-    MeasuredModes::new(modes)
+    // The spring support keeps the clamped model's removed DOFs: read by label.
+    let read = |p: &jointid::structure::Observation, s| {
+        let d = (0..truth.dof_count())
+            .find(|&d| truth.dofs.get(d).label == p.label)
+            .unwrap();
+        modal.vectors()[(d, s)]
+    };
+    six_modes(&modal, 0, &points, read, noise, seed)
 }
 
 fn run_clamped(data: &MeasuredModes) -> Report {
@@ -387,23 +390,10 @@ fn softer(from: f64, to: f64, factor: f64) -> String {
 
 /// Six modes of `truth` at the nominal bars' translations (same mesh: same labels).
 fn bars_data(truth: &jointid::structure::Structure, noise: Noise, seed: u64) -> MeasuredModes {
-    use jointid::measured::MeasuredMode;
-    let nominal = bars(["", ""]);
     let modal = ModalSolution::solve(&truth.assemble()).unwrap();
-    let points = common::translations(&nominal);
-    let mut rng = frf::Rng::new(seed);
-    let modes = (1..=6)
-        .map(|r| {
-            let s = truth.rigid + r - 1;
-            let f = modal.frequency_hz(s) * (1.0 + noise.frequency * rng.normal());
-            let values = points
-                .iter()
-                .map(|p| p.read_column(modal.vectors(), s) * (1.0 + noise.shape * rng.normal()))
-                .collect();
-            MeasuredMode::new(r, f, points.clone(), values)
-        })
-        .collect();
-    MeasuredModes::new(modes)
+    let points = common::translations(&bars(["", ""]));
+    let read = |p: &jointid::structure::Observation, s| p.read_column(modal.vectors(), s);
+    six_modes(&modal, truth.rigid, &points, read, noise, seed)
 }
 
 fn run_bars(data: &MeasuredModes) -> Report {

@@ -155,7 +155,9 @@ impl Effect for JointRegion {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::effects::tests::{assert_central_differences, context, dense};
+    use crate::model::effects::tests::{
+        assert_central_differences, context, curvature_energy, dense,
+    };
 
     /// The paper's chain (two beams of 9 elements each): lengths 1, 2, 3, 4 elements per side
     /// (half of 9 is 4), each region touching the joint and contiguous on both sides.
@@ -216,24 +218,10 @@ mod tests {
             assert_eq!(zero.0.norm_max(), 0.0);
             assert_central_differences(&r, &ctx, &[-0.3], 0, 1e-3);
             let kappa = 0.4;
-            let mut u = vec![0.0; n];
-            for e in region(&ctx, 0, r.elements) {
-                for (node, &x) in e.line.x.iter().enumerate() {
-                    let s = x - x_joint;
-                    if let Some(d) = e.line.dofs[2 * node] {
-                        u[d] = 0.5 * kappa * s * s;
-                    }
-                    if let Some(d) = e.line.dofs[2 * node + 1] {
-                        u[d] = kappa * s;
-                    }
-                }
-            }
+            let elements = region(&ctx, 0, r.elements);
             for d in [-0.6, 0.8] {
                 let (k, _) = dense(n, &r.contribution(&ctx, &[d]));
-                let energy: f64 = (0..n)
-                    .flat_map(|i| (0..n).map(move |j| (i, j)))
-                    .map(|(i, j)| u[i] * k[(i, j)] * u[j])
-                    .sum();
+                let energy = curvature_energy(&elements, x_joint, kappa, &k);
                 let ei = ctx.structure.sites.elements[0].section.bending_stiffness();
                 let expected = d * ei * kappa * kappa * r.length(&ctx);
                 assert!(

@@ -158,7 +158,7 @@ impl Effect for Lap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::effects::tests::context;
+    use crate::model::effects::tests::{context, curvature_energy, dense};
 
     /// The region is the two elements touching the joint, and K(s) - K(0) is (1 + 2 s)^3 - 1 times their stiffness: the
     /// lap's contribution to the strain energy of a rigid rotation about the joint is zero,
@@ -171,29 +171,10 @@ mod tests {
         assert_eq!(elements.len(), 2);
         assert!((elements[0].line.x[1] - joint.x).abs() < 1e-12);
         assert!((elements[1].line.x[0] - joint.x).abs() < 1e-12);
-        let (k, _) = Lap.contribution(&ctx, &[0.5]);
-        let n = ctx.structure.dof_count();
-        let mut kd = faer::Mat::zeros(n, n);
-        k.add_to(&mut kd, 1.0);
-        // w = kappa (x - x_j)^2 / 2, theta = kappa (x - x_j) on each region element's nodes.
+        let (k, _) = dense(ctx.structure.dof_count(), &Lap.contribution(&ctx, &[0.5]));
+        // The joint's two nodes move together: both carry w = theta = 0 at x_j.
         let kappa = 0.3;
-        let mut u = vec![0.0; n];
-        for e in &elements {
-            for (node, &x) in e.line.x.iter().enumerate() {
-                let s = x - joint.x;
-                if let Some(d) = e.line.dofs[2 * node] {
-                    u[d] = 0.5 * kappa * s * s;
-                }
-                if let Some(d) = e.line.dofs[2 * node + 1] {
-                    u[d] = kappa * s;
-                }
-            }
-        }
-        // The joint's two nodes move together: both carry w = theta = 0 at s = 0.
-        let energy: f64 = (0..n)
-            .flat_map(|i| (0..n).map(move |j| (i, j)))
-            .map(|(i, j)| u[i] * kd[(i, j)] * u[j])
-            .sum();
+        let energy = curvature_energy(&elements, joint.x, kappa, &k);
         let ei = elements[0].section.bending_stiffness();
         let length: f64 = elements.iter().map(|e| e.length()).sum();
         // s = 0.5: EI times (1 + 2 s)^3 = 8, an added 7 EI.

@@ -117,7 +117,7 @@ impl Effect for LocalStiffness {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::effects::tests::context;
+    use crate::model::effects::tests::{context, curvature_energy};
 
     /// Every scan position: zero at d = 0, dK/dd equal to the contribution's central
     /// difference (exact: linear), and a uniform curvature kappa over the element stores
@@ -145,20 +145,7 @@ mod tests {
             assert!((&fd - &dk).norm_max() <= 1e-9 * dk.norm_max());
             let e = &ctx.structure.sites.elements[p.element];
             let kappa = 0.7;
-            let mut u = vec![0.0; n];
-            for (node, &x) in e.line.x.iter().enumerate() {
-                let s = x - e.line.x[0];
-                if let Some(d) = e.line.dofs[2 * node] {
-                    u[d] = 0.5 * kappa * s * s;
-                }
-                if let Some(d) = e.line.dofs[2 * node + 1] {
-                    u[d] = kappa * s;
-                }
-            }
-            let energy: f64 = (0..n)
-                .flat_map(|i| (0..n).map(move |j| (i, j)))
-                .map(|(i, j)| u[i] * dk[(i, j)] * u[j])
-                .sum();
+            let energy = curvature_energy(&[e], e.line.x[0], kappa, &dk);
             let expected = e.section.bending_stiffness() * kappa * kappa * e.length();
             // A clamped node (a removed DOF) carries u = 0 there: only compare free elements.
             if e.line.dofs.iter().all(Option::is_some) {

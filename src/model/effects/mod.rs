@@ -353,6 +353,34 @@ mod tests {
         EffectContext::new(structure, &points, first_elastic)
     }
 
+    /// u^T K u for the displacement of a uniform curvature `kappa` about `x0` on the nodes of
+    /// `elements` (w = kappa (x - x0)^2 / 2, theta = kappa (x - x0); 0 elsewhere and on
+    /// removed DOFs): EI kappa^2 times the elements' length for their bending stiffness.
+    pub(crate) fn curvature_energy(
+        elements: &[&crate::structure::ElementSite],
+        x0: f64,
+        kappa: f64,
+        k: &Mat<f64>,
+    ) -> f64 {
+        let n = k.nrows();
+        let mut u = vec![0.0; n];
+        for e in elements {
+            for (node, &x) in e.line.x.iter().enumerate() {
+                let s = x - x0;
+                if let Some(d) = e.line.dofs[2 * node] {
+                    u[d] = 0.5 * kappa * s * s;
+                }
+                if let Some(d) = e.line.dofs[2 * node + 1] {
+                    u[d] = kappa * s;
+                }
+            }
+        }
+        (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .map(|(i, j)| u[i] * k[(i, j)] * u[j])
+            .sum()
+    }
+
     /// K and M of a contribution or derivative as dense n x n matrices.
     pub(crate) fn dense(n: usize, (k, m): &(SparseSym, SparseSym)) -> (Mat<f64>, Mat<f64>) {
         let (mut kd, mut md) = (Mat::zeros(n, n), Mat::zeros(n, n));
