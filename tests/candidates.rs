@@ -410,6 +410,33 @@ fn run_bars(data: &MeasuredModes) -> Report {
     .unwrap()
 }
 
+/// Asserts that scan `name` of `report` is selected, at its coordinate `at` (exactly: the
+/// truth is a member), with d within `sigmas` standard errors of `d`.
+fn assert_scan_found(report: &Report, name: &str, at: f64, d: f64, sigmas: f64, label: &str) {
+    let c = candidate(report, name);
+    assert!(c.error.is_none() && c.excluded.is_none(), "{label}: {c:?}");
+    let (fitted, coordinate) = (&c.parameters[0], &c.parameters[1]);
+    eprintln!(
+        "{label}: {name} d {} +- {}, {} {} +- {}, verdict {:?} {:?}",
+        fitted.value,
+        fitted.se,
+        coordinate.name,
+        coordinate.value,
+        coordinate.se,
+        report.verdict,
+        report.selected
+    );
+    assert!(
+        (coordinate.value - at).abs() < 1e-9,
+        "{label}: {coordinate:?}"
+    );
+    assert!(
+        (fitted.value - d).abs() < sigmas * fitted.se,
+        "{label}: {fitted:?}"
+    );
+    assert_eq!(report.selected.as_deref(), Some(name), "{label}");
+}
+
 /// A joint region 60 mm on each side of the joint (2 elements), EI 40% lower: the scan finds
 /// its length (0.12 m, both sides) and d = -0.4, exactly on noise-free data and within 3
 /// sigma on two noisy seeds.
@@ -417,16 +444,7 @@ fn run_bars(data: &MeasuredModes) -> Report {
 fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
     let truth = bars([&softer(0.24, 0.3, 0.6), &softer(0.0, 0.06, 0.6)]);
     let check = |report: &Report, sigmas: f64, label: &str| {
-        let c = candidate(report, "joint_region");
-        assert!(c.error.is_none() && c.excluded.is_none(), "{label}: {c:?}");
-        let (d, length) = (&c.parameters[0], &c.parameters[1]);
-        eprintln!(
-            "{label}: d {} +- {}, length {} +- {}, verdict {:?} {:?}",
-            d.value, d.se, length.value, length.se, report.verdict, report.selected
-        );
-        assert!((length.value - 0.12).abs() < 1e-9, "{label}: {length:?}");
-        assert!((d.value + 0.4).abs() < sigmas * d.se, "{label}: {d:?}");
-        assert_eq!(report.selected.as_deref(), Some("joint_region"), "{label}");
+        assert_scan_found(report, "joint_region", 0.12, -0.4, sigmas, label);
     };
     let exact = run_bars(&bars_data(&truth, QUIET, 1));
     check(&exact, 1e-3, "noise-free");
@@ -455,20 +473,7 @@ fn a_soft_joint_region_is_found_with_its_length_and_stiffness() {
 fn a_local_loss_of_stiffness_is_found_at_its_element() {
     let truth = bars(["", &softer(0.09, 0.12, 0.5)]);
     let check = |report: &Report, sigmas: f64, label: &str| {
-        let c = candidate(report, "local_stiffness");
-        assert!(c.error.is_none() && c.excluded.is_none(), "{label}: {c:?}");
-        let (d, x) = (&c.parameters[0], &c.parameters[1]);
-        eprintln!(
-            "{label}: d {} +- {}, x {} +- {}, verdict {:?} {:?}",
-            d.value, d.se, x.value, x.se, report.verdict, report.selected
-        );
-        assert!((x.value - 0.405).abs() < 1e-9, "{label}: {x:?}");
-        assert!((d.value + 0.5).abs() < sigmas * d.se, "{label}: {d:?}");
-        assert_eq!(
-            report.selected.as_deref(),
-            Some("local_stiffness"),
-            "{label}"
-        );
+        assert_scan_found(report, "local_stiffness", 0.405, -0.5, sigmas, label);
     };
     check(&run_bars(&bars_data(&truth, QUIET, 1)), 1e-3, "noise-free");
     for seed in [3, 4] {
