@@ -28,7 +28,7 @@
 //! Every module sits in a layer, bottom first. A module may import the modules of the layers
 //! below its own and those of its own layer, never in a circle; never one of a layer above.
 //! Under every module the same holds for its submodules: no circles among siblings.
-//! `#[cfg(test)]` code may take fixtures from anywhere. `tests/layers.rs` reads this list and
+//! `#[cfg(test)]` code may take fixtures from anywhere. `tests/layers/` reads this list and
 //! holds every `use crate::...` and every `crate::`/`super::` path of `src/` to it.
 //!
 //! 1. foundations: [`stats`], [`input`], [`random`], [`structure`], [`uff`], [`optim`]
