@@ -3,12 +3,13 @@
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
-use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, Setting, diagnose};
+use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 
+use crate::commands::flagged;
 use crate::commands::report::stage_figures;
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
@@ -33,14 +34,16 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         per_mode,
         extended: args.extended,
     };
-    if let Err(e) = settings.check() {
-        let flag = match e.setting {
-            Setting::FrequencyNoise => "--frequency-noise",
-            Setting::ShapeNoise => "--shape-noise",
-            Setting::PairingWindow => "--pairing-window",
-        };
-        bail!("{flag} {} is invalid: {}", e.value, e.allowed);
-    }
+    settings.check().map_err(|e| {
+        flagged(
+            e,
+            &[
+                ("frequency_noise", "--frequency-noise"),
+                ("shape_noise", "--shape-noise"),
+                ("pairing_window", "--pairing-window"),
+            ],
+        )
+    })?;
     let inputs = [args.model.as_path(), args.measured.as_path()];
     let mut outputs: Vec<&std::path::Path> = args.json.iter().map(|p| p.as_path()).collect();
     let index = args.plots.as_ref().map(|dir| dir.join("index.html"));

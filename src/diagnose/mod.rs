@@ -52,7 +52,7 @@ pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residua
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
 pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
-pub use settings::{DiagnoseSettings, Setting, SettingsError};
+pub use settings::DiagnoseSettings;
 pub use whiteness::Whiteness;
 
 use crate::measured::MeasuredModes;
@@ -67,7 +67,7 @@ use score::Judge;
 pub enum DiagnoseError {
     /// A setting is out of its range.
     #[error(transparent)]
-    Settings(#[from] SettingsError),
+    Settings(#[from] crate::input::SettingError),
     /// The nominal model has no eigensolution.
     #[error("the model has no eigensolution")]
     Modal(#[from] ModalError),

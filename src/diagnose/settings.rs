@@ -3,6 +3,7 @@
 use super::fit::Noise;
 use super::pairing::PairingRule;
 use crate::identify::Settings;
+use crate::input::SettingError;
 
 /// Largest relative half-width of the pairing window.
 pub const LARGEST_WINDOW: f64 = 10.0;
@@ -21,63 +22,26 @@ pub struct DiagnoseSettings {
     pub extended: bool,
 }
 
-/// A setting of a diagnosis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Setting {
-    /// The stated relative noise of the frequencies.
-    FrequencyNoise,
-    /// The stated relative noise of the shape components.
-    ShapeNoise,
-    /// The pairing window.
-    PairingWindow,
-}
-
-/// A setting out of its range.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{setting} {value} is invalid: {allowed}", setting = self.setting.name())]
-pub struct SettingsError {
-    /// Which setting.
-    pub setting: Setting,
-    /// Its value.
-    pub value: f64,
-    /// What is allowed.
-    pub allowed: &'static str,
-}
-
-impl Setting {
-    /// Its name in the library's terms (the command line names it by its flag).
-    pub fn name(self) -> &'static str {
-        match self {
-            Setting::FrequencyNoise => "the stated frequency noise",
-            Setting::ShapeNoise => "the stated shape noise",
-            Setting::PairingWindow => "the pairing window",
-        }
-    }
-}
-
 impl DiagnoseSettings {
-    /// Checks every setting against its range.
-    pub fn check(&self) -> Result<(), SettingsError> {
+    /// Checks every setting against its range: `frequency_noise` and `shape_noise` (the stated
+    /// noise) in (0, 1), `pairing_window` in (0, [`LARGEST_WINDOW`]].
+    pub fn check(&self) -> Result<(), SettingError> {
         let noise = "the stated noise is a relative standard deviation, above 0 and below 1";
         for (setting, value) in [
-            (Setting::FrequencyNoise, self.noise.frequency),
-            (Setting::ShapeNoise, self.noise.shape),
+            ("frequency_noise", self.noise.frequency),
+            ("shape_noise", self.noise.shape),
         ] {
             if !(value.is_finite() && value > 0.0 && value < 1.0) {
-                return Err(SettingsError {
-                    setting,
-                    value,
-                    allowed: noise,
-                });
+                return Err(SettingError::new(setting, value, noise));
             }
         }
         let window = self.pairing.window;
         if !(window.is_finite() && window > 0.0 && window <= LARGEST_WINDOW) {
-            return Err(SettingsError {
-                setting: Setting::PairingWindow,
-                value: window,
-                allowed: "it is a relative half-width above 0 and at most 10",
-            });
+            return Err(SettingError::new(
+                "pairing_window",
+                window,
+                "it is a relative half-width above 0 and at most 10",
+            ));
         }
         Ok(())
     }
@@ -104,23 +68,18 @@ mod tests {
         assert!(settings(0.001, 0.02, 0.5).check().is_ok());
         assert!(settings(0.999, 0.999, LARGEST_WINDOW).check().is_ok());
         for (s, setting, value) in [
-            (settings(0.0, 0.02, 0.5), Setting::FrequencyNoise, 0.0),
-            (settings(0.001, 1.0, 0.5), Setting::ShapeNoise, 1.0),
-            (
-                settings(f64::NAN, 0.02, 0.5),
-                Setting::FrequencyNoise,
-                f64::NAN,
-            ),
-            (settings(0.001, 0.02, 0.0), Setting::PairingWindow, 0.0),
-            (settings(0.001, 0.02, 10.5), Setting::PairingWindow, 10.5),
+            (settings(0.0, 0.02, 0.5), "frequency_noise", "0"),
+            (settings(0.001, 1.0, 0.5), "shape_noise", "1"),
+            (settings(f64::NAN, 0.02, 0.5), "frequency_noise", "NaN"),
+            (settings(0.001, 0.02, 0.0), "pairing_window", "0"),
+            (settings(0.001, 0.02, 10.5), "pairing_window", "10.5"),
         ] {
             let e = s.check().unwrap_err();
-            assert_eq!(e.setting, setting);
-            assert!(e.value.to_bits() == value.to_bits(), "{e}");
+            assert_eq!((e.setting, e.value.as_str()), (setting, value), "{e}");
         }
         assert_eq!(
             settings(-0.1, 0.02, 0.5).check().unwrap_err().to_string(),
-            "the stated frequency noise -0.1 is invalid: the stated noise is a relative standard deviation, above 0 and below 1"
+            "frequency_noise = -0.1 is invalid: the stated noise is a relative standard deviation, above 0 and below 1"
         );
     }
 }

@@ -27,244 +27,28 @@ impl Chain {
     pub fn build(&self) -> Structure {
         let mesh = Mesh::of(self);
         let tol = SAME_X * self.length();
-        let same = |a: f64, b: f64| (a - b).abs() <= tol;
-        // DOF numbering.
-        let mut infos = Vec::new();
-        let mut constrained = Vec::new();
-        let mut node_dofs: Vec<[Option<usize>; 2]> = Vec::with_capacity(mesh.nodes.len());
-        for (n, node) in mesh.nodes.iter().enumerate() {
-            let mut pair = [None, None];
-            for (k, direction) in [Direction::W, Direction::Theta].into_iter().enumerate() {
-                let label = DofMap::node_label(n, direction);
-                if let Some((i, s)) = self
-                    .supports
-                    .iter()
-                    .enumerate()
-                    .find(|(_, s)| same(s.x, node.x) && s.kind.removes(direction))
-                {
-                    constrained.push((
-                        label,
-                        format!("support[{i}] ({} at x = {} m)", s.kind.name(), s.x),
-                    ));
-                    continue;
-                }
-                pair[k] = Some(infos.len());
-                infos.push(DofInfo {
-                    label,
-                    position: [node.x, 0.0, 0.0],
-                    direction,
-                    node: Some(n),
-                });
-            }
-            node_dofs.push(pair);
-        }
-        let hanging: Vec<usize> = (0..self.masses.len())
-            .filter(|&i| self.masses[i].spring.is_some())
-            .map(|i| {
-                infos.push(DofInfo {
-                    label: format!("mass{i}:w"),
-                    position: [self.masses[i].x, 0.0, 0.0],
-                    direction: Direction::W,
-                    node: None,
-                });
-                infos.len() - 1
-            })
-            .collect();
-        let n = infos.len();
-        let node_at = |x: f64| {
-            mesh.nodes
-                .iter()
-                .position(|node| same(node.x, x))
-                .expect("the mesh has a node at every feature")
+        let (mut infos, constrained, node_dofs) = number_nodes(self, &mesh, tol);
+        let layout = Layout {
+            chain: self,
+            mesh,
+            tol,
+            node_dofs,
         };
-        let lines: Vec<LineElement> = mesh
-            .elements
-            .iter()
-            .map(|e| {
-                let [a, b] = e.nodes;
-                LineElement {
-                    x: [mesh.nodes[a].x, mesh.nodes[b].x],
-                    dofs: [
-                        node_dofs[a][0],
-                        node_dofs[a][1],
-                        node_dofs[b][0],
-                        node_dofs[b][1],
-                    ],
-                }
-            })
-            .collect();
-        // The motions the rigid supports hold, where one node is held (not at a joint).
-        let mut supports = Vec::new();
-        let mut node_held: Vec<[Option<usize>; 2]> = vec![[None, None]; mesh.nodes.len()];
-        let mut held_count = 0;
-        for s in &self.supports {
-            let mut at = mesh
-                .nodes
-                .iter()
-                .enumerate()
-                .filter(|(_, n)| same(n.x, s.x));
-            let (Some((node, _)), None) = (at.next(), at.next()) else {
-                continue;
-            };
-            let held: Vec<Direction> = [Direction::W, Direction::Theta]
-                .into_iter()
-                .filter(|&d| s.kind.removes(d))
-                .collect();
-            if held.is_empty() {
-                continue;
-            }
-            for &d in &held {
-                node_held[node][usize::from(d == Direction::Theta)] = Some(held_count);
-                held_count += 1;
-            }
-            let section = mesh
-                .elements
-                .iter()
-                .find(|e| e.nodes.contains(&node))
-                .expect("every node is on an element")
-                .section;
-            supports.push(SupportSite {
-                x: mesh.nodes[node].x,
-                section,
-                held,
-            });
-        }
-        let mut held = HeldRecorder::new(held_count);
-        // Base matrices.
+        let hanging = layout.hanging_dofs(&mut infos);
+        let n = infos.len();
+        let lines = layout.lines();
+        let (supports, node_held, held_count) = layout.held_supports();
+        // Base matrices: elements, support springs, masses, sensor masses; the parameters
+        // after the joints': identified support springs and masses.
         let (mut k, mut m) = (Vec::new(), Vec::new());
-        for (e, line) in mesh.elements.iter().zip(&lines) {
-            let ke = element_stiffness(&e.section, e.length);
-            let me = element_mass(&e.section, e.length);
-            let local_held: [Option<usize>; 4] =
-                std::array::from_fn(|i| node_held[e.nodes[i / 2]][i % 2]);
-            for i in 0..4 {
-                for j in 0..4 {
-                    if let (Some(di), Some(dj)) = (line.dofs[i], line.dofs[j]) {
-                        k.push((di, dj, ke[i][j]));
-                        m.push((di, dj, me[i][j]));
-                    }
-                    if let Some(h) = local_held[i] {
-                        held.record(h, line.dofs[j], local_held[j], ke[i][j], me[i][j]);
-                    }
-                }
-            }
-        }
-        // Grounded springs of the supports: in the base, or parameters after the joints'.
-        let mut extra: Vec<Parameter> = Vec::new();
-        for (i, s) in self.supports.iter().enumerate() {
-            let values = s.kind.springs();
-            for (slot, name) in SPRING_NAMES.into_iter().enumerate() {
-                if values[slot] <= 0.0 {
-                    continue;
-                }
-                let dofs: Vec<usize> = mesh
-                    .nodes
-                    .iter()
-                    .zip(&node_dofs)
-                    .filter(|(node, _)| same(node.x, s.x))
-                    .filter_map(|(_, d)| d[slot])
-                    .collect();
-                if s.identify[slot] {
-                    let mut pattern = SparseSym::zero();
-                    for &d in &dofs {
-                        pattern.push(d, d, 1.0);
-                    }
-                    extra.push(Parameter {
-                        name: format!("support{i}.{name}"),
-                        unit: SPRING_UNITS[slot],
-                        value: values[slot],
-                        stiffness: pattern,
-                        mass: SparseSym::zero(),
-                        role: Role::Identified,
-                    });
-                } else {
-                    k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
-                }
-            }
-        }
-        let mut hanging_dof = hanging.iter();
-        for (i, p) in self.masses.iter().enumerate() {
-            let [w, theta] = node_dofs[node_at(p.x)];
-            // (DOF, mass on it): translation m, rotation J of a rigidly attached mass.
-            let carried: Vec<(usize, f64)> = match p.spring {
-                None => w
-                    .map(|w| (w, p.mass))
-                    .into_iter()
-                    .chain(
-                        theta
-                            .filter(|_| p.rotary_inertia > 0.0)
-                            .map(|t| (t, p.rotary_inertia)),
-                    )
-                    .collect(),
-                Some(spring) => {
-                    let own = *hanging_dof.next().expect("a DOF per hanging mass");
-                    spring_entries(&mut k, w, Some(own), spring);
-                    vec![(own, p.mass)]
-                }
-            };
-            if p.identify {
-                // dM/dm: the rotary inertia scales with the mass.
-                let mut dm = SparseSym::zero();
-                for &(d, value) in &carried {
-                    dm.push(d, d, value / p.mass);
-                }
-                extra.push(Parameter {
-                    name: format!("mass{i}.m"),
-                    unit: "kg",
-                    value: p.mass,
-                    stiffness: SparseSym::zero(),
-                    mass: dm,
-                    role: Role::Identified,
-                });
-            } else {
-                m.extend(carried.iter().map(|&(d, value)| (d, d, value)));
-            }
-        }
-        for s in self.sensors.iter().filter(|s| s.mass > 0.0) {
-            if let Some(w) = node_dofs[node_at(s.x)][0] {
-                m.push((w, w, s.mass));
-            }
-        }
-        // Joint parameters.
-        let mut parameters = Vec::new();
-        let mut joints = Vec::new();
-        for (j, joint) in self.joints.iter().enumerate() {
-            let (a, b) = (mesh.beam_ends[j].1, mesh.beam_ends[j + 1].0);
-            let first = parameters.len();
-            for (kind, role) in JointStiffness::ALL.into_iter().zip(joint.roles) {
-                let slot = match kind {
-                    JointStiffness::Transversal => 0,
-                    JointStiffness::Rotational => 1,
-                };
-                let mut stiffness = Vec::new();
-                spring_entries(&mut stiffness, node_dofs[a][slot], node_dofs[b][slot], 1.0);
-                let mut pattern = SparseSym::zero();
-                for (i, j, v) in stiffness {
-                    pattern.push(i, j, v);
-                }
-                parameters.push(Parameter {
-                    name: parameter_name(j, self.joints.len(), kind),
-                    unit: kind.unit(),
-                    value: kind.of(joint),
-                    stiffness: pattern,
-                    mass: SparseSym::zero(),
-                    role,
-                });
-            }
-            let beam_a = &self.beams[j];
-            joints.push(JointSite {
-                x: mesh.nodes[a].x,
-                w: [node_dofs[a][0], node_dofs[b][0]],
-                theta: [node_dofs[a][1], node_dofs[b][1]],
-                sections: [
-                    beam_a.section_at(beam_a.length),
-                    self.beams[j + 1].section_at(0.0),
-                ],
-                parameters: [first, first + 1],
-            });
-        }
+        let held = layout.elements(&lines, &node_held, held_count, &mut k, &mut m);
+        let mut extra = layout.support_springs(&mut k);
+        extra.extend(layout.masses(&hanging, &mut k, &mut m));
+        layout.sensor_masses(&mut m);
+        let (mut parameters, joints) = layout.joints();
         parameters.extend(extra);
-        let elements = mesh
+        let elements = layout
+            .mesh
             .elements
             .iter()
             .zip(&lines)
@@ -274,19 +58,7 @@ impl Chain {
                 section: e.section,
             })
             .collect();
-        let last = mesh.nodes.len() - 1;
-        let free_ends = [0, last]
-            .into_iter()
-            .filter(|&node| !self.supports.iter().any(|s| same(s.x, mesh.nodes[node].x)))
-            .filter_map(|node| match node_dofs[node] {
-                [Some(w), Some(theta)] => Some(EndSite {
-                    x: mesh.nodes[node].x,
-                    w,
-                    theta,
-                }),
-                _ => None,
-            })
-            .collect();
+        let free_ends = layout.free_ends();
         let dofs = DofMap::new(infos, lines, constrained);
         let sensors = self
             .sensors
@@ -320,6 +92,339 @@ impl Chain {
                 held: held.finish(),
             },
         }
+    }
+}
+
+/// Matrix entries (row, column, value), summed in their order.
+type Entries = Vec<(usize, usize, f64)>;
+
+/// Per node, its (w, theta) DOF or held motion (`None` where it has none).
+type PerNode = Vec<[Option<usize>; 2]>;
+
+/// The DOFs of the nodes: w then theta of every node in node order, less those a support
+/// removes (each recorded with the support that removed it). Returns the DOFs' descriptions,
+/// the removed labels and every node's (w, theta) DOF.
+fn number_nodes(
+    chain: &Chain,
+    mesh: &Mesh,
+    tol: f64,
+) -> (Vec<DofInfo>, Vec<(String, String)>, PerNode) {
+    let mut infos = Vec::new();
+    let mut constrained = Vec::new();
+    let mut node_dofs: PerNode = Vec::with_capacity(mesh.nodes.len());
+    for (n, node) in mesh.nodes.iter().enumerate() {
+        let mut pair = [None, None];
+        for (k, direction) in [Direction::W, Direction::Theta].into_iter().enumerate() {
+            let label = DofMap::node_label(n, direction);
+            if let Some((i, s)) = chain
+                .supports
+                .iter()
+                .enumerate()
+                .find(|(_, s)| (s.x - node.x).abs() <= tol && s.kind.removes(direction))
+            {
+                constrained.push((
+                    label,
+                    format!("support[{i}] ({} at x = {} m)", s.kind.name(), s.x),
+                ));
+                continue;
+            }
+            pair[k] = Some(infos.len());
+            infos.push(DofInfo {
+                label,
+                position: [node.x, 0.0, 0.0],
+                direction,
+                node: Some(n),
+            });
+        }
+        node_dofs.push(pair);
+    }
+    (infos, constrained, node_dofs)
+}
+
+/// What the steps of a build share: the chain, its mesh and every node's (w, theta) DOF.
+struct Layout<'a> {
+    chain: &'a Chain,
+    mesh: Mesh,
+    /// Abscissae closer than this are one position, m.
+    tol: f64,
+    node_dofs: PerNode,
+}
+
+impl Layout<'_> {
+    fn same(&self, a: f64, b: f64) -> bool {
+        (a - b).abs() <= self.tol
+    }
+
+    fn node_at(&self, x: f64) -> usize {
+        self.mesh
+            .nodes
+            .iter()
+            .position(|node| self.same(node.x, x))
+            .expect("the mesh has a node at every feature")
+    }
+
+    /// A DOF (its translation) for every mass that hangs on a spring, after the nodes'.
+    fn hanging_dofs(&self, infos: &mut Vec<DofInfo>) -> Vec<usize> {
+        let masses = &self.chain.masses;
+        (0..masses.len())
+            .filter(|&i| masses[i].spring.is_some())
+            .map(|i| {
+                infos.push(DofInfo {
+                    label: format!("mass{i}:w"),
+                    position: [masses[i].x, 0.0, 0.0],
+                    direction: Direction::W,
+                    node: None,
+                });
+                infos.len() - 1
+            })
+            .collect()
+    }
+
+    /// Every element's ends and DOFs.
+    fn lines(&self) -> Vec<LineElement> {
+        let (nodes, dofs) = (&self.mesh.nodes, &self.node_dofs);
+        self.mesh
+            .elements
+            .iter()
+            .map(|e| {
+                let [a, b] = e.nodes;
+                LineElement {
+                    x: [nodes[a].x, nodes[b].x],
+                    dofs: [dofs[a][0], dofs[a][1], dofs[b][0], dofs[b][1]],
+                }
+            })
+            .collect()
+    }
+
+    /// The motions the rigid supports hold, where one node is held (not at a joint): the
+    /// supports' sites, every node's held motions (index among all held ones) and their count.
+    fn held_supports(&self) -> (Vec<SupportSite>, PerNode, usize) {
+        let mesh = &self.mesh;
+        let mut supports = Vec::new();
+        let mut node_held: PerNode = vec![[None, None]; mesh.nodes.len()];
+        let mut held_count = 0;
+        for s in &self.chain.supports {
+            let mut at = mesh
+                .nodes
+                .iter()
+                .enumerate()
+                .filter(|(_, n)| self.same(n.x, s.x));
+            let (Some((node, _)), None) = (at.next(), at.next()) else {
+                continue;
+            };
+            let held: Vec<Direction> = [Direction::W, Direction::Theta]
+                .into_iter()
+                .filter(|&d| s.kind.removes(d))
+                .collect();
+            if held.is_empty() {
+                continue;
+            }
+            for &d in &held {
+                node_held[node][usize::from(d == Direction::Theta)] = Some(held_count);
+                held_count += 1;
+            }
+            let section = mesh
+                .elements
+                .iter()
+                .find(|e| e.nodes.contains(&node))
+                .expect("every node is on an element")
+                .section;
+            supports.push(SupportSite {
+                x: mesh.nodes[node].x,
+                section,
+                held,
+            });
+        }
+        (supports, node_held, held_count)
+    }
+
+    /// The beam elements' stiffness and mass entries into `k`, `m`; their entries on the held
+    /// motions recorded.
+    fn elements(
+        &self,
+        lines: &[LineElement],
+        node_held: &PerNode,
+        held_count: usize,
+        k: &mut Entries,
+        m: &mut Entries,
+    ) -> HeldRecorder {
+        let mut held = HeldRecorder::new(held_count);
+        for (e, line) in self.mesh.elements.iter().zip(lines) {
+            let ke = element_stiffness(&e.section, e.length);
+            let me = element_mass(&e.section, e.length);
+            let local_held: [Option<usize>; 4] =
+                std::array::from_fn(|i| node_held[e.nodes[i / 2]][i % 2]);
+            for i in 0..4 {
+                for j in 0..4 {
+                    if let (Some(di), Some(dj)) = (line.dofs[i], line.dofs[j]) {
+                        k.push((di, dj, ke[i][j]));
+                        m.push((di, dj, me[i][j]));
+                    }
+                    if let Some(h) = local_held[i] {
+                        held.record(h, line.dofs[j], local_held[j], ke[i][j], me[i][j]);
+                    }
+                }
+            }
+        }
+        held
+    }
+
+    /// The supports' grounded springs: into `k`, or as identified parameters (returned).
+    fn support_springs(&self, k: &mut Entries) -> Vec<Parameter> {
+        let mut extra = Vec::new();
+        for (i, s) in self.chain.supports.iter().enumerate() {
+            let values = s.kind.springs();
+            for (slot, name) in SPRING_NAMES.into_iter().enumerate() {
+                if values[slot] <= 0.0 {
+                    continue;
+                }
+                let dofs: Vec<usize> = self
+                    .mesh
+                    .nodes
+                    .iter()
+                    .zip(&self.node_dofs)
+                    .filter(|(node, _)| self.same(node.x, s.x))
+                    .filter_map(|(_, d)| d[slot])
+                    .collect();
+                if s.identify[slot] {
+                    let mut pattern = SparseSym::zero();
+                    for &d in &dofs {
+                        pattern.push(d, d, 1.0);
+                    }
+                    extra.push(Parameter {
+                        name: format!("support{i}.{name}"),
+                        unit: SPRING_UNITS[slot],
+                        value: values[slot],
+                        stiffness: pattern,
+                        mass: SparseSym::zero(),
+                        role: Role::Identified,
+                    });
+                } else {
+                    k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
+                }
+            }
+        }
+        extra
+    }
+
+    /// The point masses (on their node, or hanging on a spring from its own DOF `hanging`):
+    /// into `m` (a spring into `k`), or as identified parameters (returned).
+    fn masses(&self, hanging: &[usize], k: &mut Entries, m: &mut Entries) -> Vec<Parameter> {
+        let mut extra = Vec::new();
+        let mut hanging_dof = hanging.iter();
+        for (i, p) in self.chain.masses.iter().enumerate() {
+            let [w, theta] = self.node_dofs[self.node_at(p.x)];
+            // (DOF, mass on it): translation m, rotation J of a rigidly attached mass.
+            let carried: Vec<(usize, f64)> = match p.spring {
+                None => w
+                    .map(|w| (w, p.mass))
+                    .into_iter()
+                    .chain(
+                        theta
+                            .filter(|_| p.rotary_inertia > 0.0)
+                            .map(|t| (t, p.rotary_inertia)),
+                    )
+                    .collect(),
+                Some(spring) => {
+                    let own = *hanging_dof.next().expect("a DOF per hanging mass");
+                    spring_entries(k, w, Some(own), spring);
+                    vec![(own, p.mass)]
+                }
+            };
+            if p.identify {
+                // dM/dm: the rotary inertia scales with the mass.
+                let mut dm = SparseSym::zero();
+                for &(d, value) in &carried {
+                    dm.push(d, d, value / p.mass);
+                }
+                extra.push(Parameter {
+                    name: format!("mass{i}.m"),
+                    unit: "kg",
+                    value: p.mass,
+                    stiffness: SparseSym::zero(),
+                    mass: dm,
+                    role: Role::Identified,
+                });
+            } else {
+                m.extend(carried.iter().map(|&(d, value)| (d, d, value)));
+            }
+        }
+        extra
+    }
+
+    /// The sensors' masses on their translations, into `m`.
+    fn sensor_masses(&self, m: &mut Entries) {
+        for s in self.chain.sensors.iter().filter(|s| s.mass > 0.0) {
+            if let Some(w) = self.node_dofs[self.node_at(s.x)][0] {
+                m.push((w, w, s.mass));
+            }
+        }
+    }
+
+    /// The joints' k1, k2 (eq. (17)) with dK/dp (eq. (8)), and the joints' sites.
+    fn joints(&self) -> (Vec<Parameter>, Vec<JointSite>) {
+        let (chain, mesh, node_dofs) = (self.chain, &self.mesh, &self.node_dofs);
+        let mut parameters = Vec::new();
+        let mut joints = Vec::new();
+        for (j, joint) in chain.joints.iter().enumerate() {
+            let (a, b) = (mesh.beam_ends[j].1, mesh.beam_ends[j + 1].0);
+            let first = parameters.len();
+            for (kind, role) in JointStiffness::ALL.into_iter().zip(joint.roles) {
+                let slot = match kind {
+                    JointStiffness::Transversal => 0,
+                    JointStiffness::Rotational => 1,
+                };
+                let mut stiffness = Vec::new();
+                spring_entries(&mut stiffness, node_dofs[a][slot], node_dofs[b][slot], 1.0);
+                let mut pattern = SparseSym::zero();
+                for (i, j, v) in stiffness {
+                    pattern.push(i, j, v);
+                }
+                parameters.push(Parameter {
+                    name: parameter_name(j, chain.joints.len(), kind),
+                    unit: kind.unit(),
+                    value: kind.of(joint),
+                    stiffness: pattern,
+                    mass: SparseSym::zero(),
+                    role,
+                });
+            }
+            let beam_a = &chain.beams[j];
+            joints.push(JointSite {
+                x: mesh.nodes[a].x,
+                w: [node_dofs[a][0], node_dofs[b][0]],
+                theta: [node_dofs[a][1], node_dofs[b][1]],
+                sections: [
+                    beam_a.section_at(beam_a.length),
+                    chain.beams[j + 1].section_at(0.0),
+                ],
+                parameters: [first, first + 1],
+            });
+        }
+        (parameters, joints)
+    }
+
+    /// The chain's ends that no support holds, with both DOFs.
+    fn free_ends(&self) -> Vec<EndSite> {
+        let nodes = &self.mesh.nodes;
+        [0, nodes.len() - 1]
+            .into_iter()
+            .filter(|&node| {
+                !self
+                    .chain
+                    .supports
+                    .iter()
+                    .any(|s| self.same(s.x, nodes[node].x))
+            })
+            .filter_map(|node| match self.node_dofs[node] {
+                [Some(w), Some(theta)] => Some(EndSite {
+                    x: nodes[node].x,
+                    w,
+                    theta,
+                }),
+                _ => None,
+            })
+            .collect()
     }
 }
 
@@ -379,12 +484,7 @@ impl HeldRecorder {
 
 /// The entries of a spring of stiffness `value` between DOFs `a` and `b`, in the order of
 /// [`SparseSym::spring`]; a removed end (`None`) is the ground.
-fn spring_entries(
-    out: &mut Vec<(usize, usize, f64)>,
-    a: Option<usize>,
-    b: Option<usize>,
-    value: f64,
-) {
+fn spring_entries(out: &mut Entries, a: Option<usize>, b: Option<usize>, value: f64) {
     if let Some(a) = a {
         out.push((a, a, value));
     }

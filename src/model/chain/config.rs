@@ -220,111 +220,11 @@ impl RawChain {
             .mass
             .iter()
             .enumerate()
-            .map(|(i, m)| {
-                let p = |field: &str| format!("mass[{i}].{field}");
-                if m.spring.is_some() && m.rotary_inertia.is_some() {
-                    return Err(check.invalid(
-                        p("rotary_inertia"),
-                        m.rotary_inertia.unwrap_or(0.0),
-                        "a mass on a spring moves in translation only: leave rotary_inertia out",
-                    ));
-                }
-                Ok(PointMass {
-                    x: position(p("x"), m.x)?,
-                    mass: check.positive(p("mass"), m.mass, "kg")?,
-                    rotary_inertia: m
-                        .rotary_inertia
-                        .map(|j| check.non_negative(p("rotary_inertia"), j, "kg m^2"))
-                        .transpose()?
-                        .unwrap_or(0.0),
-                    spring: m
-                        .spring
-                        .map(|k| check.positive(p("spring"), k, "N/m"))
-                        .transpose()?,
-                    identify: m.identify,
-                })
-            })
+            .map(|(i, m)| point_mass(m, i, &check, &position))
             .collect::<Result<Vec<_>, InputError>>()?;
-        let mut sensors: Vec<Sensor> = Vec::with_capacity(self.sensor.len());
-        for (i, s) in self.sensor.iter().enumerate() {
-            let p = |field: &str| format!("sensor[{i}].{field}");
-            let direction = match s.dof.as_deref() {
-                None | Some("w") => Direction::W,
-                Some("theta") => Direction::Theta,
-                Some(other) => {
-                    return Err(check.invalid(
-                        p("dof"),
-                        format!("\"{other}\""),
-                        "it must be \"w\" or \"theta\"",
-                    ));
-                }
-            };
-            if let Some(label) = &s.label {
-                if label.is_empty() || label.contains(',') || label.contains(':') {
-                    return Err(check.invalid(
-                        p("label"),
-                        format!("\"{label}\""),
-                        "a label is non-empty text without commas or colons",
-                    ));
-                }
-                if let Some(other) = sensors.iter().position(|o| o.label.as_ref() == Some(label)) {
-                    return Err(check.invalid(
-                        p("label"),
-                        format!("\"{label}\""),
-                        format!("sensor[{other}] has this label already"),
-                    ));
-                }
-            }
-            sensors.push(Sensor {
-                x: position(p("x"), s.x)?,
-                direction,
-                label: s.label.clone(),
-                mass: s
-                    .mass
-                    .map(|m| check.non_negative(p("mass"), m, "kg"))
-                    .transpose()?
-                    .unwrap_or(0.0),
-            });
-        }
-        let tol = 1e-9 * length;
-        for (i, sensor) in sensors.iter().enumerate() {
-            if let Some((k, support)) = supports
-                .iter()
-                .enumerate()
-                .find(|(_, s)| (s.x - sensor.x).abs() <= tol && s.kind.removes(sensor.direction))
-            {
-                return Err(check.invalid(
-                    format!("sensor[{i}].x"),
-                    sensor.x,
-                    format!(
-                        "support[{k}] ({}) holds {} there: a sensor reads a motion that exists",
-                        support.kind.name(),
-                        sensor.direction
-                    ),
-                ));
-            }
-        }
-        let identified = joints
-            .iter()
-            .flat_map(|j| j.roles)
-            .filter(|r| *r == Role::Identified)
-            .count()
-            + supports
-                .iter()
-                .flat_map(|s| s.identify)
-                .filter(|&b| b)
-                .count()
-            + masses.iter().filter(|m| m.identify).count();
-        if identified > crate::structure::MAX_IDENTIFIED {
-            return Err(check.invalid(
-                "joint",
-                format!("{identified} identified parameters"),
-                format!(
-                    "at most {} parameters can be identified: hold some fixed (`fixed = [...]`)",
-                    crate::structure::MAX_IDENTIFIED
-                ),
-            ));
-        }
+        let sensors = sensors(&self.sensor, &check, &position)?;
+        sensors_on_motions(&sensors, &supports, length, &check)?;
+        identified_within_limit(&joints, &supports, &masses, &check)?;
         let nodes_at = self
             .mesh
             .map(|m| m.nodes_at)
@@ -342,6 +242,149 @@ impl RawChain {
             nodes_at,
         })
     }
+}
+
+/// `position(path, x)`: x checked to lie on the chain.
+type Position<'a> = dyn Fn(String, f64) -> Result<f64, InputError> + 'a;
+
+/// `[[mass]]` table `i`.
+fn point_mass(
+    m: &RawMass,
+    i: usize,
+    check: &FieldCheck,
+    position: &Position,
+) -> Result<PointMass, InputError> {
+    let p = |field: &str| format!("mass[{i}].{field}");
+    if m.spring.is_some() && m.rotary_inertia.is_some() {
+        return Err(check.invalid(
+            p("rotary_inertia"),
+            m.rotary_inertia.unwrap_or(0.0),
+            "a mass on a spring moves in translation only: leave rotary_inertia out",
+        ));
+    }
+    Ok(PointMass {
+        x: position(p("x"), m.x)?,
+        mass: check.positive(p("mass"), m.mass, "kg")?,
+        rotary_inertia: m
+            .rotary_inertia
+            .map(|j| check.non_negative(p("rotary_inertia"), j, "kg m^2"))
+            .transpose()?
+            .unwrap_or(0.0),
+        spring: m
+            .spring
+            .map(|k| check.positive(p("spring"), k, "N/m"))
+            .transpose()?,
+        identify: m.identify,
+    })
+}
+
+/// The `[[sensor]]` tables: direction, a unique label, position, mass.
+fn sensors(
+    raw: &[RawSensor],
+    check: &FieldCheck,
+    position: &Position,
+) -> Result<Vec<Sensor>, InputError> {
+    let mut sensors: Vec<Sensor> = Vec::with_capacity(raw.len());
+    for (i, s) in raw.iter().enumerate() {
+        let p = |field: &str| format!("sensor[{i}].{field}");
+        let direction = match s.dof.as_deref() {
+            None | Some("w") => Direction::W,
+            Some("theta") => Direction::Theta,
+            Some(other) => {
+                return Err(check.invalid(
+                    p("dof"),
+                    format!("\"{other}\""),
+                    "it must be \"w\" or \"theta\"",
+                ));
+            }
+        };
+        if let Some(label) = &s.label {
+            if label.is_empty() || label.contains(',') || label.contains(':') {
+                return Err(check.invalid(
+                    p("label"),
+                    format!("\"{label}\""),
+                    "a label is non-empty text without commas or colons",
+                ));
+            }
+            if let Some(other) = sensors.iter().position(|o| o.label.as_ref() == Some(label)) {
+                return Err(check.invalid(
+                    p("label"),
+                    format!("\"{label}\""),
+                    format!("sensor[{other}] has this label already"),
+                ));
+            }
+        }
+        sensors.push(Sensor {
+            x: position(p("x"), s.x)?,
+            direction,
+            label: s.label.clone(),
+            mass: s
+                .mass
+                .map(|m| check.non_negative(p("mass"), m, "kg"))
+                .transpose()?
+                .unwrap_or(0.0),
+        });
+    }
+    Ok(sensors)
+}
+
+/// Refuses a sensor on a motion a support holds.
+fn sensors_on_motions(
+    sensors: &[Sensor],
+    supports: &[Support],
+    length: f64,
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    let tol = 1e-9 * length;
+    for (i, sensor) in sensors.iter().enumerate() {
+        if let Some((k, support)) = supports
+            .iter()
+            .enumerate()
+            .find(|(_, s)| (s.x - sensor.x).abs() <= tol && s.kind.removes(sensor.direction))
+        {
+            return Err(check.invalid(
+                format!("sensor[{i}].x"),
+                sensor.x,
+                format!(
+                    "support[{k}] ({}) holds {} there: a sensor reads a motion that exists",
+                    support.kind.name(),
+                    sensor.direction
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses more identified parameters (joints', supports', masses') than the method solves for.
+fn identified_within_limit(
+    joints: &[Joint],
+    supports: &[Support],
+    masses: &[PointMass],
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    let identified = joints
+        .iter()
+        .flat_map(|j| j.roles)
+        .filter(|r| *r == Role::Identified)
+        .count()
+        + supports
+            .iter()
+            .flat_map(|s| s.identify)
+            .filter(|&b| b)
+            .count()
+        + masses.iter().filter(|m| m.identify).count();
+    if identified > crate::structure::MAX_IDENTIFIED {
+        return Err(check.invalid(
+            "joint",
+            format!("{identified} identified parameters"),
+            format!(
+                "at most {} parameters can be identified: hold some fixed (`fixed = [...]`)",
+                crate::structure::MAX_IDENTIFIED
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn beam(
