@@ -60,18 +60,24 @@ fn data(name: &str, size: f64, noisy: bool) -> MeasuredModes {
     .unwrap()
 }
 
-fn run(data: &MeasuredModes) -> Report {
+/// `data` diagnosed against `model` under the stated [`NOISE`], the extended tier searched
+/// when `extended`.
+fn run_on(model: &jointid::structure::Structure, data: &MeasuredModes, extended: bool) -> Report {
     diagnose(
-        &paper_model(1e7, 1e4),
+        model,
         data,
         DiagnoseSettings {
             noise: NOISE,
             pairing: PairingRule::default(),
             per_mode: None,
-            extended: true,
+            extended,
         },
     )
     .unwrap()
+}
+
+fn run(data: &MeasuredModes) -> Report {
+    run_on(&paper_model(1e7, 1e4), data, true)
 }
 
 /// Asserts that candidate `name` of `report` has its size and parameters within `sigmas`
@@ -317,17 +323,7 @@ fn clamp_data(noise: Noise, seed: u64) -> MeasuredModes {
 }
 
 fn run_clamped(data: &MeasuredModes) -> Report {
-    diagnose(
-        &cantilever("kind = \"clamped\"\n"),
-        data,
-        DiagnoseSettings {
-            noise: NOISE,
-            pairing: PairingRule::default(),
-            per_mode: None,
-            extended: false,
-        },
-    )
-    .unwrap()
+    run_on(&cantilever("kind = \"clamped\"\n"), data, false)
 }
 
 #[test]
@@ -397,17 +393,7 @@ fn bars_data(truth: &jointid::structure::Structure, noise: Noise, seed: u64) -> 
 }
 
 fn run_bars(data: &MeasuredModes) -> Report {
-    diagnose(
-        &bars(["", ""]),
-        data,
-        DiagnoseSettings {
-            noise: NOISE,
-            pairing: PairingRule::default(),
-            per_mode: None,
-            extended: true,
-        },
-    )
-    .unwrap()
+    run_on(&bars(["", ""]), data, true)
 }
 
 /// Asserts that scan `name` of `report` is selected, at its coordinate `at` (exactly: the
