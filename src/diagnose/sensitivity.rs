@@ -73,7 +73,7 @@ pub fn eigen_derivative(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::effects::{Configured, EffectContext, candidates};
+    use crate::model::effects::{Configured, EffectContext, by_name};
     use crate::model::fixtures::paper_model;
 
     /// Against central differences of the eigensolution, for a stiffness parameter (k2 of the
@@ -88,10 +88,7 @@ mod tests {
             &[],
             nominal.frequency_hz(2),
         ));
-        let joint_mass = candidates()
-            .into_iter()
-            .find(|e| e.name() == "joint_mass")
-            .unwrap();
+        let joint_mass = by_name("joint_mass").unwrap();
         let at = |k2: f64, m: f64| {
             let configured = Configured {
                 ctx: ctx.clone(),

@@ -158,11 +158,6 @@ pub fn library(ctx: &EffectContext, extended: bool) -> Vec<Arc<dyn Candidate>> {
         .collect()
 }
 
-/// The candidate named `name`.
-pub fn by_name(name: &str) -> Option<Arc<dyn Candidate>> {
-    registry().into_iter().find(|c| c.name() == name)
-}
-
 /// One row of the catalogue of everything a user can name: a candidate of the diagnosis, an
 /// effect simulate can put into data, or both.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -188,26 +188,6 @@ pub fn of_tier(tier: Tier) -> Vec<Arc<dyn Effect>> {
         .collect()
 }
 
-/// The candidate library searched by every `jointid diagnose` ([`Tier::Default`]).
-pub fn candidates() -> Vec<Arc<dyn Effect>> {
-    of_tier(Tier::Default)
-}
-
-/// The richer candidates `jointid diagnose --extended` adds to the library
-/// ([`Tier::Extended`]). Not searched by default: on the independent battery the effects
-/// lap, joint_inertia and end_mass take 6 right verdicts of 100 from the library (a strong
-/// joint mass read as a lap, weak trends and shear absorbed by end masses) and gain none
-/// (bench/battery/results/small-candidates.md).
-pub fn extended() -> Vec<Arc<dyn Effect>> {
-    of_tier(Tier::Extended)
-}
-
-/// Effects outside the library ([`Tier::Outside`]): for simulated data that no candidate
-/// explains.
-pub fn outside_library() -> Vec<Arc<dyn Effect>> {
-    of_tier(Tier::Outside)
-}
-
 /// The registered effect named `name`.
 pub fn by_name(name: &str) -> Option<Arc<dyn Effect>> {
     registry().into_iter().find(|e| e.name() == name)
