@@ -119,6 +119,33 @@ pub fn column_derivatives(w: f64, poles: &[c64], p: i32, out: &mut Vec<[c64; 4]>
     }
 }
 
+/// T = W dA/dtheta x (2 nf x 2K, real-stacked like [`design`]): the derivative of the weighted
+/// model of one response, whose unknowns are `x` (a column of the solution), with respect to
+/// theta = (Re lambda_1, Im lambda_1, Re lambda_2, ...).
+pub fn pole_jacobian(
+    omega: &[f64],
+    weights: &[f64],
+    poles: &[c64],
+    power: i32,
+    x: faer::ColRef<'_, f64>,
+) -> Mat<f64> {
+    let nf = omega.len();
+    let mut t = Mat::<f64>::zeros(2 * nf, 2 * poles.len());
+    let mut derivatives = Vec::new();
+    for k in 0..nf {
+        column_derivatives(omega[k], poles, power, &mut derivatives);
+        for (r, d) in derivatives.iter().enumerate() {
+            let (xa, xb) = (x[2 * r], x[2 * r + 1]);
+            for c in 0..2 {
+                let v = d[2 * c] * xa + d[2 * c + 1] * xb;
+                t[(k, 2 * r + c)] = weights[k] * v.re;
+                t[(nf + k, 2 * r + c)] = weights[k] * v.im;
+            }
+        }
+    }
+    t
+}
+
 /// The weighted real-stacked design matrix (2 nf x (2K + 2)).
 pub fn design(omega: &[f64], weights: &[f64], poles: &[c64], basis: Basis) -> Mat<f64> {
     let nf = omega.len();

@@ -36,6 +36,7 @@ pub mod lsfd;
 pub mod refine;
 pub mod shapes;
 pub mod stabilization;
+pub mod uncertainty;
 pub mod universal;
 
 mod run;
@@ -50,6 +51,7 @@ pub use stabilization::{
     ChartPole, Criteria, DAMPING_TOLERANCE, FREQUENCY_TOLERANCE, MAC_MIN, MAX_DAMPING,
     StabilityClass,
 };
+pub use uncertainty::{ModeStd, NoiseSource};
 
 /// Default highest model order (degree of the common denominator).
 pub const MAX_ORDER: usize = 60;
@@ -83,6 +85,10 @@ pub struct Settings {
     pub residual_terms: usize,
     /// Refine the chosen poles by nonlinear least squares ([`refine`]); default true.
     pub refine: bool,
+    /// Number of averages of the H1 estimates: with the coherence it gives the noise of every
+    /// line, and so the standard errors ([`uncertainty`]); >= 1; default: none, the noise then
+    /// comes from the residuals of the fit.
+    pub averages: Option<usize>,
 }
 
 impl Default for Settings {
@@ -99,6 +105,7 @@ impl Default for Settings {
             coherence_min: COHERENCE_MIN,
             residual_terms: 2,
             refine: true,
+            averages: None,
         }
     }
 }
@@ -140,6 +147,9 @@ impl Settings {
                 "it must be 0, 1 or 2",
             );
         }
+        if self.averages == Some(0) {
+            return invalid("averages", &0, "it must be an integer >= 1");
+        }
         if !(0.0..=1.0).contains(&self.coherence_min) {
             return invalid("coherence_min", &self.coherence_min, "it must be in [0, 1]");
         }
@@ -170,6 +180,9 @@ pub struct Mode {
     pub stable_orders: (usize, usize),
     /// Number of stable poles of its chain.
     pub stable_count: usize,
+    /// Standard errors of the frequency, the damping ratio and the real shape
+    /// ([`uncertainty`]).
+    pub std: ModeStd,
 }
 
 /// Everything the extraction found.
@@ -203,6 +216,8 @@ pub struct Extraction {
     /// Whether the poles were refined (false when off, or when the refinement left the band or
     /// merged poles and the chart's poles were kept).
     pub refined: bool,
+    /// Where the noise behind the modes' standard errors came from.
+    pub noise: NoiseSource,
 }
 
 /// Why the extraction failed.
@@ -316,6 +331,11 @@ pub enum ExtractError {
         min_stable: usize,
         max_order: usize,
     },
+    /// A number of averages was given for FRFs without coherence.
+    #[error(
+        "{averages} averages were given, but the FRFs carry no coherence: the noise of each line          comes from the coherence and the number of averages together (without coherence it is          estimated from the residuals of the fit; leave the averages out)"
+    )]
+    AveragesWithoutCoherence { averages: usize },
     /// Fewer physical chains than modes requested.
     #[error(
         "{requested} modes were requested but only {found} chains of poles were stable at \

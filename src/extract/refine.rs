@@ -23,7 +23,7 @@ use std::convert::Infallible;
 
 use faer::{Mat, c64};
 
-use super::lsfd::{Basis, column_derivatives, data, design};
+use super::lsfd::{Basis, data, design, pole_jacobian};
 use crate::optim::{self, LevenbergMarquardt, Termination, lstsq};
 
 /// Most Levenberg-Marquardt iterations.
@@ -68,26 +68,19 @@ pub(crate) fn linearise(
     let m = a.ncols();
     let b = data(weights, responses);
     let ls = lstsq::solve(a.as_ref(), b.as_ref());
-    let mut derivatives = Vec::new();
     let mut acc = Mat::<f64>::zeros(0, n + 1);
     let mut cost = 0.0;
     let mut gradient = vec![0.0; n];
     for o in 0..responses.len() {
         // [T_o | b_o], T_o column 2r + c = dA/dtheta_(2r+c) x_o (c = 0: Re lambda, 1: Im lambda).
-        let mut tb = Mat::<f64>::zeros(2 * nf, n + 1);
-        for k in 0..nf {
-            column_derivatives(omega[k], poles, basis.power, &mut derivatives);
-            for (r, d) in derivatives.iter().enumerate() {
-                let (xa, xb) = (ls.x[(2 * r, o)], ls.x[(2 * r + 1, o)]);
-                for c in 0..2 {
-                    let t = d[2 * c] * xa + d[2 * c + 1] * xb;
-                    tb[(k, 2 * r + c)] = weights[k] * t.re;
-                    tb[(nf + k, 2 * r + c)] = weights[k] * t.im;
-                }
-            }
-            tb[(k, n)] = b[(k, o)];
-            tb[(nf + k, n)] = b[(nf + k, o)];
-        }
+        let t = pole_jacobian(omega, weights, poles, basis.power, ls.x.col(o));
+        let mut tb = Mat::<f64>::from_fn(
+            2 * nf,
+            n + 1,
+            |i, j| {
+                if j < n { t[(i, j)] } else { b[(i, o)] }
+            },
+        );
         lstsq::apply_qt(&ls.qr, tb.as_mut());
         let lower = tb.as_ref().subrows(m, 2 * nf - m);
         for i in 0..lower.nrows() {

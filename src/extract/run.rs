@@ -6,6 +6,7 @@ use faer::c64;
 
 use super::lscf::{self, Lscf};
 use super::stabilization::{self, Chosen, Criteria, OrderPoles};
+use super::uncertainty::{self, ModeStd, NoiseSource};
 use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
 
 fn frequency(s: c64) -> f64 {
@@ -103,14 +104,20 @@ fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64>
         .collect()
 }
 
-/// The modes of the chosen chains with their final poles and residues, ascending in
-/// frequency.
-fn modes_of(chosen: &[Chosen], poles: &[c64], residues: &[Vec<c64>]) -> Vec<Mode> {
+/// The modes of the chosen chains with their final poles, residues and standard errors,
+/// ascending in frequency.
+fn modes_of(
+    chosen: &[Chosen],
+    poles: &[c64],
+    residues: &[Vec<c64>],
+    std: Vec<ModeStd>,
+) -> Vec<Mode> {
     let mut modes: Vec<Mode> = chosen
         .iter()
         .zip(poles)
         .zip(residues)
-        .map(|((c, &pole), residues)| {
+        .zip(std)
+        .map(|(((c, &pole), residues), std)| {
             let real = shapes::real_mode(residues);
             Mode {
                 frequency_hz: frequency(pole),
@@ -123,6 +130,7 @@ fn modes_of(chosen: &[Chosen], poles: &[c64], residues: &[Vec<c64>]) -> Vec<Mode
                 mpd_deg: real.mpd_deg,
                 stable_orders: c.orders,
                 stable_count: c.stable_count,
+                std,
             }
         })
         .collect();
@@ -139,6 +147,9 @@ pub fn extract(
 ) -> Result<Extraction, ExtractError> {
     settings.check().map_err(ExtractError::Setting)?;
     frf.validate()?;
+    if let (Some(averages), None) = (settings.averages, &frf.coherence) {
+        return Err(ExtractError::AveragesWithoutCoherence { averages });
+    }
     let band = frf::band(frf, settings)?;
     let max_order = settings.max_order;
     let needed = 2 * (max_order + 1);
@@ -219,7 +230,18 @@ pub fn extract(
     let fit = lsfd::fit(&omega, &band.weights, &poles, basis, &responses);
     let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
     let fit_error = relative_errors(&responses, &synthesized);
-    let modes = modes_of(&chosen, &poles, &fit.residues);
+    let (noise, variances) = line_variances(
+        frf,
+        settings,
+        &band,
+        &responses,
+        &synthesized,
+        basis,
+        poles.len(),
+    );
+    let std =
+        uncertainty::standard_errors(&omega, &band.weights, &poles, basis, &responses, &variances);
+    let modes = modes_of(&chosen, &poles, &fit.residues, std);
     let mean_coherence = frf.coherence.as_ref().map(|c| {
         c.iter()
             .map(|r| band.lines.iter().map(|&k| r[k]).sum::<f64>() / band.lines.len() as f64)
@@ -240,5 +262,38 @@ pub fn extract(
         upper_residual: fit.upper,
         mean_coherence,
         refined,
+        noise,
     })
+}
+
+/// The noise of every line of the band (see [`uncertainty`]): from the coherence when the
+/// number of averages is given, else from the residuals of the fit `synthesized`.
+fn line_variances(
+    frf: &FrfSet,
+    settings: &Settings,
+    band: &frf::Band,
+    responses: &[Vec<c64>],
+    synthesized: &[Vec<c64>],
+    basis: lsfd::Basis,
+    poles: usize,
+) -> (NoiseSource, Vec<Vec<f64>>) {
+    match (settings.averages, &frf.coherence) {
+        (Some(averages), Some(coherence)) => {
+            let in_band: Vec<Vec<f64>> = coherence
+                .iter()
+                .map(|c| band.lines.iter().map(|&k| c[k]).collect())
+                .collect();
+            (
+                NoiseSource::Coherence { averages },
+                uncertainty::from_coherence(responses, &in_band, averages),
+            )
+        }
+        _ => {
+            let unknowns = basis.width(poles) as f64 + 2.0 * poles as f64 / responses.len() as f64;
+            (
+                NoiseSource::Residuals,
+                uncertainty::from_residuals(&band.weights, responses, synthesized, unknowns),
+            )
+        }
+    }
 }

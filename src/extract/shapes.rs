@@ -84,14 +84,36 @@ pub fn complex_unit_peak(v: &[c64]) -> Vec<c64> {
     }
 }
 
-/// The real normal mode and complexity of a complex shape (see the module docs).
-pub fn real_mode(v: &[c64]) -> RealMode {
+/// The second moments (x.x, y.y, x.y) of the points v_o = x_o + i y_o.
+fn moments(v: &[c64]) -> (f64, f64, f64) {
     let sxx: f64 = v.iter().map(|z| z.re * z.re).sum();
     let syy: f64 = v.iter().map(|z| z.im * z.im).sum();
     let sxy: f64 = v.iter().map(|z| z.re * z.im).sum();
+    (sxx, syy, sxy)
+}
+
+/// Re(v e^{-i angle}) per component.
+fn rotated(v: &[c64], angle: f64) -> Vec<f64> {
+    let (c, s) = (angle.cos(), angle.sin());
+    v.iter().map(|z| z.re * c + z.im * s).collect()
+}
+
+/// The real shape of `v` (its principal axis, as in [`real_mode`]) scaled so that component
+/// `peak` is +1: [`real_mode`]'s shape when `peak` is its largest component, a smooth function
+/// of `v` near it (the standard errors differentiate it with the peak held).
+pub fn real_shape_scaled_at(v: &[c64], peak: usize) -> Vec<f64> {
+    let (sxx, syy, sxy) = moments(v);
+    let shape = rotated(v, 0.5 * (2.0 * sxy).atan2(sxx - syy));
+    let at = shape[peak];
+    shape.iter().map(|x| x / at).collect()
+}
+
+/// The real normal mode and complexity of a complex shape (see the module docs).
+pub fn real_mode(v: &[c64]) -> RealMode {
+    let (sxx, syy, sxy) = moments(v);
     let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
     let (c, s) = (angle.cos(), angle.sin());
-    let mut shape: Vec<f64> = v.iter().map(|z| z.re * c + z.im * s).collect();
+    let mut shape = rotated(v, angle);
     unit_peak(&mut shape);
     let trace = sxx + syy;
     let half_gap = (0.25 * (sxx - syy).powi(2) + sxy * sxy).sqrt();

@@ -66,9 +66,10 @@ pub fn triangle(a: MatRef<'_, f64>) -> Mat<f64> {
     )
 }
 
-/// Solves the square upper-triangular system R x = b (several right-hand sides) in the sense of
-/// least squares with the SVD of R: singular values below [`RCOND`] times the largest are
-/// dropped. Returns x and the numerical rank.
+/// Solves the square system R x = b (several right-hand sides; R upper-triangular where this
+/// module uses it, any square matrix works) in the sense of least squares with the SVD of R:
+/// singular values below [`RCOND`] times the largest are dropped. Returns x and the numerical
+/// rank.
 pub fn solve_triangle(r: MatRef<'_, f64>, b: MatRef<'_, f64>) -> (Mat<f64>, usize) {
     let n = r.ncols();
     let k = b.ncols();
@@ -112,6 +113,8 @@ pub struct LeastSquares {
     pub rank: usize,
     /// The Householder QR of the column-scaled A (for projections of other vectors).
     pub qr: Qr<f64>,
+    /// The column scales: the QR is of A diag(scale).
+    pub scale: Vec<f64>,
 }
 
 /// Solves min ||A x - B|| (see [`LeastSquares`]).
@@ -140,7 +143,13 @@ pub fn solve(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> LeastSquares {
             x[(j, c)] *= scale[j];
         }
     }
-    LeastSquares { x, rank, qr }
+    LeastSquares { x, rank, qr, scale }
+}
+
+/// The pseudo-inverse of a square matrix ([`solve_triangle`] of the identity), with its rank.
+pub fn pseudo_inverse(a: MatRef<'_, f64>) -> (Mat<f64>, usize) {
+    let n = a.nrows();
+    solve_triangle(a, Mat::<f64>::identity(n, n).as_ref())
 }
 
 /// (A^T A)^-1 of a tall A (m >= n) as R^-1 R^-T, R from the QR of A (the normal equations,
