@@ -86,7 +86,7 @@ pub struct Settings {
     /// Refine the chosen poles by nonlinear least squares ([`refine`]); default true.
     pub refine: bool,
     /// Number of averages of the H1 estimates: with the coherence it gives the noise of every
-    /// line, and so the standard errors ([`uncertainty`]); >= 1; default: none, the noise then
+    /// line, and so the standard errors ([`uncertainty`]); >= 2; default: none, the noise then
     /// comes from the residuals of the fit.
     pub averages: Option<usize>,
 }
@@ -147,8 +147,12 @@ impl Settings {
                 "it must be 0, 1 or 2",
             );
         }
-        if self.averages == Some(0) {
-            return invalid("averages", &0, "it must be an integer >= 1");
+        if let Some(n @ (0 | 1)) = self.averages {
+            return invalid(
+                "averages",
+                &n,
+                "it must be an integer >= 2 (one average has no coherence)",
+            );
         }
         if !(0.0..=1.0).contains(&self.coherence_min) {
             return invalid("coherence_min", &self.coherence_min, "it must be in [0, 1]");

@@ -3,10 +3,15 @@
 //!
 //! **The noise of the FRFs.** Each line k of response o carries a complex error of variance
 //! v_ok = E|H^_ok - H_ok|^2 (circular: half in the real part, half in the imaginary):
-//! - from the coherence gamma^2 of an H1 estimate over n_d averages (Bendat & Piersol, "Random
-//!   Data", 4th ed., section 9.2.4: the normalised random errors of gain and phase are both
-//!   sqrt(1 - gamma^2) / (|gamma| sqrt(2 n_d))):
-//!   v_ok = |H_ok|^2 (1 - gamma_ok^2) / (n_d gamma_ok^2);
+//! - from the coherence gamma^2 of an H1 estimate over n_d averages:
+//!   v_ok = |H_ok|^2 (1 - gamma_ok^2) / ((n_d - 1) gamma_ok^2).
+//!   With output noise N and input spectrum estimate G_xx = sum |X_i|^2 / n_d, the H1 estimate
+//!   errs by sum N_i X_i* / sum |X_i|^2, of variance G_nn / (n_d G_xx) given the inputs; the
+//!   coherence gives (1 - gamma^2) G_yy = G_yy - |G_xy|^2 / G_xx, the noise spectrum left
+//!   after fitting H, whose expectation is G_nn (n_d - 1) / n_d (one complex unknown fitted);
+//!   and gamma^2 G_yy = |H|^2 G_xx. Hence the formula, Bendat & Piersol's ("Random Data", 4th
+//!   ed., section 9.2.4: normalised random errors of gain and phase both
+//!   sqrt(1 - gamma^2) / (|gamma| sqrt(2 n_d))) with n_d - 1 for the fitted unknown;
 //! - else from the residuals of the final LSFD fit, one variance per response (the noise taken
 //!   white over the band): v_o = sum_k w_k^2 |r_ok|^2 / (sum_k w_k^2 (1 - p_o / 2 nf)), p_o the
 //!   unknowns of that response (its residues and residual terms, and its share of the poles).
@@ -76,8 +81,8 @@ pub struct ModeStd {
 /// coherence would give it an infinite variance, a line the fit still sees through its weight).
 pub const COHERENCE_FLOOR: f64 = 1e-3;
 
-/// The variance of every line, `[response][line]`, from the coherence over `averages` (see
-/// the module docs).
+/// The variance of every line, `[response][line]`, from the coherence over `averages` >= 2
+/// (see the module docs).
 pub fn from_coherence(
     responses: &[Vec<c64>],
     coherence: &[Vec<f64>],
@@ -91,7 +96,7 @@ pub fn from_coherence(
                 .zip(g)
                 .map(|(h, &g)| {
                     let g = g.max(COHERENCE_FLOOR);
-                    h.norm_sqr() * (1.0 - g) / (averages as f64 * g)
+                    h.norm_sqr() * (1.0 - g) / ((averages - 1) as f64 * g)
                 })
                 .collect()
         })
@@ -443,12 +448,12 @@ mod tests {
         }
     }
 
-    /// From the coherence: |H|^2 (1 - g) / (n_d g), and the floor on g.
+    /// From the coherence: |H|^2 (1 - g) / ((n_d - 1) g), and the floor on g.
     #[test]
     fn coherence_variances_follow_the_h1_formula() {
         let h = vec![vec![c64::new(3.0, 4.0), c64::new(1.0, 0.0)]];
         let v = from_coherence(&h, &[vec![0.8, 0.0]], 10);
-        assert!((v[0][0] - 25.0 * 0.2 / 8.0).abs() < 1e-12);
-        assert!((v[0][1] - (1.0 - COHERENCE_FLOOR) / (10.0 * COHERENCE_FLOOR)).abs() < 1e-9);
+        assert!((v[0][0] - 25.0 * 0.2 / (9.0 * 0.8)).abs() < 1e-12);
+        assert!((v[0][1] - (1.0 - COHERENCE_FLOOR) / (9.0 * COHERENCE_FLOOR)).abs() < 1e-9);
     }
 }
