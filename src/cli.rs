@@ -164,7 +164,8 @@ pub struct ExtractArgs {
     /// Geometry (universal file, dataset 15 or 2411): x along the beam of every response node.
     #[arg(long)]
     pub geometry: PathBuf,
-    /// Measured-modes CSV to write (`x,dof` rows, damping_ratio and mpc columns).
+    /// Measured-modes CSV to write (`x,dof` rows; damping_ratio, mpc and the standard errors
+    /// frequency_std, damping_std, value_std).
     #[arg(long)]
     pub out: PathBuf,
     /// Analysis band LO:HI in Hz (default: where the mean coherence reaches 0.8, else every
@@ -177,6 +178,11 @@ pub struct ExtractArgs {
     /// Highest model order of the LSCF estimator.
     #[arg(long, default_value_t = jointid::extract::MAX_ORDER)]
     pub max_order: usize,
+    /// Number of averages of the FRF estimates (H1): with the files' coherence it gives the
+    /// noise of every line and so the modes' standard errors (default: the noise estimated
+    /// from the residuals of the modal fit).
+    #[arg(long)]
+    pub averages: Option<usize>,
     /// The FRFs' response quantity when the files do not say it.
     #[arg(long)]
     pub quantity: Option<FrfQuantity>,

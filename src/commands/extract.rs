@@ -9,7 +9,7 @@ use anyhow::Context;
 use crate::cli::{ExtractArgs, FrfQuantity};
 use crate::commands::flagged;
 use jointid::extract::{
-    ExtractError, Extraction, FrfSet, Quantity, Settings, csv, extract, universal,
+    ExtractError, Extraction, FrfSet, NoiseSource, Quantity, Settings, csv, extract, universal,
 };
 use jointid::output::stabilization::stabilization_svg;
 use jointid::output::{check_outputs, commit_all, stage};
@@ -27,12 +27,23 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
         ex.band_hz.1,
         ex.modes.len()
     ));
+    say(format!(
+        "standard errors from {}",
+        match ex.noise {
+            NoiseSource::Coherence { averages } =>
+                format!("the coherence over {averages} averages (H1)"),
+            NoiseSource::Residuals =>
+                "the residuals of the modal fit (give --averages to use the coherence)".to_string(),
+        }
+    ));
     for (r, m) in ex.modes.iter().enumerate() {
         say(format!(
-            "  mode {}: {:.4} Hz, damping {:.4}%, MPC {:.4}, MPD {:.2} deg, stable orders {}..{}",
+            "  mode {}: {:.4} +- {:.4} Hz, damping {:.4} +- {:.4}%, MPC {:.4}, MPD {:.2} deg, stable orders {}..{}",
             r + 1,
             m.frequency_hz,
+            m.std.frequency_hz,
             100.0 * m.damping_ratio,
+            100.0 * m.std.damping_ratio,
             m.mpc,
             m.mpd_deg,
             m.stable_orders.0,
@@ -126,11 +137,13 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         band_hz: args.band,
         n_modes: args.modes,
         max_order: args.max_order,
+        averages: args.averages,
         ..Settings::default()
     };
-    // --modes is refused as the flag it is; any other setting as the extraction refuses it.
+    // --modes and --averages are refused as the flags they are; any other setting as the
+    // extraction refuses it.
     settings.check().map_err(|e| match e.setting {
-        "n_modes" => flagged(e, &[("n_modes", "--modes")]),
+        "n_modes" | "averages" => flagged(e, &[("n_modes", "--modes"), ("averages", "--averages")]),
         _ => anyhow::Error::new(ExtractError::Setting(e)).context(failed()),
     })?;
     let last = std::cell::Cell::new(0);

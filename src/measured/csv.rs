@@ -11,8 +11,14 @@
 //! `mode` is the deformable mode number r (1 = first elastic mode). A point absent for a mode
 //! is not identified (the paper's NF). Every row of a mode carries the same frequency. A row may
 //! leave the point and the value empty to give a frequency alone; a mode still needs at least
-//! one shape row. Optional columns after `value`: `damping_ratio` and `mpc` (modal phase
-//! collinearity), constant within a mode, as `jointid extract` writes them.
+//! one shape row. Optional columns after `value`, in any order: `damping_ratio` and `mpc`
+//! (modal phase collinearity), constant within a mode, as `jointid extract` writes them; and
+//! the standard errors of the data: `frequency_std` (Hz) and `damping_std` (same unit as
+//! `damping_ratio`), constant within a mode, and `value_std` on every shape row (same
+//! normalisation as `value`). A standard error is finite and >= 0 (`frequency_std` > 0, and a
+//! mode's `value_std` not all 0); `frequency_std` and `value_std` are given for every mode or
+//! for none, `value_std` on every shape row of a mode or on none, and `damping_std` only
+//! where `damping_ratio` is.
 //!
 //! [`Csv`] reads it as one of the [`Format`]s; points are resolved by [`locate`]; the writer
 //! ([`MeasuredModes::write_csv`]) chooses the location form the points allow.
@@ -28,15 +34,43 @@ use super::locate::{Location, locate};
 use super::modes::{MAX_FREQUENCY_HZ, MAX_MODE, MeasuredMode, MeasuredModes};
 use crate::structure::{Direction, Observation, Structure};
 
-/// Optional per-mode columns.
-const OPTIONAL: [&str; 2] = ["damping_ratio", "mpc"];
+/// Optional per-mode columns, then the optional per-row column.
+const OPTIONAL: [&str; 5] = [
+    "damping_ratio",
+    "mpc",
+    "frequency_std",
+    "damping_std",
+    "value_std",
+];
+
+/// A shape row read: the point, its value, its line and its standard error.
+type ShapeRow = (Observation, f64, u64, Option<f64>);
 
 struct Pending {
     frequency_hz: f64,
     first_line: u64,
-    damping_ratio: Option<f64>,
-    mpc: Option<f64>,
-    shape: BTreeMap<String, (Observation, f64, u64)>,
+    /// The per-mode optional values, in the order of [`OPTIONAL`] (the last unused).
+    per_mode: [Option<f64>; 4],
+    shape: BTreeMap<String, ShapeRow>,
+}
+
+/// The range of an optional column's values, for the message.
+fn check_optional(name: &str, text: &str) -> Result<f64, String> {
+    let v = text.parse::<f64>().ok().filter(|v| v.is_finite());
+    let (ok, allowed) = match name {
+        "damping_ratio" | "mpc" => (
+            v.is_some_and(|v| (0.0..=1.0).contains(&v)),
+            "a number from 0 to 1",
+        ),
+        "frequency_std" => (v.is_some_and(|v| v > 0.0), "a finite number > 0 (Hz)"),
+        _ => (v.is_some_and(|v| v >= 0.0), "a finite number >= 0"),
+    };
+    match v {
+        Some(v) if ok => Ok(v),
+        _ => Err(format!(
+            "{name} = `{text}` is invalid: it must be {allowed}"
+        )),
+    }
 }
 
 struct Header {
@@ -46,7 +80,7 @@ struct Header {
 }
 
 fn header(fields: &[&str]) -> Result<Header, String> {
-    let allowed = "the header must be `mode,frequency_hz,` then `node,dof`, `x,dof` or `label`, then `value`, then optionally `damping_ratio` and/or `mpc`";
+    let allowed = "the header must be `mode,frequency_hz,` then `node,dof`, `x,dof` or `label`, then `value`, then optionally any of `damping_ratio`, `mpc`, `frequency_std`, `damping_std`, `value_std`";
     let location = match fields.get(2).copied() {
         Some("node") => Location::Node,
         Some("x") => Location::Position,
@@ -156,15 +190,89 @@ impl Format for Csv {
                         ),
                     ));
                 }
-                let (points, values) = p.shape.into_values().map(|(o, v, _)| (o, v)).unzip();
-                let mut m = MeasuredMode::new(mode, p.frequency_hz, points, values);
-                m.damping_ratio = p.damping_ratio;
-                m.mpc = p.mpc;
-                Ok(m)
+                mode_of(mode, p).map_err(|(line, m)| err(line, m))
             })
             .collect::<Result<Vec<_>, _>>()?;
+        all_or_none(&modes).map_err(|m| MeasuredError::Line {
+            file: file.to_path_buf(),
+            line: 1,
+            message: m,
+        })?;
         Ok(MeasuredModes::new(modes))
     }
+}
+
+/// The mode read, its shape rows' standard errors checked (all or none, not all zero), its
+/// damping_std only beside a damping_ratio; an error gives its line.
+fn mode_of(mode: usize, p: Pending) -> Result<MeasuredMode, (u64, String)> {
+    let [damping_ratio, mpc, frequency_std, damping_std] = p.per_mode;
+    if damping_std.is_some() && damping_ratio.is_none() {
+        return Err((
+            p.first_line,
+            format!(
+                "mode {mode} has a damping_std but no damping_ratio: a standard error needs the value it qualifies"
+            ),
+        ));
+    }
+    let given: Vec<&ShapeRow> = p.shape.values().filter(|r| r.3.is_some()).collect();
+    let mut m = if given.is_empty() {
+        let (points, values) = p.shape.into_values().map(|(o, v, _, _)| (o, v)).unzip();
+        MeasuredMode::new(mode, p.frequency_hz, points, values)
+    } else {
+        if let Some(missing) = p.shape.values().find(|r| r.3.is_none()) {
+            return Err((
+                missing.2,
+                format!(
+                    "mode {mode}, point {} has no value_std, but line {} gives one: give value_std on every shape row of a mode or on none",
+                    missing.0.label, given[0].2
+                ),
+            ));
+        }
+        if given.iter().all(|r| r.3 == Some(0.0)) {
+            return Err((
+                p.first_line,
+                format!(
+                    "mode {mode} has value_std 0 on every point: that claims an exact shape; give the measurement's standard errors or leave the column out"
+                ),
+            ));
+        }
+        let rows = p
+            .shape
+            .into_values()
+            .map(|(o, v, _, s)| (o, v, s.unwrap_or(0.0)))
+            .collect();
+        MeasuredMode::with_value_std(mode, p.frequency_hz, rows)
+    };
+    m.damping_ratio = damping_ratio;
+    m.mpc = mpc;
+    m.frequency_std = frequency_std;
+    m.damping_std = damping_std;
+    Ok(m)
+}
+
+/// frequency_std and value_std are given for every mode or for none.
+fn all_or_none(modes: &[MeasuredMode]) -> Result<(), String> {
+    let columns: [(&str, fn(&MeasuredMode) -> bool); 2] = [
+        ("frequency_std", |m| m.frequency_std.is_some()),
+        ("value_std", |m| m.value_std.is_some()),
+    ];
+    for (name, has) in columns {
+        let with: Vec<String> = modes
+            .iter()
+            .filter(|m| has(m))
+            .map(|m| m.mode.to_string())
+            .collect();
+        if let Some(without) = modes.iter().find(|m| !has(m))
+            && !with.is_empty()
+        {
+            return Err(format!(
+                "{name} is given for mode(s) {} but not for mode {}: give it for every mode or for none",
+                with.join(","),
+                without.mode
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Adds the row on `line` to the modes read so far, or says what is wrong with it.
@@ -185,27 +293,23 @@ fn row(
         }
     };
     let frequency_hz = positive(&record[1], "frequency_hz", "Hz", MAX_FREQUENCY_HZ)?;
-    let optional: Vec<(&str, Option<f64>)> = header
-        .optional
-        .iter()
-        .map(|&(i, name)| {
-            let text = &record[i];
-            if text.is_empty() {
-                return Ok((name, None));
-            }
-            match text.parse::<f64>() {
-                Ok(v) if v.is_finite() && (0.0..=1.0).contains(&v) => Ok((name, Some(v))),
-                _ => Err(format!(
-                    "{name} = `{text}` is invalid: it must be a number from 0 to 1"
-                )),
-            }
-        })
-        .collect::<Result<_, _>>()?;
+    let mut value_std = None;
+    let mut per_mode: Vec<(usize, &str, f64)> = Vec::new();
+    for &(i, name) in &header.optional {
+        let text = &record[i];
+        if text.is_empty() {
+            continue;
+        }
+        let v = check_optional(name, text)?;
+        match OPTIONAL.iter().position(|o| *o == name) {
+            Some(slot) if slot < 4 => per_mode.push((slot, name, v)),
+            _ => value_std = Some(v),
+        }
+    }
     let entry = pending.entry(mode).or_insert_with(|| Pending {
         frequency_hz,
         first_line: line,
-        damping_ratio: None,
-        mpc: None,
+        per_mode: [None; 4],
         shape: BTreeMap::new(),
     });
     if entry.frequency_hz != frequency_hz {
@@ -214,25 +318,24 @@ fn row(
             entry.frequency_hz, entry.first_line
         ));
     }
-    for (name, value) in optional {
-        let slot = if name == "mpc" {
-            &mut entry.mpc
-        } else {
-            &mut entry.damping_ratio
-        };
-        match (*slot, value) {
-            (Some(a), Some(b)) if a != b => {
+    for (slot, name, b) in per_mode {
+        match entry.per_mode[slot] {
+            Some(a) if a != b => {
                 return Err(format!(
                     "mode {mode} has {name} = {b} here but {a} above: it is one value per mode"
                 ));
             }
-            (None, Some(b)) => *slot = Some(b),
-            _ => {}
+            _ => entry.per_mode[slot] = Some(b),
         }
     }
     let location: Vec<&str> = (2..header.value).map(|i| &record[i]).collect();
     let value_text = &record[header.value];
     if location.iter().all(|f| f.is_empty()) && value_text.is_empty() {
+        if let Some(v) = value_std {
+            return Err(format!(
+                "value_std = {v} on a row without a point and value: a standard error needs the value it qualifies"
+            ));
+        }
         return Ok(());
     }
     let point = locate(header.location, &location, structure)?;
@@ -245,7 +348,10 @@ fn row(
         }
     };
     let label = point.label.clone();
-    if let Some((_, _, first)) = entry.shape.insert(label.clone(), (point, value, line)) {
+    if let Some((_, _, first, _)) = entry
+        .shape
+        .insert(label.clone(), (point, value, line, value_std))
+    {
         return Err(format!(
             "mode {mode}, point {label} is given twice (first on line {first})"
         ));
@@ -278,8 +384,12 @@ impl MeasuredModes {
         } else {
             Location::Label
         };
-        let damping = self.modes().iter().any(|m| m.damping_ratio.is_some());
-        let mpc = self.modes().iter().any(|m| m.mpc.is_some());
+        let any = |has: fn(&MeasuredMode) -> bool| self.modes().iter().any(has);
+        let damping = any(|m| m.damping_ratio.is_some());
+        let mpc = any(|m| m.mpc.is_some());
+        let frequency_std = any(|m| m.frequency_std.is_some());
+        let damping_std = any(|m| m.damping_std.is_some());
+        let value_std = any(|m| m.value_std.is_some());
         let mut w = ::csv::Writer::from_writer(out);
         let mut head: Vec<&str> = vec!["mode", "frequency_hz"];
         head.extend(location.fields());
@@ -290,10 +400,19 @@ impl MeasuredModes {
         if mpc {
             head.push("mpc");
         }
+        for (on, name) in [
+            (frequency_std, "frequency_std"),
+            (damping_std, "damping_std"),
+            (value_std, "value_std"),
+        ] {
+            if on {
+                head.push(name);
+            }
+        }
         w.write_record(&head)?;
         let opt = |v: Option<f64>| v.map(|v| v.to_string()).unwrap_or_default();
         for m in self.modes() {
-            for (o, &v) in m.points.iter().zip(&m.values) {
+            for (j, (o, &v)) in m.points.iter().zip(&m.values).enumerate() {
                 let mut row = vec![m.mode.to_string(), m.frequency_hz.to_string()];
                 match location {
                     Location::Node => {
@@ -312,6 +431,15 @@ impl MeasuredModes {
                 }
                 if mpc {
                     row.push(opt(m.mpc));
+                }
+                if frequency_std {
+                    row.push(opt(m.frequency_std));
+                }
+                if damping_std {
+                    row.push(opt(m.damping_std));
+                }
+                if value_std {
+                    row.push(opt(m.value_std.as_ref().map(|s| s[j])));
                 }
                 w.write_record(&row)?;
             }
@@ -485,6 +613,71 @@ mod tests {
         );
     }
 
+    /// The standard-error columns: read with their points, and every misuse refused naming
+    /// the line and the column.
+    #[test]
+    fn standard_errors_are_read_and_checked() {
+        let h =
+            "mode,frequency_hz,node,dof,value,damping_ratio,frequency_std,damping_std,value_std\n";
+        let m = read(&format!(
+            "{h}1,150,3,w,0.5,0.01,0.02,0.001,0.004\n1,150,0,w,1,0.01,0.02,0.001,0\n"
+        ))
+        .unwrap();
+        let mode = &m.modes()[0];
+        assert_eq!(dofs(mode), vec![0, 6]);
+        assert_eq!(mode.value_std, Some(vec![0.0, 0.004]));
+        assert_eq!(
+            (mode.frequency_std, mode.damping_std),
+            (Some(0.02), Some(0.001))
+        );
+        assert!(m.has_std());
+        let cases = [
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,-0.1\n",
+                "d.csv:2: value_std = `-0.1` is invalid: it must be a finite number >= 0",
+            ),
+            (
+                "1,150,0,w,1,0.01,NaN,0.001,0.1\n",
+                "d.csv:2: frequency_std = `NaN` is invalid: it must be a finite number > 0 (Hz)",
+            ),
+            (
+                "1,150,0,w,1,0.01,0,0.001,0.1\n",
+                "d.csv:2: frequency_std = `0` is invalid: it must be a finite number > 0 (Hz)",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,inf,0.1\n",
+                "d.csv:2: damping_std = `inf` is invalid: it must be a finite number >= 0",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,0.1\n1,150,3,w,0.5,0.01,0.02,0.001,\n",
+                "d.csv:3: mode 1, point 3:w has no value_std, but line 2 gives one: give value_std on every shape row of a mode or on none",
+            ),
+            (
+                "1,150,0,w,1,,0.02,0.001,0.1\n",
+                "d.csv:2: mode 1 has a damping_std but no damping_ratio: a standard error needs the value it qualifies",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,0.1\n1,150,,,,0.01,0.02,0.001,0.1\n",
+                "d.csv:3: value_std = 0.1 on a row without a point and value: a standard error needs the value it qualifies",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,0\n",
+                "d.csv:2: mode 1 has value_std 0 on every point: that claims an exact shape; give the measurement's standard errors or leave the column out",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,0.1\n2,400,0,w,1,0.01,,,0.1\n",
+                "d.csv:1: frequency_std is given for mode(s) 1 but not for mode 2: give it for every mode or for none",
+            ),
+        ];
+        for (body, message) in cases {
+            assert_eq!(
+                read(&format!("{h}{body}")).unwrap_err(),
+                message,
+                "for {body:?}"
+            );
+        }
+    }
+
     /// A file not named *.csv is read as CSV when its content is; otherwise the error lists
     /// the formats.
     #[test]
@@ -524,7 +717,13 @@ mod tests {
             let mut mode = MeasuredMode::new(3, 812.25, points, vec![0.1, -1e-7, 3.0]);
             mode.values.truncate(mode.points.len());
             mode.damping_ratio = Some(0.0125);
+            let without = MeasuredModes::new(vec![mode.clone()]);
+            mode.frequency_std = Some(0.25);
+            mode.value_std = Some((0..mode.points.len()).map(|j| 0.01 * j as f64).collect());
             let m = MeasuredModes::new(vec![mode]);
+            let mut buf = Vec::new();
+            without.write_csv(&mut buf, &model).unwrap();
+            assert!(!std::str::from_utf8(&buf).unwrap().contains("_std"));
             let mut buf = Vec::new();
             m.write_csv(&mut buf, &model).unwrap();
             assert_eq!(read(std::str::from_utf8(&buf).unwrap()).unwrap(), m);

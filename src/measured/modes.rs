@@ -27,6 +27,13 @@ pub struct MeasuredMode {
     pub damping_ratio: Option<f64>,
     /// Modal phase collinearity of the complex shape it comes from (1: a real mode).
     pub mpc: Option<f64>,
+    /// Standard error of the frequency, Hz, when the data give it.
+    pub frequency_std: Option<f64>,
+    /// Standard error of the damping ratio, when the data give it.
+    pub damping_std: Option<f64>,
+    /// Standard error of each shape component (same normalisation as `values`, aligned with
+    /// `points`), when the data give them.
+    pub value_std: Option<Vec<f64>>,
 }
 
 impl MeasuredMode {
@@ -42,7 +49,31 @@ impl MeasuredMode {
             values,
             damping_ratio: None,
             mpc: None,
+            frequency_std: None,
+            damping_std: None,
+            value_std: None,
         }
+    }
+
+    /// A mode whose shape rows (point, value, standard error) come in any order: sorted by
+    /// [`point_order`], the standard errors kept with their points.
+    pub fn with_value_std(
+        mode: usize,
+        frequency_hz: f64,
+        rows: Vec<(Observation, f64, f64)>,
+    ) -> Self {
+        let mut rows = rows;
+        rows.sort_by(|a, b| point_order(&a.0, &b.0));
+        let std = rows.iter().map(|r| r.2).collect();
+        let (points, values) = rows.into_iter().map(|(o, v, _)| (o, v)).unzip();
+        let mut m = Self::new(mode, frequency_hz, points, values);
+        m.value_std = Some(std);
+        m
+    }
+
+    /// Whether the data carry their own uncertainty: a frequency and shape standard errors.
+    pub fn has_std(&self) -> bool {
+        self.frequency_std.is_some() && self.value_std.is_some()
     }
 
     /// The largest magnitude of its components (the unit of the shape noise's floor).
@@ -81,6 +112,12 @@ impl MeasuredModes {
     /// The modes, ascending mode number.
     pub fn modes(&self) -> &[MeasuredMode] {
         &self.modes
+    }
+
+    /// Whether every mode carries its standard errors ([`MeasuredMode::has_std`]; the reader
+    /// takes them for every mode or for none).
+    pub fn has_std(&self) -> bool {
+        !self.modes.is_empty() && self.modes.iter().all(MeasuredMode::has_std)
     }
 
     /// The mode with number `r`, if measured.
