@@ -39,7 +39,7 @@ pub struct Findings<'a> {
 
 /// The report of a diagnosis from its findings: the verdict and the models before and after,
 /// the per-mode corrections on both (under the stated noise when no model explains the data,
-/// whose residual is then not noise alone), their trend and the misfit's pattern when the
+/// whose residual is then not noise alone; the data's own errors when they carry them), their trend and the misfit's pattern when the
 /// verdict is `unexplained` or `frequency_dependent`, and the pairing remarks.
 pub fn assemble(f: Findings) -> Report {
     let measured = f.measured;
@@ -50,7 +50,7 @@ pub fn assemble(f: Findings) -> Report {
     let selected = best
         .filter(|_| decision.verdict != Verdict::FrequencyDependent)
         .map(|s| s.report.name.clone());
-    let yardstick = if decision.verdict == Verdict::Unexplained {
+    let yardstick = if decision.verdict == Verdict::Unexplained && !f.estimate.from_data {
         f.stated
     } else {
         noise

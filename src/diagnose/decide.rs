@@ -154,9 +154,16 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
     } else {
         format!("{tried} hypotheses ({candidates} candidates, a scan counting each of its members)")
     };
+    let noise = if estimate.from_data {
+        "the data's own standard errors (known: chi^2 tests)".to_string()
+    } else {
+        format!(
+            "the noise estimated from the shape residuals of the largest model ({}, {:.0} degrees of freedom: F tests)",
+            estimate.from_model, estimate.dof
+        )
+    };
     format!(
-        "likelihood-ratio test under the noise estimated from the shape residuals of the largest model ({}, {:.0} degrees of freedom: F tests): a candidate is significant when its p-value times {count} is below {ALPHA}; a model explains the data when its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC",
-        estimate.from_model, estimate.dof
+        "likelihood-ratio test under {noise}: a candidate is significant when its p-value times {count} is below {ALPHA}; a model explains the data when its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC"
     )
 }
 
@@ -209,6 +216,8 @@ mod tests {
             shape_factor: factor,
             frequency_factor: 1.0,
             from_differences: 0,
+            from_data: false,
+            frequency_sigmas: None,
             from_levels: 100,
             frequency_values: 6,
         }

@@ -69,6 +69,52 @@ pub struct Calibration {
     /// Floor of the shape standard deviation, as a fraction of the mode's largest component
     /// ([`SHAPE_FLOOR`] unless estimated from the data).
     pub shape_floor: f64,
+    /// Weigh by the data's own standard errors (`frequency_std`, `value_std`) where every
+    /// mode carries them ([`MeasuredModes::has_std`]), in place of `noise` and `shape_floor`.
+    pub measured_std: bool,
+}
+
+/// The standard deviations of the data: per mode, of the frequency relative to it, and of
+/// each shape component. From the data's standard errors when `calibration` says so and the
+/// data carry them (a component whose standard error is 0, the peak that normalises an
+/// extracted mode, takes the mode's smallest positive one: its error is carried by the
+/// others, but a zero weight would not be a likelihood); else from the stated noise:
+/// sigma_f, and sigma_s sqrt(u^2 + (floor peak)^2) (module docs).
+pub fn sigmas(measured: &MeasuredModes, calibration: &Calibration) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let data = calibration.measured_std && measured.has_std();
+    let noise = calibration.noise;
+    measured
+        .modes()
+        .iter()
+        .map(|m| match (data, m.frequency_std, &m.value_std) {
+            (true, Some(f_std), Some(v_std)) => {
+                let least = v_std
+                    .iter()
+                    .copied()
+                    .filter(|s| *s > 0.0)
+                    .fold(f64::INFINITY, f64::min);
+                (
+                    f_std / m.frequency_hz,
+                    v_std
+                        .iter()
+                        .map(|s| if *s > 0.0 { *s } else { least })
+                        .collect(),
+                )
+            }
+            _ => {
+                let peak = m.peak();
+                (
+                    noise.frequency,
+                    m.values
+                        .iter()
+                        .map(|v| {
+                            noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
+                        })
+                        .collect(),
+                )
+            }
+        })
+        .unzip()
 }
 
 /// Why a fit failed.
@@ -155,10 +201,11 @@ pub struct Fitted {
 struct Problem<'a> {
     ctx: &'a Arc<EffectContext>,
     measured: &'a MeasuredModes,
-    noise: Noise,
     pairing: &'a PairingRule,
     effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
     joint_p0: Vec<f64>,
+    /// Per measured mode, sigma of its frequency relative to it.
+    sigma_f: Vec<f64>,
     /// Per measured mode, sigma of each shape component.
     sigma: Vec<Vec<f64>>,
     /// Pairs the last eigensolution needed to cover the pairing window: the next one starts
@@ -179,29 +226,17 @@ impl<'a> Problem<'a> {
         calibration: &'a Calibration,
         effects: &[Arc<dyn Effect>],
     ) -> Self {
-        let noise = calibration.noise;
+        let (sigma_f, sigma) = sigmas(measured, calibration);
         Problem {
             ctx,
             measured,
-            noise,
             pairing: &calibration.pairing,
             effects: effects
                 .iter()
                 .map(|e| (e.clone(), vec![0.0; e.parameters(ctx).len()]))
                 .collect(),
-            sigma: measured
-                .modes()
-                .iter()
-                .map(|m| {
-                    let peak = m.peak();
-                    m.values
-                        .iter()
-                        .map(|v| {
-                            noise.shape * (v * v + (calibration.shape_floor * peak).powi(2)).sqrt()
-                        })
-                        .collect()
-                })
-                .collect(),
+            sigma_f,
+            sigma,
             joint_p0: ctx.structure.identified().iter().map(|p| p.value).collect(),
             covering: AtomicUsize::new(0),
         }
@@ -296,7 +331,7 @@ impl<'a> Problem<'a> {
         for (r, m) in self.measured.modes().iter().enumerate() {
             let s = pairing.model_index[r];
             residual.push(
-                (modal.frequency_hz(s) - m.frequency_hz) / (self.noise.frequency * m.frequency_hz),
+                (modal.frequency_hz(s) - m.frequency_hz) / (self.sigma_f[r] * m.frequency_hz),
             );
             let sign = model_sign(&modal, s, m);
             for ((p, &v), &sigma) in m.points.iter().zip(&m.values).zip(&self.sigma[r]) {
@@ -346,7 +381,7 @@ impl<'a> Problem<'a> {
                         * std::f64::consts::PI
                         * std::f64::consts::PI
                         * f.max(f64::MIN_POSITIVE));
-                jac[(row, col)] = chain * df / (self.noise.frequency * m.frequency_hz);
+                jac[(row, col)] = chain * df / (self.sigma_f[r] * m.frequency_hz);
                 for (k, (p, &sigma)) in m.points.iter().zip(&self.sigma[r]).enumerate() {
                     jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * p.read(&dy) / sigma;
                 }
@@ -526,7 +561,7 @@ pub fn linearise(
     for (r, m) in measured.modes().iter().enumerate() {
         let peak = m.peak().max(f64::MIN_POSITIVE);
         mode_of_row.push(r);
-        sigma.push(problem.noise.frequency);
+        sigma.push(problem.sigma_f[r]);
         for &s in &problem.sigma[r] {
             mode_of_row.push(r);
             sigma.push(s / peak);
@@ -775,6 +810,7 @@ mod tests {
             },
             pairing: PairingRule::default(),
             shape_floor: 0.01,
+            measured_std: false,
         };
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
         let problem = Problem::new(&ctx, &measured, &calibration, &effects);

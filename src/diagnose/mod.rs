@@ -117,10 +117,13 @@ pub fn diagnose(
     let ctx = calibrate::prepare(model, measured, &settings)?;
     let library = candidate::library(&ctx, settings.extended);
     // Under the stated noise: the largest physical model gives the noise estimate.
+    // Data with their own standard errors are weighed by them throughout; else by the
+    // stated noise first.
     let stated = Calibration {
         noise: settings.noise,
         pairing: settings.pairing.clone(),
         shape_floor: fit::SHAPE_FLOOR,
+        measured_std: measured.has_std(),
     };
     let first_base = fit::fit(&ctx, measured, &stated, &[])?;
     let first_stage = Stage {
@@ -134,12 +137,17 @@ pub fn diagnose(
         let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
         Some((c.name(), fit.model.as_ref()?))
     });
-    let estimate = noise::from_largest(physical, &first_base, measured, settings.noise);
+    let estimate = if stated.measured_std {
+        noise::from_data(physical, &first_base, measured, &stated)
+    } else {
+        noise::from_largest(physical, &first_base, measured, settings.noise)
+    };
     // Under the working noise: the joint calibrated again, every candidate refitted, judged.
     let working = Calibration {
         noise: estimate.working,
         pairing: settings.pairing.clone(),
         shape_floor: estimate.working_floor,
+        measured_std: stated.measured_std,
     };
     let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base)?;
     let stage = Stage {

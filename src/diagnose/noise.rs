@@ -33,9 +33,9 @@
 use serde::Serialize;
 
 use super::along;
-use super::fit::{Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
+use super::fit::{Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals, sigmas};
 use crate::measured::MeasuredModes;
-use crate::stats::{chi2_sf, f_isf, f_sf};
+use crate::stats::{chi2_isf, chi2_sf, f_isf, f_sf};
 
 /// Smallest relative shape noise the estimate returns, as a fraction of the stated (a fit
 /// that interpolates the shapes must not make the noise vanish).
@@ -73,6 +73,14 @@ pub struct NoiseEstimate {
     pub from_levels: usize,
     /// Frequencies used.
     pub frequency_values: usize,
+    /// Whether the working noise is the data's own standard errors ([`from_data`]): the
+    /// factors are then the check of the residuals against them, not a yardstick.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub from_data: bool,
+    /// With the data's standard errors: the relative standard deviation of each measured
+    /// frequency (the working frequency noise is then their RMS, for the summaries).
+    #[serde(skip)]
+    pub frequency_sigmas: Option<Vec<f64>>,
 }
 
 /// The noise estimated from the largest physical model fitted under the `stated` noise: among
@@ -86,10 +94,7 @@ pub fn from_largest<'a>(
     measured: &MeasuredModes,
     stated: Noise,
 ) -> NoiseEstimate {
-    let (name, largest) = models
-        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
-        .filter(|(_, f)| f.chi2 < base.chi2)
-        .unwrap_or(("joint only", base));
+    let (name, largest) = largest(models, base);
     estimate(
         largest,
         measured,
@@ -98,6 +103,81 @@ pub fn from_largest<'a>(
         SHAPE_FLOOR,
         name,
     )
+}
+
+/// The model with the smallest chi^2 among `models` when below `base`'s, else `base`.
+fn largest<'a>(
+    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
+    base: &'a Fitted,
+) -> (&'a str, &'a Fitted) {
+    models
+        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
+        .filter(|(_, f)| f.chi2 < base.chi2)
+        .unwrap_or(("joint only", base))
+}
+
+/// The noise of data that carry their own standard errors: they are the working noise (known,
+/// so the tests are chi^2 tests: infinite degrees of freedom), and the residuals of the
+/// largest physical model (chosen as in [`from_largest`]), fitted under them, give the check:
+/// `shape_factor` and `frequency_factor` are the RMS of the weighted shape and frequency
+/// residuals, corrected for the unknowns spent on them (1 when the data's errors are right
+/// and the model fits). The working noise's `shape` and `frequency` are the RMS relative
+/// standard errors, for the summaries that need one number.
+pub fn from_data<'a>(
+    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
+    base: &'a Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> NoiseEstimate {
+    let (name, fitted) = largest(models, base);
+    let (sigma_f, sigma) = sigmas(measured, calibration);
+    let res = residuals(fitted, measured);
+    let mut shape_chi2 = 0.0;
+    let mut relative = Vec::new();
+    let mut at = 0;
+    for (m, sigma) in measured.modes().iter().zip(&sigma) {
+        let peak = m.peak().max(f64::MIN_POSITIVE);
+        for s in sigma {
+            let (u, e) = res.shape[at];
+            shape_chi2 += (e * peak / s).powi(2);
+            relative.push(s / (u.abs() * peak).max(SHAPE_FLOOR * peak));
+            at += 1;
+        }
+    }
+    let frequency_chi2: f64 = res
+        .frequency
+        .iter()
+        .zip(&sigma_f)
+        .map(|(e, s)| (e / s).powi(2))
+        .sum();
+    let (n_s, n_f) = (res.shape.len() as f64, res.frequency.len() as f64);
+    let unknowns = fitted.estimates.len() as f64;
+    let p_s = measured.modes().len() as f64 + unknowns * n_s / (n_s + n_f);
+    let p_f = unknowns * n_f / (n_s + n_f);
+    let shape_factor = (shape_chi2 / (n_s - p_s).max(1.0)).sqrt();
+    let frequency_factor = (frequency_chi2 / (n_f - p_f).max(1.0)).sqrt();
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
+    let working = Noise {
+        frequency: rms(&sigma_f),
+        shape: rms(&relative),
+    };
+    NoiseEstimate {
+        from_model: name.to_string(),
+        shape: working.shape * shape_factor,
+        shape_floor_abs: 0.0,
+        frequency_check: working.frequency * frequency_factor,
+        dof: f64::INFINITY,
+        working,
+        frequency_estimated: false,
+        working_floor: SHAPE_FLOOR,
+        shape_factor,
+        frequency_factor,
+        from_differences: 0,
+        from_levels: res.shape.len(),
+        frequency_values: res.frequency.len(),
+        from_data: true,
+        frequency_sigmas: Some(sigma_f),
+    }
 }
 
 /// Estimates the noise from `fitted` (with `unknowns` model parameters besides the shape
@@ -162,6 +242,8 @@ pub fn estimate(
         from_differences,
         from_levels,
         frequency_values: res.frequency.len(),
+        from_data: false,
+        frequency_sigmas: None,
     }
 }
 
@@ -398,6 +480,9 @@ impl NoiseEstimate {
     /// noise, whose scale was estimated on nu degrees of freedom.
     pub fn fit_p_value(&self, chi2: f64, dof: usize) -> f64 {
         let dof = dof.max(1) as f64;
+        if self.dof.is_infinite() {
+            return chi2_sf(chi2, dof);
+        }
         f_sf(chi2 / dof, dof, self.dof)
     }
 
@@ -405,12 +490,18 @@ impl NoiseEstimate {
     /// estimated scale.
     pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
         let k = k.max(1) as f64;
+        if self.dof.is_infinite() {
+            return chi2_sf(lrt, k);
+        }
         f_sf(lrt / k, k, self.dof)
     }
 
     /// The D with [`Self::lrt_p_value`] = p.
     pub fn lrt_critical(&self, p: f64, k: usize) -> f64 {
         let k = k.max(1) as f64;
+        if self.dof.is_infinite() {
+            return chi2_isf(p, k);
+        }
         k * f_isf(p, k, self.dof)
     }
 
@@ -423,7 +514,14 @@ impl NoiseEstimate {
         let chi2: f64 = res
             .frequency
             .iter()
-            .map(|e| (e / self.working.frequency).powi(2))
+            .enumerate()
+            .map(|(r, e)| {
+                let sigma = match &self.frequency_sigmas {
+                    Some(s) => s[r],
+                    None => self.working.frequency,
+                };
+                (e / sigma).powi(2)
+            })
             .sum();
         let dof = res.frequency.len().saturating_sub(unknowns).max(1);
         let p = if self.frequency_estimated {

@@ -222,12 +222,22 @@ fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
 
 /// The stated noise and the estimate, and the pairing remarks.
 fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
-    writeln!(
-        out,
-        "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
-        r.noise.frequency, r.noise.shape, r.shape_floor
-    )?;
     let e = &r.noise_estimate;
+    if !e.from_data {
+        writeln!(
+            out,
+            "noise stated: frequency {} (relative std), shape {} (relative std, floor {} of the mode's peak)",
+            r.noise.frequency, r.noise.shape, r.shape_floor
+        )?;
+    }
+    if e.from_data {
+        return writeln!(
+            out,
+            "noise used: the data's own standard errors (frequency_std, value_std; RMS relative: frequency {:.3e}, shape {:.3e}); the stated noise is not used. Check: the residuals of the largest model ({}) are {:.2}x them in the shapes and {:.2}x in the frequencies (1 when the errors are right and the model fits)",
+            e.working.frequency, e.working.shape, e.from_model, e.shape_factor, e.frequency_factor
+        )
+        .and_then(|()| warnings(out, r));
+    }
     writeln!(
         out,
         "noise estimated from the shape residuals of the largest model ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); the selection used frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
@@ -241,6 +251,11 @@ fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         e.working.shape,
         e.working_floor
     )?;
+    warnings(out, r)
+}
+
+/// The pairing remarks.
+fn warnings(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     for w in &r.warnings {
         writeln!(out, "warning: {w}")?;
     }
