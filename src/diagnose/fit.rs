@@ -76,9 +76,8 @@ pub struct Calibration {
 
 /// The standard deviations of the data: per mode, of the frequency relative to it, and of
 /// each shape component. From the data's standard errors when `calibration` says so and the
-/// data carry them (a component whose standard error is 0, the peak that normalises an
-/// extracted mode, takes the mode's smallest positive one: its error is carried by the
-/// others, but a zero weight would not be a likelihood); else from the stated noise:
+/// data carry them ([`crate::measured::MeasuredMode::value_sigmas`]); else from the stated
+/// noise:
 /// sigma_f, and sigma_s sqrt(u^2 + (floor peak)^2) (module docs).
 pub fn sigmas(measured: &MeasuredModes, calibration: &Calibration) -> (Vec<f64>, Vec<Vec<f64>>) {
     let data = calibration.measured_std && measured.has_std();
@@ -86,21 +85,8 @@ pub fn sigmas(measured: &MeasuredModes, calibration: &Calibration) -> (Vec<f64>,
     measured
         .modes()
         .iter()
-        .map(|m| match (data, m.frequency_std, &m.value_std) {
-            (true, Some(f_std), Some(v_std)) => {
-                let least = v_std
-                    .iter()
-                    .copied()
-                    .filter(|s| *s > 0.0)
-                    .fold(f64::INFINITY, f64::min);
-                (
-                    f_std / m.frequency_hz,
-                    v_std
-                        .iter()
-                        .map(|s| if *s > 0.0 { *s } else { least })
-                        .collect(),
-                )
-            }
+        .map(|m| match (data, m.frequency_std, m.value_sigmas()) {
+            (true, Some(f_std), Some(v_sigma)) => (f_std / m.frequency_hz, v_sigma),
             _ => {
                 let peak = m.peak();
                 (

@@ -181,11 +181,11 @@ pub fn standard_errors(
     let mut s = Mat::<f64>::zeros(k2, k2);
     let mut middle = Mat::<f64>::zeros(k2, k2);
     let mut parts = Vec::with_capacity(responses.len());
-    for o in 0..responses.len() {
+    for (o, variance) in variances.iter().enumerate() {
         let sigma: Vec<f64> = (0..2 * nf)
             .map(|i| {
                 let k = i % nf;
-                weights[k] * weights[k] * variances[o][k] / 2.0
+                weights[k] * weights[k] * variance[k] / 2.0
             })
             .collect();
         let t = pole_jacobian(omega, weights, poles, basis.power, ls.x.col(o));

@@ -168,6 +168,9 @@ pub struct ModeOutcome {
     pub resolution: Vec<f64>,
     /// Whether each parameter was identified on this mode (false: held at its value).
     pub solved: Vec<bool>,
+    /// Standard deviation of each Z_r(i) from the data's own standard errors
+    /// ([`propagation::std_of`]), when the data carry them and every parameter was solved.
+    pub std: Option<Vec<f64>>,
 }
 
 impl Identifier {
@@ -275,8 +278,13 @@ impl Identifier {
                 n: self.settings.n,
             });
         }
-        let projector = Projector::new(&observe(&self.y, &measured.points))
-            .map_err(|cause| IdentifyError::Projection { mode, cause })?;
+        let yt = observe(&self.y, &measured.points);
+        let sigma = measured.value_sigmas();
+        let projector = match &sigma {
+            Some(sigma) => Projector::weighted(&yt, sigma),
+            None => Projector::new(&yt),
+        }
+        .map_err(|cause| IdentifyError::Projection { mode, cause })?;
         let mut g = vec![0.0; self.settings.n];
         projector.project(&measured.values, &mut g);
         let system = self.mode_system(s_r);
@@ -309,9 +317,23 @@ impl Identifier {
                 z
             })
         };
+        let std = match (&sigma, measured.frequency_std, &relative) {
+            (Some(sigma), Some(f_std), Ok(_)) if solved.iter().all(|&s| s) => {
+                let ones = vec![1.0; q];
+                propagation::jacobian(&projector, &system, &measured.values, measured.lambda()).map(
+                    |jac| {
+                        let variances: Vec<f64> = sigma.iter().map(|s| s * s).collect();
+                        let f = f_std / measured.frequency_hz;
+                        propagation::std_of(&jac, &variances, measured.lambda(), &ones, f * f)
+                    },
+                )
+            }
+            _ => None,
+        };
         Ok(ModeOutcome {
             mode,
             basis_index: s_r,
+            std,
             frequency_measured_hz: measured.frequency_hz,
             frequency_model_hz: lambda_to_hz(self.lambdas[s_r]),
             g,

@@ -78,6 +78,21 @@ impl Projector {
         })
     }
 
+    /// The weighted projection g = (D Y~)^+ D y~, D = diag(1 / sigma_j): the least squares of
+    /// the shape weighted by the standard error of each component (the same as [`Self::new`]
+    /// when the points are as many as the basis vectors). Its columns are those of
+    /// (D Y~)^+ scaled by 1 / sigma_j.
+    pub fn weighted(yt: &Mat<f64>, sigma: &[f64]) -> Result<Self, ProjectionError> {
+        let scaled = Mat::from_fn(yt.nrows(), yt.ncols(), |i, j| yt[(i, j)] / sigma[i]);
+        let mut p = Self::new(&scaled)?;
+        for (j, s) in sigma.iter().enumerate() {
+            for v in &mut p.pinv[j * p.n..(j + 1) * p.n] {
+                *v /= s;
+            }
+        }
+        Ok(p)
+    }
+
     /// Column `j` of the pseudo-inverse: the derivative of g with respect to the j-th
     /// identified shape element.
     pub fn column(&self, j: usize) -> &[f64] {
@@ -161,6 +176,43 @@ mod tests {
         p.project(&shape, &mut g);
         for (a, b) in g.iter().zip(g_true) {
             assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+    }
+
+    /// The weighted projection is the weighted least squares: equal weights change nothing;
+    /// a component with a vast standard error is ignored (its corruption does not reach g).
+    #[test]
+    fn the_weighted_projection_is_weighted_least_squares() {
+        let y = Mat::from_fn(6, 3, |i, j| ((i + 1) as f64).powi(j as i32));
+        let g_true = [0.5, -2.0, 0.25];
+        let mut shape: Vec<f64> = (0..6)
+            .map(|d| (0..3).map(|j| y[(d, j)] * g_true[j]).sum())
+            .collect();
+        let noisy = [0.01, -0.02, 0.015, 0.0, -0.01, 0.02];
+        shape.iter_mut().zip(noisy).for_each(|(v, e)| *v += e);
+        let (mut plain, mut equal) = ([0.0; 3], [0.0; 3]);
+        Projector::new(&y).unwrap().project(&shape, &mut plain);
+        Projector::weighted(&y, &[0.3; 6])
+            .unwrap()
+            .project(&shape, &mut equal);
+        for (a, b) in plain.iter().zip(equal) {
+            assert!((a - b).abs() < 1e-12 * a.abs().max(1.0), "{a} vs {b}");
+        }
+        // Corrupt component 4 and give it a standard error of 1e9: g is that of the other five.
+        let mut corrupted = shape.clone();
+        corrupted[4] += 50.0;
+        let mut sigma = [0.01; 6];
+        sigma[4] = 1e9;
+        let keep = [0, 1, 2, 3, 5];
+        let y5 = Mat::from_fn(5, 3, |i, j| y[(keep[i], j)]);
+        let shape5: Vec<f64> = keep.iter().map(|&k| shape[k]).collect();
+        let (mut five, mut weighted) = ([0.0; 3], [0.0; 3]);
+        Projector::new(&y5).unwrap().project(&shape5, &mut five);
+        Projector::weighted(&y, &sigma)
+            .unwrap()
+            .project(&corrupted, &mut weighted);
+        for (a, b) in five.iter().zip(weighted) {
+            assert!((a - b).abs() < 1e-6 * a.abs().max(1.0), "{a} vs {b}");
         }
     }
 

@@ -83,17 +83,31 @@ pub fn propagated_std(
     shape_variance: f64,
     frequency_variance: f64,
 ) -> Vec<f64> {
+    let variances: Vec<f64> = shape.iter().map(|y| y * y * shape_variance).collect();
+    std_of(jac, &variances, lambda, values, frequency_variance)
+}
+
+/// Standard deviations of Delta p_i = p_i Z_i for independent shape errors of variances
+/// `shape_variances` (one per component, in the shape's units) and a relative frequency error
+/// of variance `frequency_variance`: the data's own standard errors.
+pub fn std_of(
+    jac: &Jacobian,
+    shape_variances: &[f64],
+    lambda: f64,
+    values: &[f64],
+    frequency_variance: f64,
+) -> Vec<f64> {
     values
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            let s: f64 = shape
+            let s: f64 = shape_variances
                 .iter()
                 .enumerate()
-                .map(|(j, y)| (jac.shape[(i, j)] * y).powi(2))
+                .map(|(j, v)| jac.shape[(i, j)].powi(2) * v)
                 .sum();
             let f = (jac.lambda[i] * 2.0 * lambda).powi(2);
-            p * (s * shape_variance + f * frequency_variance).sqrt()
+            p * (s + f * frequency_variance).sqrt()
         })
         .collect()
 }

@@ -252,7 +252,8 @@ fn mode_of(mode: usize, p: Pending) -> Result<MeasuredMode, (u64, String)> {
 
 /// frequency_std and value_std are given for every mode or for none.
 fn all_or_none(modes: &[MeasuredMode]) -> Result<(), String> {
-    let columns: [(&str, fn(&MeasuredMode) -> bool); 2] = [
+    type Has = fn(&MeasuredMode) -> bool;
+    let columns: [(&str, Has); 2] = [
         ("frequency_std", |m| m.frequency_std.is_some()),
         ("value_std", |m| m.value_std.is_some()),
     ];

@@ -71,6 +71,24 @@ impl MeasuredMode {
         m
     }
 
+    /// The standard errors of the shape components as standard deviations of a likelihood,
+    /// when the mode carries them: a zero one (the peak that normalises an extracted mode,
+    /// exact by definition, its error carried by the others) raised to the mode's smallest
+    /// positive one, so that no component weighs infinitely; None when every one is 0.
+    pub fn value_sigmas(&self) -> Option<Vec<f64>> {
+        let std = self.value_std.as_ref()?;
+        let least = std
+            .iter()
+            .copied()
+            .filter(|s| *s > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        least.is_finite().then(|| {
+            std.iter()
+                .map(|&s| if s > 0.0 { s } else { least })
+                .collect()
+        })
+    }
+
     /// Whether the data carry their own uncertainty: a frequency and shape standard errors.
     pub fn has_std(&self) -> bool {
         self.frequency_std.is_some() && self.value_std.is_some()

@@ -5,7 +5,10 @@
 //! written in the shortest form that reads back to the same f64. A mode whose S_r is rank
 //! deficient has empty `correction`, `corrected` and `relative_correction` and
 //! `condition = inf`; a parameter held on a mode (`--params auto`) has `identified = held`, a
-//! zero correction, and the condition of the parameters the mode identified.
+//! zero correction, and the condition of the parameters the mode identified. When the measured
+//! modes carry standard errors, two more columns: `correction_std,relative_correction_std`,
+//! their first-order propagation (module `identify::propagation`); the projection is then
+//! weighted by them.
 
 use std::io::{self, Write};
 
@@ -28,6 +31,10 @@ pub const HEADER: [&str; 11] = [
     "identified",
 ];
 
+/// The columns after [`HEADER`] when the data carry standard errors: the standard deviation
+/// of the correction and of the relative correction.
+pub const STD_COLUMNS: [&str; 2] = ["correction_std", "relative_correction_std"];
+
 /// One output row.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IdentifyRow {
@@ -49,6 +56,8 @@ pub struct IdentifyRow {
     pub resolution: f64,
     /// Whether it was identified on this mode (false: held at its value).
     pub identified: bool,
+    /// Standard deviation of Z_r(i) from the data's own standard errors, when they carry them.
+    pub relative_std: Option<f64>,
 }
 
 impl IdentifyRow {
@@ -78,6 +87,7 @@ pub fn rows(outcomes: &[ModeOutcome], params: &[Parameter]) -> Vec<IdentifyRow> 
                 condition: o.condition,
                 resolution: o.resolution[i],
                 identified: o.solved[i],
+                relative_std: o.std.as_ref().map(|s| s[i]),
             })
         })
         .collect()
@@ -90,9 +100,14 @@ fn opt(x: Option<f64>) -> String {
 /// Writes the rows as CSV.
 pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
     let mut w = csv::Writer::from_writer(out);
-    w.write_record(HEADER)?;
+    let std = rows.iter().any(|r| r.relative_std.is_some());
+    let mut header = HEADER.to_vec();
+    if std {
+        header.extend(STD_COLUMNS);
+    }
+    w.write_record(&header)?;
     for r in rows {
-        w.write_record([
+        let mut row = vec![
             r.mode.to_string(),
             r.param.clone(),
             r.initial.to_string(),
@@ -104,7 +119,12 @@ pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
             r.condition.to_string(),
             r.resolution.to_string(),
             if r.identified { "yes" } else { "held" }.to_string(),
-        ])?;
+        ];
+        if std {
+            row.push(opt(r.relative_std.map(|s| s * r.initial)));
+            row.push(opt(r.relative_std));
+        }
+        w.write_record(&row)?;
     }
     w.flush()
 }
@@ -123,6 +143,11 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
         "cond(WS)",
         "resolution",
     ];
+    let std = rows.iter().any(|r| r.relative_std.is_some());
+    let mut header = header.to_vec();
+    if std {
+        header.push("+- (std)");
+    }
     let na = || "rank-deficient".to_string();
     let cells: Vec<Vec<String>> = rows
         .iter()
@@ -142,6 +167,13 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
                 format!("{:.3e}", r.condition),
                 format!("{:.1e}", r.resolution),
             ]
+            .into_iter()
+            .chain(std.then(|| {
+                r.relative_std
+                    .map(|s| sci(s * r.initial))
+                    .unwrap_or_default()
+            }))
+            .collect()
         })
         .collect();
     write_table(out, &header, &cells)
