@@ -9,8 +9,11 @@
 # identify` with models/unesp-bert.toml, k2 only (four sensors: with k1 too, the per-mode
 # system is ill-conditioned and k1 runs to -7e8 N/m on mode 1), n = 4 (the four sensors),
 # m = 2 -> corrections_<level>V.csv; `jointid diagnose` -> diagnose_<level>V.txt/.json (the
-# model as given, the joint calibrated, after). Then summary.csv (per level and mode: frequency,
-# damping, MPC, k2 identified on that mode), calibrated.csv (per level: k1, k2 calibrated on
+# model as given, the joint calibrated, after). extract is told the 54 averages of the test, so
+# the modes carry standard errors from the coherence, which identify and diagnose then use.
+# Then summary.csv (per level and mode: frequency, damping, MPC, their standard errors, k2
+# identified on that mode with its standard deviation), replicates.csv (the levels as
+# replicates: the standard error beside the scatter and trend across levels), calibrated.csv (per level: k1, k2 calibrated on
 # both modes, with standard errors) and the figures k2_vs_level.svg and k2_vs_mode.svg
 # (examples/unesp_joint_figure.rs).
 #
@@ -28,25 +31,54 @@ cd "$ROOT"
 cargo build --release --quiet --bin jointid --example unesp_joint_figure
 J=$ROOT/target/release/jointid
 mkdir -p "$OUT"
-echo "level_V,mode,frequency_hz,damping_ratio,mpc,k2_identified" > "$OUT/summary.tmp"
+echo "level_V,mode,frequency_hz,frequency_std,damping_ratio,damping_std,mpc,k2_identified,k2_std" > "$OUT/summary.tmp"
 for level in 0p05 0p10 0p15 0p20 0p25 0p30; do
     echo "== $level V" >&2
     "$J" extract --quiet --frf "$DATA/frf_${level}V.uff" --geometry "$DATA/geometry.uff" \
-        --band 10:110 --modes 2 --max-order 30 \
+        --band 10:110 --modes 2 --max-order 30 --averages 54 \
         --out "$OUT/modes_${level}V.csv" --chart "$OUT/chart_${level}V.svg"
     "$J" identify --model "$MODEL" --measured "$OUT/modes_${level}V.csv" \
         --n 4 --m 2 --weighting inverse --params k2 --out "$OUT/corrections_${level}V.csv"
     "$J" diagnose --model "$MODEL" --measured "$OUT/modes_${level}V.csv" \
         --json "$OUT/diagnose_${level}V.json" > "$OUT/diagnose_${level}V.txt"
-    # One row per mode: the first sensor's row of the modes (frequency, damping, MPC) and the
-    # identified k2 of the same mode.
+    # One row per mode: the first sensor's row of the modes (frequency, damping, MPC and the
+    # standard errors) and the identified k2 of the same mode with its standard deviation.
     awk -F, -v level="${level/p/.}" '
         FNR == 1 { file++; next }
-        file == 1 && !seen[$1]++ { f[$1] = $2; z[$1] = $6; c[$1] = $7 }
-        file == 2 && $2 == "k2" { print level "," $1 "," f[$1] "," z[$1] "," c[$1] "," $5 }
+        file == 1 && !seen[$1]++ { f[$1] = $2; z[$1] = $6; c[$1] = $7; fs[$1] = $8; zs[$1] = $9 }
+        file == 2 && $2 == "k2" {
+            print level "," $1 "," f[$1] "," fs[$1] "," z[$1] "," zs[$1] "," c[$1] "," $5 "," $12
+        }
     ' "$OUT/modes_${level}V.csv" "$OUT/corrections_${level}V.csv" >> "$OUT/summary.tmp"
 done
 mv "$OUT/summary.tmp" "$OUT/summary.csv"
+# The levels as replicates: per mode and quantity, the mean standard error of one level beside
+# the scatter across the six levels (their standard deviation) and what a straight line in the
+# level leaves (the residual standard deviation, 4 degrees of freedom): a scatter or a residual
+# far above the standard error is a real change with level (amplitude dependence), not noise.
+awk -F, '
+    NR == 1 { next }
+    {
+        m = $2; n[m]++; x[m, n[m]] = $1
+        v[m, "frequency_hz", n[m]] = $3; s[m, "frequency_hz"] += $4
+        v[m, "damping_ratio", n[m]] = $5; s[m, "damping_ratio"] += $6
+        v[m, "k2_identified", n[m]] = $8; s[m, "k2_identified"] += $9
+    }
+    END {
+        print "mode,quantity,mean,mean_std,scatter_sd,scatter_over_std,slope_per_V,residual_sd,residual_over_std"
+        split("frequency_hz damping_ratio k2_identified", q, " ")
+        for (m = 1; m in n; m++) for (i = 1; i <= 3; i++) {
+            k = n[m]; sx = sy = sxx = sxy = 0
+            for (j = 1; j <= k; j++) { a = x[m, j]; b = v[m, q[i], j]; sx += a; sy += b; sxx += a * a; sxy += a * b }
+            mx = sx / k; my = sy / k; slope = (sxy - k * mx * my) / (sxx - k * mx * mx)
+            ss = rr = 0
+            for (j = 1; j <= k; j++) { d = v[m, q[i], j] - my; ss += d * d; e = d - slope * (x[m, j] - mx); rr += e * e }
+            sd = sqrt(ss / (k - 1)); rd = sqrt(rr / (k - 2)); st = s[m, q[i]] / k
+            printf "%d,%s,%.8g,%.4g,%.4g,%.3g,%.6g,%.4g,%.3g\n", m, q[i], my, st, sd, sd / st, slope, rd, rd / st
+        }
+    }
+' "$OUT/summary.csv" > "$OUT/replicates.csv"
 "$ROOT/target/release/examples/unesp_joint_figure" "$OUT"
 column -s, -t "$OUT/summary.csv"
 column -s, -t "$OUT/calibrated.csv"
+column -s, -t "$OUT/replicates.csv"
