@@ -86,11 +86,11 @@ pub fn tick(v: f64) -> String {
     }
 }
 
-/// The tick labeller of a logarithmic axis over `range`: one format for every tick of the
-/// axis, plain (as [`tick`]) when the whole range lies in [0.01, 1e4), else scientific with
-/// the mantissa's trailing zeros dropped (`1e-3`, `2.5e-3`, `0.1` never beside `1e-3`).
-pub fn log_ticks(range: &Range<f64>) -> impl Fn(&f64) -> String + use<> {
-    let plain = range.start >= 1e-2 && range.end < 1e4;
+/// The tick labeller of a logarithmic axis from `lo` to `hi`: one format for every tick of
+/// the axis, plain (as [`tick`]) when the whole range lies in [0.01, 1e4), else scientific
+/// with the mantissa's trailing zeros dropped (`1e-3`, `2.5e-3`, `0.1` never beside `1e-3`).
+pub fn log_ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let plain = lo >= 1e-2 && hi < 1e4;
     move |v: &f64| {
         if plain { tick(*v) } else { scientific(*v) }
     }
@@ -487,7 +487,7 @@ impl LinePlot<'_> {
         let (y_lo, y_hi) = (self.ys.start, self.ys.end);
         let ticks = |log: bool, range: &Range<f64>| -> Box<dyn Fn(&f64) -> String> {
             if log {
-                Box::new(log_ticks(range))
+                Box::new(log_ticks(range.start, range.end))
             } else {
                 Box::new(|v: &f64| tick(*v))
             }
@@ -599,7 +599,7 @@ pub fn bars(
         .y_desc(y_desc)
         .x_labels(count)
         .x_label_formatter(&|x| category(labels, *x))
-        .y_label_formatter(&log_ticks(&ys))
+        .y_label_formatter(&log_ticks(ys.start, ys.end))
         .axis_desc_style((FONT, 14))
         .draw()
         .map_err(err)?;

@@ -149,7 +149,7 @@ pub fn draw(
         .build_cartesian_2d(x0..x1, 0.0..top)
         .map_err(err)?
         .set_secondary_coord(x0..x1, ((lo / 3.0)..(hi * 3.0)).log_scale());
-    let magnitude_ticks = log_ticks(&((lo / 3.0)..(hi * 3.0)));
+    let magnitude_ticks = log_ticks(lo / 3.0, hi * 3.0);
     chart
         .configure_mesh()
         .light_line_style(RGBColor(245, 245, 245))
