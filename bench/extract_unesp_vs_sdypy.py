@@ -12,6 +12,7 @@ the MAC between the two sides' real shapes, and each side's wall time (sdypy: in
 pyuff reading excluded; jointid: the whole command, reading included).
 
 usage: PY=$(bash scripts/python-env.sh); $PY bench/extract_unesp_vs_sdypy.py [--repeat 3]
+    [--f-window 10] (sdypy's `select_closest_poles` window; its default is 50)
 """
 
 import argparse
@@ -45,7 +46,7 @@ def read_frfs(path):
     return f[1:], h[:, 1:]
 
 
-def run_sdypy(f, h, approx):
+def run_sdypy(f, h, approx, f_window):
     from sdypy import EMA
     start = time.perf_counter()
     with warnings.catch_warnings():
@@ -53,7 +54,7 @@ def run_sdypy(f, h, approx):
         model = EMA.Model(frf=h, freq=f, lower=10, upper=110, pol_order_high=30,
                           frf_form="accelerance")
         model.get_poles("lscf", show_progress=False)
-        model.select_closest_poles(approx)
+        model.select_closest_poles(approx, f_window=f_window)
         # Where sdypy finds no pole stable by its criteria it returns 0 Hz: take the pole of
         # the highest order nearest to the approximate frequency instead (marked * in the
         # table).
@@ -97,6 +98,9 @@ def run_jointid(path, out):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--repeat", type=int, default=3)
+    # sdypy's default window (50) lets masked poles near 0 Hz win on UNESP-BERT's first mode;
+    # its docs let the user narrow it: 10 is the fair setting here.
+    parser.add_argument("--f-window", type=float, default=10.0)
     args = parser.parse_args()
     if not os.path.isdir(DATA):
         print(f"skipped: {DATA} is absent (UNESP-BERT data not shared here)", file=sys.stderr)
@@ -113,7 +117,7 @@ def main():
             j = min((run_jointid(path, out) for _ in range(args.repeat)),
                     key=lambda r: r["seconds"])
             f, h = read_frfs(path)
-            s = min((run_sdypy(f, h, j["f"]) for _ in range(args.repeat)),
+            s = min((run_sdypy(f, h, j["f"], args.f_window) for _ in range(args.repeat)),
                     key=lambda r: r["seconds"])
             for k in range(len(j["f"])):
                 i = int(np.argmin([abs(x - j["f"][k]) for x in s["f"]]))

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use faer::c64;
 use jointid::extract::{FrfSet, Quantity, Settings, extract};
-use jointid::output::stabilization::stabilization_svg;
+use jointid::output::stabilization::{ChartUnits, stabilization_svg};
 
 fn parse(text: &str) -> Result<FrfSet, String> {
     let mut quantity = None;
@@ -129,7 +129,8 @@ fn main() -> Result<(), String> {
             ex.band_hz.0,
             ex.band_hz.1
         );
-        let body = stabilization_svg(&set, &ex, &title).map_err(|e| e.to_string())?;
+        let body = stabilization_svg(&set, &ex, &title, &ChartUnits::si(set.quantity))
+            .map_err(|e| e.to_string())?;
         std::fs::write(&out, body).map_err(|e| format!("{out}: {e}"))?;
     }
     let modes: Vec<serde_json::Value> = ex

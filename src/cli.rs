@@ -61,9 +61,22 @@ pub struct ExportArgs {
     pub out: PathBuf,
 }
 
-/// `jointid study` and `jointid check`.
+/// `jointid study`.
 #[derive(Debug, Args)]
 pub struct StudyArgs {
+    /// The studies and how to run them.
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// Run only the cells of shard K of N (one study only) and write a shard file (default
+    /// name: the study's CSV with `.shard-K-of-N.csv`); `jointid merge` joins the shards.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<ShardSpec>,
+}
+
+/// The studies to run and how: shared by `jointid study` and `jointid check` (which holds
+/// whole studies, so has no `--shard`).
+#[derive(Debug, Clone, Args)]
+pub struct RunArgs {
     /// Study files (TOML), run one after the other.
     #[arg(required = true)]
     pub studies: Vec<PathBuf>,
@@ -79,10 +92,6 @@ pub struct StudyArgs {
     /// No progress bar (it is hidden anyway when stderr is not a terminal).
     #[arg(long)]
     pub quiet: bool,
-    /// Run only the cells of shard K of N (one study only) and write a shard file (default
-    /// name: the study's CSV with `.shard-K-of-N.csv`); `jointid merge` joins the shards.
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<ShardSpec>,
 }
 
 /// `jointid check`.
@@ -90,7 +99,7 @@ pub struct StudyArgs {
 pub struct CheckArgs {
     /// The studies and how to run them.
     #[command(flatten)]
-    pub study: StudyArgs,
+    pub study: RunArgs,
     /// Hold this result CSV of the study (e.g. a merged one) to its `[check]` instead of
     /// running the study (one study only).
     #[arg(long, value_name = "F.csv")]
@@ -386,7 +395,7 @@ fn effect_help() -> String {
         .map(|(name, _)| name)
         .collect();
     format!(
-        "An effect the model lacks, `name=size` (repeatable): {} (see README's candidate table for what each size means)",
+        "An effect the model lacks, `name=size` (repeatable): {} (see the candidate table of docs/diagnosis.md for what each size means)",
         names.join(", ")
     )
 }
@@ -399,7 +408,7 @@ fn extended_help() -> String {
         .map(|c| c.name())
         .collect();
     format!(
-        "Also search the candidates of the extended tier: {} (see README's candidate table)",
+        "Also search the candidates of the extended tier: {} (see the candidate table of docs/diagnosis.md)",
         names.join(", ")
     )
 }

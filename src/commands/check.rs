@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 
-use crate::cli::CheckArgs;
+use crate::cli::{CheckArgs, StudyArgs};
 use crate::commands::run_study::run_studies;
 use jointid::cluster::read_results_path;
 use jointid::study::check::{evaluate, gate};
@@ -14,11 +14,6 @@ use jointid::study::{CellResult, Study};
 
 /// Exit 1 when any study fails its gate; every study is run and reported.
 pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
-    if let Some(spec) = args.study.shard {
-        bail!(
-            "check holds whole studies: run `jointid study S.toml --shard {spec}` for each shard, `jointid merge` them, then `jointid check S.toml --results F.csv`"
-        );
-    }
     let failed = match &args.results {
         Some(path) => {
             let [file] = args.study.studies.as_slice() else {
@@ -38,7 +33,11 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<ExitCode> {
         }
         None => {
             let mut failed = false;
-            run_studies(&args.study, true, |finished| {
+            let whole = StudyArgs {
+                run: args.study.clone(),
+                shard: None,
+            };
+            run_studies(&whole, true, |finished| {
                 failed |= !check_one(&finished.run.study, &finished.results, &finished.names)?;
                 Ok(())
             })?;

@@ -6,11 +6,12 @@ use crate::cli::DiagnoseArgs;
 use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
+use jointid::output::diagnose_page::diagnose_page;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 
 use crate::commands::flagged;
-use crate::commands::report::stage_figures;
+use crate::commands::report::stage_page;
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     let per_mode = match (args.n, args.m) {
@@ -69,7 +70,8 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             args.measured.display(),
             out::verdict_text(&report, false)
         );
-        staged.extend(stage_figures(dir, &title, &figures, &inputs)?);
+        let page = diagnose_page(&title, &report, &figures);
+        staged.extend(stage_page(dir, &figures, &page, &inputs)?);
     }
     commit_all(staged)?;
     out::write_text(&mut std::io::stdout().lock(), &report)?;

@@ -11,10 +11,10 @@ use crate::commands::flagged;
 use jointid::extract::{
     ExtractError, Extraction, FrfSet, NoiseSource, Quantity, Settings, csv, extract, universal,
 };
-use jointid::output::stabilization::stabilization_svg;
+use jointid::output::stabilization::{ChartUnits, stabilization_svg};
 use jointid::output::{check_outputs, commit_all, stage};
 
-use jointid::uff::{Record, read_path};
+use jointid::uff::{FunctionType, Record, read_path};
 
 /// Below this MPC a mode is named on stderr as complex.
 const MPC_WARN: f64 = 0.9;
@@ -63,8 +63,28 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
     }
 }
 
+/// The chart's units: those of the first FRF of the files (all FRFs share them).
+fn chart_units(files: &[(PathBuf, Vec<Record>)], quantity: Quantity) -> ChartUnits {
+    files
+        .iter()
+        .flat_map(|(_, records)| records)
+        .find_map(|r| match r {
+            Record::Function(f) if f.function_type == FunctionType::Frf => Some(f),
+            _ => None,
+        })
+        .map_or_else(
+            || ChartUnits::si(quantity),
+            |f| ChartUnits::of_function(f, quantity),
+        )
+}
+
 /// The stabilisation chart of the extraction, titled with the FRF files' names.
-fn draw_chart(args: &ExtractArgs, frf: &FrfSet, ex: &Extraction) -> anyhow::Result<String> {
+fn draw_chart(
+    args: &ExtractArgs,
+    frf: &FrfSet,
+    ex: &Extraction,
+    units: &ChartUnits,
+) -> anyhow::Result<String> {
     let names: Vec<String> = args
         .frf
         .iter()
@@ -74,7 +94,7 @@ fn draw_chart(args: &ExtractArgs, frf: &FrfSet, ex: &Extraction) -> anyhow::Resu
         })
         .collect();
     let title = format!("Stabilisation chart: {}", names.join(", "));
-    stabilization_svg(frf, ex, &title).context("cannot draw the chart")
+    stabilization_svg(frf, ex, &title, units).context("cannot draw the chart")
 }
 
 pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
@@ -99,6 +119,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         FrfQuantity::Acceleration => Quantity::Acceleration,
     });
     let input = universal::frfs(&files, quantity)?;
+    let units = chart_units(&files, input.set.quantity);
     drop(files);
     let geometry: Vec<_> = read_path(&args.geometry)?
         .into_iter()
@@ -157,7 +178,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     .with_context(failed)?;
     describe(&ex, &say);
     let chart = match &args.chart {
-        Some(_) => Some(draw_chart(args, &input.set, &ex)?),
+        Some(_) => Some(draw_chart(args, &input.set, &ex, &units)?),
         None => None,
     };
     let mut staged = vec![

@@ -5,7 +5,7 @@ use anyhow::Context;
 use crate::cli::ReportArgs;
 use std::path::{Path, PathBuf};
 
-use jointid::output::study_report::{Figure, figure_page, index_html, study_figures};
+use jointid::output::study_report::{Figure, index_html, study_figures};
 use jointid::output::{Staged, check_outputs, commit_all, stage};
 use jointid::report::StudyResults;
 
@@ -34,20 +34,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Stages the figures and a plain page showing them (for `diagnose --plots`), to be
-/// committed with the run's other outputs.
-pub fn stage_figures(
-    dir: &Path,
-    title: &str,
-    figures: &[Figure],
-    inputs: &[&Path],
-) -> anyhow::Result<Vec<Staged>> {
-    stage_page(dir, figures, &figure_page(title, figures), inputs)
-}
-
 /// The figures and the page, staged in `dir` (created if absent; removed again when it was
-/// created here and a file cannot be staged).
-fn stage_page(
+/// created here and a file cannot be staged), to be committed with the run's other outputs.
+pub fn stage_page(
     dir: &Path,
     figures: &[Figure],
     page: &str,

@@ -41,7 +41,7 @@ fn shard_path(output_csv: &Path, spec: ShardSpec) -> PathBuf {
 
 /// Where the results of `study` go: `--out`, else the shard file, else `[output].csv`.
 fn output_path(study: &Study, args: &StudyArgs) -> PathBuf {
-    match (&args.out, args.shard) {
+    match (&args.run.out, args.shard) {
         (Some(out), _) => out.clone(),
         (None, Some(spec)) => shard_path(&study.output_csv, spec),
         (None, None) => study.output_csv.clone(),
@@ -56,16 +56,17 @@ pub fn run_studies(
     gate: bool,
     mut finished: impl FnMut(&Finished) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    if args.studies.len() > 1
-        && (args.out.is_some() || args.trials_csv.is_some() || args.shard.is_some())
+    if args.run.studies.len() > 1
+        && (args.run.out.is_some() || args.run.trials_csv.is_some() || args.shard.is_some())
     {
         bail!(
             "--out, --trials-csv and --shard take one study file, not {}",
-            args.studies.len()
+            args.run.studies.len()
         );
     }
-    let pool = worker_pool(args.threads)?;
+    let pool = worker_pool(args.run.threads)?;
     let runs = args
+        .run
         .studies
         .iter()
         .map(|path| prepare(path, args, gate, pool.current_num_threads()))
@@ -101,7 +102,7 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow:
     }
     let out = output_path(&study, args);
     let mut outputs = vec![out.as_path()];
-    outputs.extend(args.trials_csv.as_deref());
+    outputs.extend(args.run.trials_csv.as_deref());
     check_outputs(&outputs, &[&study.file, &study.model_file])?;
     check_memory(
         peak_bytes(&study, threads),
@@ -130,13 +131,13 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
             .collect(),
         _ => run.cells.iter().collect(),
     };
-    let bar = progress_bar((cells.len() * run.study.trials) as u64, args.quiet);
+    let bar = progress_bar((cells.len() * run.study.trials) as u64, args.run.quiet);
     let done = AtomicU64::new(0);
     let progress = |count: u64| {
         let total = done.fetch_add(count, Ordering::Relaxed) + count;
         bar.set_position(total);
     };
-    let (results, trials) = match &args.trials_csv {
+    let (results, trials) = match &args.run.trials_csv {
         None => (
             cells
                 .iter()

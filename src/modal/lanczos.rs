@@ -48,7 +48,7 @@
 //! eps ||K|| moves the lowest eigenvalue by eps lambda_max. Without the refinement, the first
 //! elastic frequency of the paper's chain at 2 x 2000 elements (N = 8004) comes out
 //! 149.690 Hz instead of 150.0539 (scipy's `eigsh` fails the same way, worse on a cantilever
-//! of 1e5 DOFs: README, "Large models"); with it, 150.053849 (1.1e-8 relative). What is left
+//! of 1e5 DOFs: docs/benchmarks.md, "Large models"); with it, 150.053849 (1.1e-8 relative). What is left
 //! is the rounding of the stored entries of K themselves (each element matrix stored in
 //! double precision no longer has the rigid-body motions in its null space exactly): no
 //! solver working on the stored K can do better. Measured on that chain, relative error of the

@@ -35,7 +35,7 @@ pub use elastic::{Mechanism, check_elastic};
 
 /// Largest number of DOFs solved densely (all pairs); larger models get their lowest pairs by
 /// shift-invert Lanczos. Measured with `cargo run --release --example dense_threshold` on the
-/// paper's chain refined (README, "Large models"): the sparse solve of the lowest 20 pairs
+/// paper's chain refined (docs/benchmarks.md, "Large models"): the sparse solve of the lowest 20 pairs
 /// takes 0.75 ms at N = 84 against 0.56 ms dense, 1.0 ms at N = 124 against 1.4 ms; above
 /// about 160 DOFs the dense first elastic eigenvalue also loses digits to round-off (6e-8
 /// relative at N = 204, 1e-1 at N = 2004).
@@ -378,7 +378,7 @@ mod tests {
     }
 
     /// The paper's chain refined to 2 x 30 elements (124 DOFs, above the threshold), against
-    /// its dense solution (accurate to 3e-9 there, README "Large models").
+    /// its dense solution (accurate to 3e-9 there, docs/benchmarks.md "Large models").
     fn refined_chain() -> Matrices {
         use crate::model::chain::{Chain, Joint};
         use crate::model::fixtures::steel_bar;

@@ -1,6 +1,6 @@
 //! The catalogue of everything a user can name (the diagnosis's candidates, simulate's
-//! effects) as a Markdown table, for README: generated from the registries, never kept by
-//! hand (tests/registry.rs compares README's copy with it).
+//! effects) as a Markdown table, for docs/diagnosis.md: generated from the registries, never
+//! kept by hand (tests/suite/registry.rs compares the documented copy with it).
 
 use crate::diagnose::candidate::Entry;
 use crate::model::effects::Tier;

@@ -262,26 +262,42 @@ fn warnings(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     Ok(())
 }
 
+/// The columns of [`summary_rows`].
+pub const SUMMARY_HEADERS: [&str; 7] = [
+    "model",
+    "f RMS (%)",
+    "min MAC",
+    "mean MAC",
+    "chi^2/dof",
+    "ratio",
+    "P(fit)",
+];
+
+/// The errors of the model as given, with the joint calibrated and after, one row each.
+pub fn summary_rows(r: &Report) -> Vec<Vec<String>> {
+    vec![
+        summary_line("as given", &r.initial),
+        summary_line("joint calibrated", &r.before),
+        summary_line("after", &r.after),
+    ]
+}
+
+/// The columns of [`candidate_rows`].
+pub const CANDIDATE_HEADERS: [&str; 8] = [
+    "candidate",
+    "size",
+    "chi^2/dof",
+    "LR stat",
+    "p (adj.)",
+    "P(fit)",
+    "P(freq)",
+    "P(white)",
+];
+
 /// The errors of the model as given, calibrated and after; then mode by mode.
 fn write_errors(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out)?;
-    write_table(
-        out,
-        &[
-            "model",
-            "f RMS (%)",
-            "min MAC",
-            "mean MAC",
-            "chi^2/dof",
-            "ratio",
-            "P(fit)",
-        ],
-        &[
-            summary_line("as given", &r.initial),
-            summary_line("joint calibrated", &r.before),
-            summary_line("after", &r.after),
-        ],
-    )?;
+    write_table(out, &SUMMARY_HEADERS, &summary_rows(r))?;
     writeln!(
         out,
         "\nper mode (joint calibrated -> after): frequency error %, MAC"
@@ -323,6 +339,17 @@ fn write_errors(out: &mut dyn Write, r: &Report) -> io::Result<()> {
 /// profiles.
 fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     writeln!(out, "\ncandidates ({})", r.criterion)?;
+    write_table(out, &CANDIDATE_HEADERS, &candidate_rows(r))?;
+    for c in &r.candidates {
+        if let Some(p) = &c.profile {
+            profile(out, &c.name, p)?;
+        }
+    }
+    Ok(())
+}
+
+/// One row per candidate: its fit and tests, or why it failed or was excluded.
+pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
     // Name, size, chi^2/dof and LR statistic of a fitted candidate.
     let fitted_cells = |c: &crate::diagnose::CandidateReport| {
         vec![
@@ -336,8 +363,7 @@ fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             format!("{:.1}", c.lrt.unwrap_or(0.0)),
         ]
     };
-    let rows: Vec<Vec<String>> = r
-        .candidates
+    r.candidates
         .iter()
         .map(|c| match &c.error {
             None if c.excluded.is_some() => [
@@ -371,25 +397,5 @@ fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             ]
             .concat(),
         })
-        .collect();
-    write_table(
-        out,
-        &[
-            "candidate",
-            "size",
-            "chi^2/dof",
-            "LR stat",
-            "p (adj.)",
-            "P(fit)",
-            "P(freq)",
-            "P(white)",
-        ],
-        &rows,
-    )?;
-    for c in &r.candidates {
-        if let Some(p) = &c.profile {
-            profile(out, &c.name, p)?;
-        }
-    }
-    Ok(())
+        .collect()
 }

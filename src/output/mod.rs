@@ -10,6 +10,7 @@
 pub mod atomic;
 pub mod catalogue;
 pub mod diagnose;
+pub mod diagnose_page;
 pub mod diagnose_plots;
 pub mod guard;
 pub mod identify;

@@ -86,12 +86,35 @@ pub fn tick(v: f64) -> String {
     }
 }
 
+/// The tick labeller of a logarithmic axis from `lo` to `hi`: one format for every tick of
+/// the axis, plain (as [`tick`]) when the whole range lies in [0.01, 1e4), else scientific
+/// with the mantissa's trailing zeros dropped (`1e-3`, `2.5e-3`, `0.1` never beside `1e-3`).
+pub fn log_ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let plain = lo >= 1e-2 && hi < 1e4;
+    move |v: &f64| {
+        if plain { tick(*v) } else { scientific(*v) }
+    }
+}
+
+/// `v` in scientific notation, 3 significant digits, trailing zeros of the mantissa dropped.
+fn scientific(v: f64) -> String {
+    let text = format!("{v:.2e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{exponent}")
+        }
+        _ => text,
+    }
+}
+
 /// Box plots from stored quantiles, one per category, with a dashed reference line. The y
 /// range is the union of the Tukey fences [q25 - 1.5 IQR, q75 + 1.5 IQR] (and the reference);
-/// whiskers (q05, q95) beyond it stop at the edge with an open triangle.
+/// whiskers (q05, q95) beyond it stop at the edge with an open triangle. The legend has its
+/// own strip on the right, clear of the boxes and whiskers.
 #[allow(clippy::too_many_arguments)]
 pub fn boxes(
-    area: &DrawingArea<SVGBackend, Shift>,
+    whole: &DrawingArea<SVGBackend, Shift>,
     title: &str,
     x_desc: &str,
     y_desc: &str,
@@ -100,6 +123,20 @@ pub fn boxes(
     reference: f64,
     reference_label: &str,
 ) -> Result<(), PlotError> {
+    let blue = PALETTE[0];
+    let red = PALETTE[1];
+    let entries: [Entry; 3] = [
+        (reference_label.to_string(), red, Mark::Line),
+        ("median, [q25, q75]".to_string(), blue, Mark::Box),
+        (
+            "[q05, q95] (triangle: beyond the plot)".to_string(),
+            blue,
+            Mark::Whisker,
+        ),
+    ];
+    let (area, legend_area) = with_legend_strip(whole, &entries);
+    legend(&legend_area, &entries)?;
+    let area = &area;
     let present: Vec<&Quantiles> = boxes.iter().flatten().collect();
     let mut lo = reference;
     let mut hi = reference;
@@ -130,7 +167,6 @@ pub fn boxes(
         .axis_desc_style((FONT, 14))
         .draw()
         .map_err(err)?;
-    let blue = PALETTE[0];
     for (i, q) in boxes.iter().enumerate() {
         let Some(q) = q else { continue };
         let x = i as f64;
@@ -179,7 +215,6 @@ pub fn boxes(
             }
         }
     }
-    let red = PALETTE[1];
     chart
         .draw_series(DashedLineSeries::new(
             vec![(-0.5, reference), (count as f64 - 0.5, reference)],
@@ -187,27 +222,8 @@ pub fn boxes(
             5,
             red.stroke_width(2),
         ))
-        .map_err(err)?
-        .label(reference_label)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red.stroke_width(2)));
-    chart
-        .draw_series(std::iter::once(Rectangle::new(
-            [(-10.0, -1.0), (-10.0, -1.0)],
-            blue.mix(0.25).filled(),
-        )))
-        .map_err(err)?
-        .label("median, [q25, q75] box, [q05, q95] whiskers (triangle: beyond the plot)")
-        .legend(move |(x, y)| {
-            Rectangle::new([(x, y - 5), (x + 20, y + 5)], blue.mix(0.25).filled())
-        });
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font((FONT, 12))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(err)
+        .map_err(err)?;
+    Ok(())
 }
 
 /// One series of a line chart.
@@ -271,23 +287,62 @@ fn integer_x(series: &[Series]) -> bool {
         .all(|p| p.0.fract() == 0.0)
 }
 
-/// A legend in its own strip: a marker and the name of every series (and the reference).
-fn legend(
-    area: &DrawingArea<SVGBackend, Shift>,
-    entries: &[(String, RGBColor, bool)],
-) -> Result<(), PlotError> {
-    for (i, (name, colour, dashed)) in entries.iter().enumerate() {
+/// How a legend entry shows its series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mark {
+    /// A filled dot (points, bars).
+    Dot,
+    /// A horizontal line (a reference).
+    Line,
+    /// A filled box with its median line (a box plot).
+    Box,
+    /// A vertical whisker with its cap.
+    Whisker,
+}
+
+/// One legend entry: its text, colour and mark.
+type Entry = (String, RGBColor, Mark);
+
+/// A legend in its own strip: a mark and the name of every series (and the reference).
+fn legend(area: &DrawingArea<SVGBackend, Shift>, entries: &[Entry]) -> Result<(), PlotError> {
+    for (i, (name, colour, mark)) in entries.iter().enumerate() {
         let y = 50 + 20 * i as i32;
-        if *dashed {
-            area.draw(&PathElement::new(
+        match mark {
+            Mark::Line => area.draw(&PathElement::new(
                 vec![(5, y), (25, y)],
                 colour.stroke_width(2),
-            ))
-            .map_err(err)?;
-        } else {
-            area.draw(&Circle::new((15, y), 4, colour.filled()))
-                .map_err(err)?;
+            )),
+            Mark::Dot => area.draw(&Circle::new((15, y), 4, colour.filled())),
+            Mark::Box => area
+                .draw(&Rectangle::new(
+                    [(7, y - 6), (23, y + 6)],
+                    colour.mix(0.25).filled(),
+                ))
+                .and_then(|()| {
+                    area.draw(&Rectangle::new(
+                        [(7, y - 6), (23, y + 6)],
+                        colour.stroke_width(1),
+                    ))
+                })
+                .and_then(|()| {
+                    area.draw(&PathElement::new(
+                        vec![(7, y), (23, y)],
+                        colour.stroke_width(2),
+                    ))
+                }),
+            Mark::Whisker => area
+                .draw(&PathElement::new(
+                    vec![(15, y - 7), (15, y + 7)],
+                    colour.stroke_width(1),
+                ))
+                .and_then(|()| {
+                    area.draw(&PathElement::new(
+                        vec![(11, y - 7), (19, y - 7)],
+                        colour.stroke_width(1),
+                    ))
+                }),
         }
+        .map_err(err)?;
         area.draw(&Text::new(
             name.clone(),
             (32, y - 6),
@@ -301,7 +356,7 @@ fn legend(
 /// Splits off a strip on the right wide enough for the legend's longest entry.
 fn with_legend_strip<'a>(
     whole: &DrawingArea<SVGBackend<'a>, Shift>,
-    entries: &[(String, RGBColor, bool)],
+    entries: &[Entry],
 ) -> (
     DrawingArea<SVGBackend<'a>, Shift>,
     DrawingArea<SVGBackend<'a>, Shift>,
@@ -361,12 +416,12 @@ pub fn lines(
     axes: &LineAxes,
     series: &[Series],
 ) -> Result<(), PlotError> {
-    let mut entries: Vec<(String, RGBColor, bool)> = Vec::new();
+    let mut entries: Vec<Entry> = Vec::new();
     if let Some((_, label)) = &axes.reference {
-        entries.push((label.clone(), PALETTE[1], true));
+        entries.push((label.clone(), PALETTE[1], Mark::Line));
     }
     for (k, s) in series.iter().enumerate() {
-        entries.push((s.name.clone(), series_colour(axes, k), false));
+        entries.push((s.name.clone(), series_colour(axes, k), Mark::Dot));
     }
     let (area, legend_area) = with_legend_strip(whole, &entries);
     legend(&legend_area, &entries)?;
@@ -430,6 +485,14 @@ impl LinePlot<'_> {
     {
         let axes = self.axes;
         let (y_lo, y_hi) = (self.ys.start, self.ys.end);
+        let ticks = |log: bool, range: &Range<f64>| -> Box<dyn Fn(&f64) -> String> {
+            if log {
+                Box::new(log_ticks(range.start, range.end))
+            } else {
+                Box::new(|v: &f64| tick(*v))
+            }
+        };
+        let (x_tick, y_tick) = (ticks(axes.log_x, &self.xs), ticks(axes.log_y, &self.ys));
         chart
             .configure_mesh()
             .light_line_style(RGBColor(245, 245, 245))
@@ -441,10 +504,10 @@ impl LinePlot<'_> {
                 if self.whole_x && v.fract().abs() > 1e-9 {
                     String::new()
                 } else {
-                    tick(*v)
+                    x_tick(v)
                 }
             })
-            .y_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&y_tick)
             .axis_desc_style((FONT, 14))
             .draw()
             .map_err(err)?;
@@ -501,11 +564,15 @@ pub fn bars(
     threshold: (f64, &str),
     highlight: Option<(usize, &str)>,
 ) -> Result<(), PlotError> {
-    let mut entries = vec![("likelihood-ratio statistic".to_string(), PALETTE[0], false)];
+    let mut entries = vec![(
+        "likelihood-ratio statistic".to_string(),
+        PALETTE[0],
+        Mark::Dot,
+    )];
     if let Some((_, name)) = highlight {
-        entries.push((name.to_string(), PALETTE[2], false));
+        entries.push((name.to_string(), PALETTE[2], Mark::Dot));
     }
-    entries.push((threshold.1.to_string(), PALETTE[1], true));
+    entries.push((threshold.1.to_string(), PALETTE[1], Mark::Line));
     let (area, legend_area) = with_legend_strip(whole, &entries);
     legend(&legend_area, &entries)?;
     let area = &area;
@@ -523,7 +590,7 @@ pub fn bars(
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(80)
-        .build_cartesian_2d(-0.5f64..count as f64 - 0.5, ys.log_scale())
+        .build_cartesian_2d(-0.5f64..count as f64 - 0.5, ys.clone().log_scale())
         .map_err(err)?;
     chart
         .configure_mesh()
@@ -532,7 +599,7 @@ pub fn bars(
         .y_desc(y_desc)
         .x_labels(count)
         .x_label_formatter(&|x| category(labels, *x))
-        .y_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&log_ticks(ys.start, ys.end))
         .axis_desc_style((FONT, 14))
         .draw()
         .map_err(err)?;

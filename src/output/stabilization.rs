@@ -7,8 +7,9 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::plot::{PALETTE, PlotError, svg, tick};
+use super::plot::{PALETTE, PlotError, log_ticks, svg, tick};
 use crate::extract::{Extraction, FrfSet, Quantity, StabilityClass};
+use crate::uff::Function;
 
 const FONT: &str = "sans-serif";
 
@@ -16,12 +17,53 @@ fn err<E: std::fmt::Debug>(e: E) -> PlotError {
     PlotError(format!("{e:?}"))
 }
 
-/// The unit of an FRF of this quantity per newton.
-fn unit(q: Quantity) -> &'static str {
-    match q {
-        Quantity::Displacement => "m/N",
-        Quantity::Velocity => "(m/s)/N",
-        Quantity::Acceleration => "(m/s^2)/N",
+/// The units the chart's axes are labelled with: those the FRF file states, else SI.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ChartUnits {
+    /// The frequency axis, e.g. `Hz`.
+    pub frequency: String,
+    /// The FRF, e.g. `m/s^2/V` or `(m/s^2)/N`.
+    pub frf: String,
+}
+
+/// A units label that says something (UFF writes `NONE` or blanks for none).
+fn stated(label: &str) -> Option<&str> {
+    let label = label.trim();
+    (!label.is_empty() && !label.eq_ignore_ascii_case("none")).then_some(label)
+}
+
+impl ChartUnits {
+    /// SI units of an FRF of quantity `q` per newton, frequency in Hz.
+    pub fn si(q: Quantity) -> Self {
+        let frf = match q {
+            Quantity::Displacement => "m/N",
+            Quantity::Velocity => "(m/s)/N",
+            Quantity::Acceleration => "(m/s^2)/N",
+        };
+        Self {
+            frequency: "Hz".into(),
+            frf: frf.into(),
+        }
+    }
+
+    /// The units a dataset 58 states (its abscissa's units label; its ordinate's, over its
+    /// denominator's when that is given), each falling back to [`ChartUnits::si`] of `q`
+    /// where the file leaves it blank or `NONE`.
+    pub fn of_function(f: &Function, q: Quantity) -> Self {
+        let si = Self::si(q);
+        let frf = match (
+            stated(&f.ordinate_axis.units),
+            stated(&f.denominator_axis.units),
+        ) {
+            (Some(num), Some(den)) if num.contains('/') => format!("({num})/{den}"),
+            (Some(num), Some(den)) => format!("{num}/{den}"),
+            (Some(num), None) => num.to_string(),
+            (None, _) => si.frf,
+        };
+        Self {
+            frequency: stated(&f.abscissa_axis.units).map_or(si.frequency, str::to_string),
+            frf,
+        }
     }
 }
 
@@ -84,12 +126,13 @@ fn positive_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
-/// Draws the chart of `ex` (extracted from `frf`) on `area`.
+/// Draws the chart of `ex` (extracted from `frf`) on `area`, its axes labelled in `units`.
 pub fn draw(
     area: &DrawingArea<SVGBackend, Shift>,
     frf: &FrfSet,
     ex: &Extraction,
     title: &str,
+    units: &ChartUnits,
 ) -> Result<(), PlotError> {
     let (width, _) = area.dim_in_pixel();
     let (plot_area, legend_area) = area.split_horizontally(width as i32 - 300);
@@ -106,10 +149,11 @@ pub fn draw(
         .build_cartesian_2d(x0..x1, 0.0..top)
         .map_err(err)?
         .set_secondary_coord(x0..x1, ((lo / 3.0)..(hi * 3.0)).log_scale());
+    let magnitude_ticks = log_ticks(lo / 3.0, hi * 3.0);
     chart
         .configure_mesh()
         .light_line_style(RGBColor(245, 245, 245))
-        .x_desc("frequency (Hz)")
+        .x_desc(format!("frequency ({})", units.frequency))
         .y_desc("model order")
         .x_label_formatter(&|v| tick(*v))
         .y_label_formatter(&|v| format!("{v:.0}"))
@@ -118,11 +162,8 @@ pub fn draw(
         .map_err(err)?;
     chart
         .configure_secondary_axes()
-        .y_desc(format!(
-            "sum over responses of |H| ({})",
-            unit(frf.quantity)
-        ))
-        .y_label_formatter(&|v| tick(*v))
+        .y_desc(format!("sum over responses of |H| ({})", units.frf))
+        .y_label_formatter(&magnitude_ticks)
         .axis_desc_style((FONT, 14))
         .draw()
         .map_err(err)?;
@@ -253,7 +294,12 @@ fn legend(
     Ok(())
 }
 
-/// The chart as an SVG document of 1200 x 650 pixels.
-pub fn stabilization_svg(frf: &FrfSet, ex: &Extraction, title: &str) -> Result<String, PlotError> {
-    svg((1200, 650), |area| draw(area, frf, ex, title))
+/// The chart as an SVG document of 1200 x 650 pixels, its axes labelled in `units`.
+pub fn stabilization_svg(
+    frf: &FrfSet,
+    ex: &Extraction,
+    title: &str,
+    units: &ChartUnits,
+) -> Result<String, PlotError> {
+    svg((1200, 650), |area| draw(area, frf, ex, title, units))
 }

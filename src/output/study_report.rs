@@ -76,7 +76,7 @@ pub fn study_figures(results: &StudyResults, title: &str) -> Result<Vec<Figure>,
                 continue;
             };
             let fig_title = format!("{title}: mode {mode}, Delta {param} in every condition");
-            let body = svg((1100, 560), |area| {
+            let body = svg((1300, 560), |area| {
                 boxes(
                     area,
                     &fig_title,
@@ -195,7 +195,8 @@ fn trend_series(results: &StudyResults, axis: Axis) -> (Vec<Series>, Vec<Series>
     (bias, spread)
 }
 
-fn escape(s: &str) -> String {
+/// `s` with the HTML special characters escaped.
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -203,14 +204,16 @@ fn escape(s: &str) -> String {
 
 const STYLE: &str = "body { font-family: sans-serif; margin: 2em; color: #222; }\ntable { border-collapse: collapse; font-size: 12px; }\nth, td { border: 1px solid #bbb; padding: 3px 6px; text-align: right; white-space: nowrap; }\nth { background: #eee; }\nfigure { margin: 2em 0; }\nfigcaption { font-size: 14px; color: #444; max-width: 1100px; }\nimg { max-width: 100%; border: 1px solid #ddd; }\n";
 
-fn page_head(title: &str) -> String {
+/// The page's head, styles and `<h1>` title.
+pub(crate) fn page_head(title: &str) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{t}</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n<h1>{t}</h1>\n",
         t = escape(title)
     )
 }
 
-fn page_figures(html: &mut String, figures: &[Figure]) {
+/// Every figure with its caption.
+pub(crate) fn page_figures(html: &mut String, figures: &[Figure]) {
     for f in figures {
         html.push_str(&format!(
             "<figure>\n<img src=\"{}\" alt=\"{}\">\n<figcaption>{}</figcaption>\n</figure>\n",
@@ -219,14 +222,6 @@ fn page_figures(html: &mut String, figures: &[Figure]) {
             escape(&f.caption)
         ));
     }
-}
-
-/// A page of figures alone.
-pub fn figure_page(title: &str, figures: &[Figure]) -> String {
-    let mut html = page_head(title);
-    page_figures(&mut html, figures);
-    html.push_str("</body>\n</html>\n");
-    html
 }
 
 /// The page: conditions, the paper-layout table, the figures.

@@ -12,12 +12,12 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum UffError {
     /// The file cannot be opened or read.
-    #[error("{}: cannot read the file: {source}", file.display())]
+    #[error("{}: cannot read the file: {cause}", file.display())]
     Read {
         /// The file.
         file: PathBuf,
-        /// The cause.
-        source: std::io::Error,
+        /// The cause (in the message, so not also a `source`: a chain would say it twice).
+        cause: std::io::Error,
     },
     /// The text between datasets is not a universal file.
     #[error("{}: line {line}: {problem}", file.display())]
@@ -44,7 +44,7 @@ pub enum UffError {
         problem: Problem,
     },
     /// The writer's output failed.
-    #[error("cannot write the universal file: {0}")]
+    #[error("cannot write the universal file")]
     Write(#[from] std::io::Error),
     /// A value does not fit the fixed format of the dataset being written.
     #[error("cannot write dataset {dataset}: {field} = {value} is invalid: {allowed}")]

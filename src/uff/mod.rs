@@ -173,9 +173,9 @@ pub fn read(bytes: &[u8], file: &Path) -> Result<Vec<Record>, UffError> {
 
 /// Reads every dataset of the universal file at `path`.
 pub fn read_path(path: &Path) -> Result<Vec<Record>, UffError> {
-    let bytes = std::fs::read(path).map_err(|source| UffError::Read {
+    let bytes = std::fs::read(path).map_err(|cause| UffError::Read {
         file: path.to_path_buf(),
-        source,
+        cause,
     })?;
     read(&bytes, path)
 }

@@ -355,16 +355,16 @@ fn top_file(name: &str) -> PathBuf {
 }
 
 #[test]
-fn every_module_and_the_readme_state_the_layers() {
+fn every_module_and_the_layout_doc_state_the_layers() {
     let lib = fs::read_to_string(root().join("src/lib.rs")).unwrap();
     let layers = layers(&lib);
-    let readme = fs::read_to_string(root().join("README.md")).unwrap();
+    let readme = fs::read_to_string(root().join("docs/layout.md")).unwrap();
     let mut missing = Vec::new();
     for (i, layer) in layers.iter().enumerate() {
         let n = i + 1;
         let line = format!("{n}. {}: {}", layer.name, layer.modules.join(", "));
         if !readme.lines().any(|l| l.trim() == line) {
-            missing.push(format!("README.md (Layout) lacks the line `{line}`"));
+            missing.push(format!("docs/layout.md lacks the line `{line}`"));
         }
         for module in &layer.modules {
             let file = top_file(module);

@@ -328,7 +328,8 @@ fn named_paths(tokens: &[Token], file_module: &[String]) -> Vec<NamedPath> {
                 }
                 depth -= 1;
             }
-            "use" => {
+            // `use<..>` is a precise-capturing bound, not a use tree.
+            "use" if tokens.get(i + 1).is_none_or(|t| t.text != "<") => {
                 let m = module(&inline);
                 i += 1;
                 use_tree(tokens, &mut i, Vec::new(), &m, &mut out);

@@ -7,7 +7,7 @@
 //! the candidates every `jointid diagnose` searches, [`Tier::Extended`] ones are searched with
 //! `--extended`, and [`Tier::Outside`] ones only `jointid simulate` puts into data, to test the
 //! diagnosis on what it does not know. Every list of effects (the CLI's help, simulate's
-//! catalogue, the README's table, the tests' lists) reads the registry. Every effect is zero
+//! catalogue, the table of docs/diagnosis.md, the tests' lists) reads the registry. Every effect is zero
 //! at theta = 0: the nominal model is nested in every candidate. Effects act on the sites of a
 //! structure ([`crate::structure::Sites`]: joints, beam elements, free ends, rigid supports)
 //! and on its measured points; an effect with no site to act on does not apply to that

@@ -44,9 +44,9 @@ impl MatricesFile {
     /// Reads the files and builds the structure, with every check of the module docs.
     pub fn build(&self) -> Result<Structure, MatricesError> {
         let read = |field: &str, path: &std::path::Path| {
-            matrix_market::from_path(path).map_err(|source| MatricesError::Matrix {
+            matrix_market::from_path(path).map_err(|problem| MatricesError::Matrix {
                 field: field.to_string(),
-                source,
+                problem,
             })
         };
         let k = read("stiffness", &self.stiffness)?;
@@ -56,8 +56,8 @@ impl MatricesFile {
         }
         let m = read("mass", &self.mass)?;
         self.same_size("mass", &m, n)?;
-        let infos =
-            dof_table::from_path(&self.dofs, n).map_err(|source| MatricesError::Dofs { source })?;
+        let infos = dof_table::from_path(&self.dofs, n)
+            .map_err(|problem| MatricesError::Dofs { problem })?;
         let mut parameters = Vec::with_capacity(self.parameters.len());
         for (i, p) in self.parameters.iter().enumerate() {
             parameters.push(self.parameter(i, p, n, &read)?);

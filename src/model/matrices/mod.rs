@@ -37,18 +37,19 @@ pub enum MatricesError {
     #[error(transparent)]
     Input(#[from] InputError),
     /// A Matrix Market file.
-    #[error("{field}: {source}")]
+    #[error("{field}: {problem}")]
     Matrix {
         /// The TOML field that names the file.
         field: String,
-        /// What is wrong in it.
-        source: MatrixMarketError,
+        /// What is wrong in it (in the message, so not also a `source`: a chain would say
+        /// it twice).
+        problem: MatrixMarketError,
     },
     /// The DOF table.
-    #[error("dofs: {source}")]
+    #[error("dofs: {problem}")]
     Dofs {
         /// What is wrong in it.
-        source: DofTableError,
+        problem: DofTableError,
     },
     /// A matrix of another size than K.
     #[error(

@@ -1,8 +1,6 @@
 //! The Monte-Carlo study engine: reproducibility, the one-trial path, first-order statistics,
 //! grid validation and the CI gate.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -13,7 +11,7 @@ use jointid::structure::Observation;
 use jointid::study::predicted::noise_free_jacobian;
 use jointid::study::{CellPlan, Study, StudyRun};
 
-const MODEL: &str = include_str!("../models/paper-case-1.toml");
+const MODEL: &str = include_str!("../../models/paper-case-1.toml");
 const MODEL_PATH: &str = "models/paper-case-1.toml";
 
 fn study(grid: &str, trials: usize, noise: &str) -> Study {

@@ -6,8 +6,7 @@
 //! from the symmetric eigenproblem of a spring-mass chain, or from the state-space eigenproblem
 //! for non-proportional damping. Noise: complex Gaussian, fixed seeds.
 
-#[path = "common/frf.rs"]
-mod frf;
+use crate::common::frf;
 
 use frf::{add_noise, frf_set, lines, mac, prescribed, receptance, shape_at};
 use jointid::extract::{Extraction, Quantity, Settings, extract};

@@ -1,8 +1,6 @@
 //! The per-mode identification (eq. (5)-(16)) on simulated data of the paper's system.
 
-mod common;
-
-use common::{all_dofs, paper_model, translations};
+use crate::common::{all_dofs, paper_model, translations};
 use jointid::identify::{Identifier, Projector, Settings, Weighting};
 use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;

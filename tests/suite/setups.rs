@@ -35,9 +35,7 @@
 //!   $===========================             on springs k_t, k_r at x = 0, free at L
 //! ```
 
-mod common;
-
-use common::steel_bar;
+use crate::common::steel_bar;
 use jointid::identify::{Identifier, Settings, Weighting};
 use jointid::modal::ModalSolution;
 use jointid::model::chain::{PointMass, Support, SupportKind};

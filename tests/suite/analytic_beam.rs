@@ -9,9 +9,7 @@
 //!   free =================[k1,k2]==================== free      (two beams, joint at mid)
 //! ```
 
-mod common;
-
-use common::{paper_model, steel_bar};
+use crate::common::{paper_model, steel_bar};
 use jointid::modal::ModalSolution;
 use jointid::model::{Chain, Joint};
 use jointid::structure::Structure;

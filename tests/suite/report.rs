@@ -1,13 +1,11 @@
 //! `jointid report` and `jointid diagnose --plots`: the expected figures exist, parse as XML,
 //! carry their axis labels and reference lines, and the pages reference only files that exist.
 
-mod common;
-
 use std::path::Path;
 
-use common::{jointid, scratch};
+use crate::common::{jointid, scratch};
 
-const MODEL: &str = include_str!("../models/paper-case-1.toml");
+const MODEL: &str = include_str!("../../models/paper-case-1.toml");
 
 /// The texts of an SVG, after checking that it parses as XML.
 fn svg_texts(path: &Path) -> Vec<String> {

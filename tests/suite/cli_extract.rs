@@ -4,8 +4,7 @@
 //! then every bad input of the issue (truncated record, no peak in the band, a response node
 //! missing from the geometry, mixed units) with its message, exit code 2 and no output file.
 
-#[path = "common/frf.rs"]
-mod frf;
+use crate::common::frf;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

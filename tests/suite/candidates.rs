@@ -12,11 +12,10 @@
 //! noise-free data are diagnosed with the same stated noise (the fit must then land on the
 //! truth to far within its interval).
 
-mod common;
-#[path = "common/frf.rs"]
-mod frf;
+use crate::common;
+use crate::common::frf;
 
-use common::paper_model;
+use crate::common::paper_model;
 use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, Report, diagnose};
 use jointid::measured::MeasuredModes;
 use jointid::modal::ModalSolution;

@@ -1,5 +1,7 @@
-//! Models shared by the integration tests.
+//! Models and helpers shared by the integration tests.
 #![allow(dead_code)]
+
+pub mod frf;
 
 use jointid::structure::{Observation, Structure};
 

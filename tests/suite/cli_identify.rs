@@ -1,12 +1,12 @@
 //! `jointid identify` end to end: a good run, and every bad input with its message, a
 //! non-zero exit and no output file.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::{all_dofs, paper_model};
+use crate::common::{all_dofs, paper_model};
 use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;
 use jointid::structure::Observation;
@@ -36,7 +36,7 @@ impl Drop for Scratch {
     }
 }
 
-const MODEL: &str = include_str!("../models/paper-case-1.toml");
+const MODEL: &str = include_str!("../../models/paper-case-1.toml");
 
 fn simulated_csv(dofs: &[Observation]) -> String {
     let truth = paper_model(1.2e7, 1.2e4);

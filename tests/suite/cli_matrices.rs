@@ -7,11 +7,9 @@
 //! bad external models are the hand-written 2-DOF fixtures of tests/fixtures/matrices/ with one
 //! edit each.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{jointid, paper_model, scratch, translations};
+use crate::common::{jointid, paper_model, scratch, translations};
 use jointid::modal::ModalSolution;
 use jointid::simulate::exact_modes;
 

@@ -1,6 +1,6 @@
-//! The registries are the one list of what a user can name: README's candidate table is
-//! generated from them (this test fails when README's copy is stale; `JOINTID_BLESS=1 cargo
-//! test --test registry` rewrites it), names are unique, and the command line accepts exactly
+//! The registries are the one list of what a user can name: the candidate table of
+//! docs/diagnosis.md is generated from them (this test fails when that copy is stale; `JOINTID_BLESS=1 cargo
+//! test --test suite registry::` rewrites it), names are unique, and the command line accepts exactly
 //! the registered names.
 
 use jointid::diagnose::{Tier, catalogue, registry};
@@ -11,25 +11,25 @@ const BEGIN: &str = "<!-- registry:begin -->\n";
 const END: &str = "<!-- registry:end -->";
 
 #[test]
-fn readme_candidate_table_is_the_registry() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
-    let readme = std::fs::read_to_string(&path).expect("README.md");
+fn the_documented_candidate_table_is_the_registry() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/diagnosis.md");
+    let readme = std::fs::read_to_string(&path).expect("docs/diagnosis.md");
     let start = readme
         .find(BEGIN)
-        .expect("README has the registry:begin marker")
+        .expect("docs/diagnosis.md has the registry:begin marker")
         + BEGIN.len();
     let end = readme[start..]
         .find(END)
-        .expect("README has the registry:end marker")
+        .expect("docs/diagnosis.md has the registry:end marker")
         + start;
     let table = markdown(&catalogue(&NOT_EFFECTS));
     if readme[start..end] != table {
         if std::env::var_os("JOINTID_BLESS").is_some() {
             let blessed = format!("{}{table}{}", &readme[..start], &readme[end..]);
-            std::fs::write(&path, blessed).expect("README.md written");
+            std::fs::write(&path, blessed).expect("docs/diagnosis.md written");
         } else {
             panic!(
-                "README's candidate table disagrees with the registry; rewrite it with JOINTID_BLESS=1 cargo test --test registry, or paste:\n{table}"
+                "the candidate table of docs/diagnosis.md disagrees with the registry; rewrite it with JOINTID_BLESS=1 cargo test --test suite registry::, or paste:\n{table}"
             );
         }
     }

@@ -5,20 +5,20 @@
 //! Inputs are mutations of valid files (a field replaced by a generated value, a line
 //! dropped or duplicated, bytes flipped) and generated flag values, made by proptest's
 //! strategies, independent of the code under test. `cargo test` runs a bounded number of
-//! cases (32 per property); for a long run: `PROPTEST_CASES=5000 cargo test --release --test fuzz`.
+//! cases (32 per property); for a long run: `PROPTEST_CASES=5000 cargo test --release --test suite fuzz::`.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use proptest::prelude::*;
 
-use common::{paper_model, scratch};
+use crate::common::{paper_model, scratch};
 use jointid::measured::MeasuredModes;
 
-const PAPER: &str = include_str!("../models/paper-case-1.toml");
-const UNESP: &str = include_str!("../models/unesp-bert.toml");
+const PAPER: &str = include_str!("../../models/paper-case-1.toml");
+const UNESP: &str = include_str!("../../models/unesp-bert.toml");
 
 fn config() -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")

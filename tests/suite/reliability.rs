@@ -4,14 +4,12 @@
 //! written. The inputs are written by hand here (independent of the code under test); the
 //! measured file comes from `jointid simulate`, whose own checks are tested elsewhere.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use common::scratch;
+use crate::common::scratch;
 
-const PAPER: &str = include_str!("../models/paper-case-1.toml");
+const PAPER: &str = include_str!("../../models/paper-case-1.toml");
 
 const ONE_BEAM: &str = "[[beam]]\nlength = 0.5\nelements = 10\nyoungs_modulus = 2.1e11\ndensity = 7850.0\narea = 2.4e-3\nsecond_moment = 3.2e-7\n";
 

@@ -8,11 +8,9 @@
 //! shipped one) to keep the debug test short: the bits of a cell do not depend on its trial
 //! count's size, only on (seed, cell, trial).
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::{jointid, scratch};
+use crate::common::{jointid, scratch};
 use jointid::cluster::{
     MergeError, ShardFile, ShardHeader, ShardSpec, merge, read_results, study_assignment,
     write_shard,

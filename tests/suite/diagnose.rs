@@ -4,9 +4,9 @@
 //! Every data set: paper case I, the first 6 elastic modes, translations only (19 DOFs),
 //! gaussian errors of 0.1% on frequencies and 2% on shape components, as stated to diagnose.
 
-mod common;
+use crate::common;
 
-use common::{jointid, paper_model, scratch};
+use crate::common::{jointid, paper_model, scratch};
 use jointid::diagnose::{
     DiagnoseSettings, FIT_ALPHA, Noise, PairingRule, Report, Verdict, diagnose,
 };

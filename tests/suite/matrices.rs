@@ -8,11 +8,11 @@
 //! shares only the Matrix Market writer's output; its claim is bitwise identity (see
 //! `paper_model_round_trips_bit_for_bit`). Bad inputs are the fixtures with one edit each.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use common::{paper_model, scratch};
+use crate::common::{paper_model, scratch};
 use jointid::modal::ModalSolution;
 use jointid::model::matrices::{export, export::identical};
 use jointid::structure::{Direction, Role};

@@ -22,9 +22,7 @@
 //! cannot determine marked as such (the paper's projection needs at least as many sensors as
 //! basis modes) rather than printed.
 
-mod common;
-
-use common::{assert_finite, assert_within_fit_range, jointid_ok, number, scratch};
+use crate::common::{assert_finite, assert_within_fit_range, jointid_ok, number, scratch};
 use serde_json::Value;
 
 /// The joint and the three sensors.
@@ -154,7 +152,7 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
             .find(|c| c["name"] == "frequency_dependence")
             .unwrap();
         let se = number(&fd["size_se"]);
-        // The figures of README (`cargo test --release --test lap_beam -- --nocapture`).
+        // The figures of README (`cargo test --release --test suite lap_beam -- --ignored --nocapture`).
         eprintln!(
             "seed {seed}: {}, frequency RMS {rms:.2}%, alpha {:.3} +- {se:.3}, noise {:.1}x stated",
             r["verdict"],

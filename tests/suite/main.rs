@@ -1,0 +1,42 @@
+//! The integration tests, one binary (one link of the crate instead of one per file: the
+//! build, not the tests, took most of `cargo test`'s time). Each module is what was one file
+//! of `tests/`; run one with `cargo test --test suite MODULE::`.
+//!
+//! Two kinds of test are `#[ignore]`d, each with its reason, so that `cargo test --locked`
+//! shows them as ignored instead of passing them silently; `.ci/run` runs both in release:
+//! - the long batteries (`lap_beam`, the recovery of every extended candidate in
+//!   `candidates`, every case of `diagnose_battery`): `cargo test --release --locked --
+//!   --ignored --skip unesp`;
+//! - the tests on the real UNESP-BERT files in `../shared/data/unesp-bert/` (never copied into
+//!   the project: their licence), every one with `unesp` in its name: `cargo test --release
+//!   --locked -- --ignored unesp` where the folder is present.
+
+mod common;
+
+mod analytic_beam;
+mod candidates;
+mod cli_extract;
+mod cli_identify;
+mod cli_matrices;
+mod cluster;
+mod diagnose;
+mod diagnose_battery;
+mod diagnose_unesp;
+mod extract;
+mod extract_unesp;
+mod fuzz;
+mod identification;
+mod lap_beam;
+mod large_models;
+mod matrices;
+mod registry;
+mod reliability;
+mod report;
+mod results;
+mod setups;
+mod study;
+mod uff_formats;
+mod uff_pyuff;
+mod uff_robustness;
+mod uff_unesp;
+mod uff_write;
