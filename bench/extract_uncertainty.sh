@@ -5,4 +5,4 @@
 # 95% interval. Release build; about 10 s on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo test --release --locked --test extract_uncertainty calibration_table -- --ignored --nocapture 2>/dev/null | grep '^|'
+cargo test --release --locked --test suite extract_uncertainty::calibration_table -- --ignored --nocapture 2>/dev/null | grep '^|'

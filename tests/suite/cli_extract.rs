@@ -180,7 +180,9 @@ fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
     assert!(std::fs::read_to_string(&chart).unwrap().starts_with("<svg"));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(
-        text.starts_with("mode,frequency_hz,x,dof,value,damping_ratio,mpc\n"),
+        text.starts_with(
+            "mode,frequency_hz,x,dof,value,damping_ratio,mpc,frequency_std,damping_std,value_std\n"
+        ),
         "{text}"
     );
     let model = jointid::model::from_path(
@@ -202,10 +204,31 @@ fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
         let zeta = m.damping_ratio.unwrap();
         assert!((zeta - z).abs() < 0.1 * z, "{zeta} vs {z}");
         assert!(m.mpc.unwrap() > 0.999);
+        // Standard errors from the residuals (no coherence in these files): present, and 0
+        // only at the peak, which is 1 by definition.
+        assert!(m.frequency_std.unwrap() > 0.0 && m.damping_std.unwrap() > 0.0);
+        for (v, s) in m.values.iter().zip(m.value_std.as_ref().unwrap()) {
+            assert_eq!(*s == 0.0, *v == 1.0, "value {v}, std {s}");
+        }
         // The reader orders the points along the chain.
         let x: Vec<f64> = m.points.iter().map(|p| p.x).collect();
         assert_eq!(x, [POSITIONS[2], POSITIONS[1], POSITIONS[0]]);
     }
+}
+
+#[test]
+fn averages_need_the_coherence_and_two_of_them() {
+    let dir = Scratch::new("averages");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let out = dir.path("modes.csv");
+    let output = run(&files, &geometry, &out, &["--averages", "1"]);
+    assert_refused(&output, &out, &["--averages = 1 is invalid", ">= 2"]);
+    let output = run(&files, &geometry, &out, &["--averages", "20"]);
+    assert_refused(
+        &output,
+        &out,
+        &["20 averages were given, but the FRFs carry no coherence"],
+    );
 }
 
 #[test]

@@ -23,6 +23,7 @@ mod diagnose;
 mod diagnose_battery;
 mod diagnose_unesp;
 mod extract;
+mod extract_uncertainty;
 mod extract_unesp;
 mod fuzz;
 mod identification;
