@@ -83,8 +83,14 @@ pub fn propagated_std(
     shape_variance: f64,
     frequency_variance: f64,
 ) -> Vec<f64> {
-    let variances: Vec<f64> = shape.iter().map(|y| y * y * shape_variance).collect();
-    std_of(jac, &variances, lambda, values, frequency_variance)
+    combine(jac, lambda, values, frequency_variance, |i| {
+        let s: f64 = shape
+            .iter()
+            .enumerate()
+            .map(|(j, y)| (jac.shape[(i, j)] * y).powi(2))
+            .sum();
+        s * shape_variance
+    })
 }
 
 /// Standard deviations of Delta p_i = p_i Z_i for independent shape errors of variances
@@ -97,17 +103,29 @@ pub fn std_of(
     values: &[f64],
     frequency_variance: f64,
 ) -> Vec<f64> {
+    combine(jac, lambda, values, frequency_variance, |i| {
+        shape_variances
+            .iter()
+            .enumerate()
+            .map(|(j, v)| jac.shape[(i, j)].powi(2) * v)
+            .sum()
+    })
+}
+
+/// p_i sqrt(shape part of parameter i + its frequency part).
+fn combine(
+    jac: &Jacobian,
+    lambda: f64,
+    values: &[f64],
+    frequency_variance: f64,
+    shape_part: impl Fn(usize) -> f64,
+) -> Vec<f64> {
     values
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            let s: f64 = shape_variances
-                .iter()
-                .enumerate()
-                .map(|(j, v)| jac.shape[(i, j)].powi(2) * v)
-                .sum();
             let f = (jac.lambda[i] * 2.0 * lambda).powi(2);
-            p * (s + f * frequency_variance).sqrt()
+            p * (shape_part(i) + f * frequency_variance).sqrt()
         })
         .collect()
 }
