@@ -73,6 +73,11 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                 .with_context(|| format!("{}", args.measured.display()))?,
         );
     }
+    if measured.has_std() {
+        eprintln!(
+            "noise: the data's own standard errors (frequency_std, value_std) weigh the projections and give the corrections' standard deviations"
+        );
+    }
     out::write_notes(
         &mut std::io::stderr().lock(),
         &outcomes,

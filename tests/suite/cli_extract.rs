@@ -222,7 +222,7 @@ fn averages_need_the_coherence_and_two_of_them() {
     let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
     let out = dir.path("modes.csv");
     let output = run(&files, &geometry, &out, &["--averages", "1"]);
-    assert_refused(&output, &out, &["--averages = 1 is invalid", ">= 2"]);
+    assert_refused(&output, &out, &["--averages 1 is invalid", ">= 2"]);
     let output = run(&files, &geometry, &out, &["--averages", "20"]);
     assert_refused(
         &output,
