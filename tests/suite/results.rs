@@ -19,11 +19,16 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Runs jointid from the project's root, as the script does, and asserts that it succeeded.
-fn run(args: &[&str]) -> Vec<u8> {
+/// Runs jointid from the project's root, as the script does, with the arguments of `line`
+/// (the script's own words, split at blanks) and then `more`; asserts that it succeeded.
+fn run(line: &str, more: &[&str]) -> Vec<u8> {
+    let args: Vec<&str> = line
+        .split_whitespace()
+        .chain(more.iter().copied())
+        .collect();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointid"))
         .current_dir(root())
-        .args(args)
+        .args(&args)
         .output()
         .unwrap();
     assert!(
@@ -33,6 +38,11 @@ fn run(args: &[&str]) -> Vec<u8> {
         String::from_utf8_lossy(&out.stderr)
     );
     out.stdout
+}
+
+/// A path as an argument.
+fn arg(path: &Path) -> &str {
+    path.to_str().unwrap()
 }
 
 /// Every file of `dir`, by name (the figures and pages are flat folders).
@@ -74,13 +84,7 @@ fn assert_same_folder(made: &Path, shipped: &str) {
 fn the_ci_bias_study_and_every_study_report_are_current() {
     let dir = scratch("results", "studies");
     let csv = dir.join("ci-bias.csv");
-    run(&[
-        "study",
-        "studies/ci-bias.toml",
-        "--quiet",
-        "--out",
-        csv.to_str().unwrap(),
-    ]);
+    run("study studies/ci-bias.toml --quiet --out", &[arg(&csv)]);
     assert_same(&std::fs::read(&csv).unwrap(), "results/ci-bias.csv");
     for (name, title) in [
         ("paper-case-1", "Paper case I"),
@@ -89,14 +93,7 @@ fn the_ci_bias_study_and_every_study_report_are_current() {
     ] {
         let out = dir.join(name);
         let source = format!("results/{name}.csv");
-        run(&[
-            "report",
-            &source,
-            "--out",
-            out.to_str().unwrap(),
-            "--title",
-            title,
-        ]);
+        run("report", &[&source, "--out", arg(&out), "--title", title]);
         assert_same_folder(&out, &format!("results/{name}"));
     }
     std::fs::remove_dir_all(&dir).unwrap();
@@ -106,48 +103,23 @@ fn the_ci_bias_study_and_every_study_report_are_current() {
 fn the_worked_diagnosis_is_current() {
     let dir = scratch("results", "worked");
     let test = dir.join("test.csv");
-    run(&[
-        "simulate",
-        "--model",
-        "models/paper-case-1.toml",
-        "--effect",
-        "joint_mass=0.05",
-        "--modes",
-        "6",
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.02",
-        "--measure",
-        "w",
-        "--seed",
-        "1",
-        "--out",
-        test.to_str().unwrap(),
-    ]);
+    run(
+        "simulate --model models/paper-case-1.toml --effect joint_mass=0.05 --modes 6 \
+         --frequency-noise 0.001 --shape-noise 0.02 --measure w --seed 1 --out",
+        &[arg(&test)],
+    );
     assert_same(
         &std::fs::read(&test).unwrap(),
         "results/worked-example/test.csv",
     );
     // Diagnosed from the committed copy, by its relative path as the script gives it (the
     // page's title names it).
-    let json = dir.join("report.json");
-    let plots = dir.join("plots");
-    let text = run(&[
-        "diagnose",
-        "--model",
-        "models/paper-case-1.toml",
-        "--measured",
-        "results/worked-example/test.csv",
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.02",
-        "--json",
-        json.to_str().unwrap(),
-        "--plots",
-        plots.to_str().unwrap(),
-    ]);
+    let (json, plots) = (dir.join("report.json"), dir.join("plots"));
+    let text = run(
+        "diagnose --model models/paper-case-1.toml --measured results/worked-example/test.csv \
+         --frequency-noise 0.001 --shape-noise 0.02",
+        &["--json", arg(&json), "--plots", arg(&plots)],
+    );
     assert_same(&text, "results/worked-example/report.txt");
     assert_same(
         &std::fs::read(&json).unwrap(),

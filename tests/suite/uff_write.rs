@@ -29,11 +29,7 @@ impl Rng {
     fn value(&mut self) -> f64 {
         let u = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
         let decade = (self.next() % 17) as i32 - 8;
-        let sign = if self.next().is_multiple_of(2) {
-            1.0
-        } else {
-            -1.0
-        };
+        let sign = if self.next() % 2 == 0 { 1.0 } else { -1.0 };
         sign * (1.0 + 9.0 * u) * 10f64.powi(decade)
     }
 
