@@ -15,14 +15,12 @@
 //! values (the median over the mode's components of that ratio); and the 95% interval
 //! (estimate +- 1.96 se) covering the truth in 85-100% of the realisations.
 //! `forty_realisations_are_calibrated` (one situation) runs in the default `cargo test`;
-//! `calibration_table` (ignored; bench/extract_uncertainty.sh runs it in release, and .ci/run with the long batteries) prints the
-//! full table of 40 realisations in each of four situations.
+//! `calibration_table` (ignored; bench/extract_uncertainty.sh runs it in release, and .ci/run
+//! with the long batteries) prints the full table of 40 realisations in each of four
+//! situations.
 
-#[path = "common/frf.rs"]
-mod frf;
-
+use crate::common::frf::{Rng, System, frf_set, lines, prescribed, receptance, shape_at};
 use faer::c64;
-use frf::{Rng, System, frf_set, lines, prescribed, receptance, shape_at};
 use jointid::extract::{Extraction, FrfSet, Quantity, Settings, extract};
 
 /// Modes in the band and one above it (a residual), their damping ratios.
