@@ -11,7 +11,8 @@
 //!   [`crate::study::fingerprint`]);
 //! - [`mod@merge`]: the checks and the merged CSV;
 //! - [`results`]: a result CSV read back for `check --results`;
-//! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
+//! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script;
+//! - [`shell`]: the character sets of every value a script holds, and its one quoting routine.
 //!
 //! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
 //! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
@@ -23,6 +24,7 @@ pub mod merge;
 pub mod results;
 pub mod shard;
 pub mod shard_file;
+pub mod shell;
 pub mod slurm;
 
 pub use merge::{MergeError, merge};
