@@ -83,10 +83,10 @@ fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
     let outputs: Vec<&Path> = outputs.iter().map(|p| p.as_path()).collect();
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
-    std::fs::create_dir_all(plan.log_dir())
+    jointid::output::atomic::create_folders(&plan.log_dir())
         .with_context(|| format!("{}: cannot create the directory", plan.log_dir().display()))?;
     if let Some(parent) = plan.out.parent() {
-        std::fs::create_dir_all(parent)
+        jointid::output::atomic::create_folders(parent)
             .with_context(|| format!("{}: cannot create the directory", parent.display()))?;
     }
     for (path, text) in [
