@@ -173,6 +173,8 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
             tool: tool_version(),
             rows_per_cell: run.study.modes.len() * names.len(),
             assignment,
+            modes: run.study.modes.clone(),
+            params: names.clone(),
         }),
         _ => None,
     };
