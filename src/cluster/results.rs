@@ -78,7 +78,7 @@ pub fn read_results<R: Read>(
     let bad = |line: u64, message: String| ResultsError::Line {
         file: file.into(),
         line,
-        message,
+        message: crate::input::safe::clip_quotes(message),
     };
     let mut csv = csv::Reader::from_reader(Bounded::new(reader, TABLE));
     let header = csv.headers().map_err(|e| bad(1, e.to_string()))?.clone();
@@ -139,7 +139,7 @@ impl Fields<'_> {
         ResultsError::Line {
             file: self.file.into(),
             line: self.line,
-            message,
+            message: crate::input::safe::clip_quotes(message),
         }
     }
 

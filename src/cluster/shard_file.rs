@@ -165,7 +165,7 @@ impl ShardFile {
         let bad = |line: u64, message: String| ShardFileError::Line {
             file: file.into(),
             line,
-            message,
+            message: crate::input::safe::clip_quotes(message),
         };
         let mut fields: Vec<(String, String)> = Vec::new();
         let mut first = true;

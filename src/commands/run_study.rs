@@ -97,6 +97,15 @@ fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
 /// Reads and validates one study: its cells, its gate when `gate`, its output paths.
 fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow::Result<StudyRun> {
     let study = Study::from_path(path)?;
+    if let Some(spec) = args.shard {
+        let cells = study.cells().len();
+        if spec.count > cells {
+            bail!(
+                "--shard {spec} is invalid: {} has {cells} cell(s), so N must be from 1 to {cells}",
+                study.file.display()
+            );
+        }
+    }
     if gate {
         check::gate(&study)?;
     }

@@ -15,14 +15,25 @@ pub struct Limits {
     pub line_bytes: usize,
     /// The most lines.
     pub lines: u64,
+    /// The most bytes in all.
+    pub bytes: u64,
 }
 
 /// The limits of a text table: lines of at most 1 MiB (a row of tens of thousands of
-/// numbers), at most 50 million lines (a Matrix Market file of a model far beyond a dense
-/// solve).
+/// numbers), at most 50 million lines and 4 GiB (a Matrix Market file of a model far beyond
+/// a dense solve).
 pub const TABLE: Limits = Limits {
     line_bytes: 1 << 20,
     lines: 50_000_000,
+    bytes: 4 << 30,
+};
+
+/// The limits of a file read whole into memory (measured modes): lines of at most 1 MiB, at
+/// most a million lines and 256 MiB.
+pub const WHOLE: Limits = Limits {
+    line_bytes: 1 << 20,
+    lines: 1_000_000,
+    bytes: 256 << 20,
 };
 
 /// `inner` read with `limits`: a read that would pass a limit fails with
@@ -35,6 +46,8 @@ pub struct Bounded<R> {
     line_bytes: usize,
     /// Newlines so far.
     newlines: u64,
+    /// Bytes so far.
+    bytes: u64,
 }
 
 impl<R> Bounded<R> {
@@ -45,6 +58,7 @@ impl<R> Bounded<R> {
             limits,
             line_bytes: 0,
             newlines: 0,
+            bytes: 0,
         }
     }
 }
@@ -52,6 +66,16 @@ impl<R> Bounded<R> {
 impl<R: Read> Read for Bounded<R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         let n = self.inner.read(buf)?;
+        self.bytes += n as u64;
+        if self.bytes > self.limits.bytes {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "the file is larger than {} bytes, the most a file of this kind may have",
+                    self.limits.bytes
+                ),
+            ));
+        }
         for &b in &buf[..n] {
             if b == b'\n' {
                 self.newlines += 1;
@@ -90,6 +114,7 @@ mod tests {
     const SMALL: Limits = Limits {
         line_bytes: 8,
         lines: 4,
+        bytes: 40,
     };
 
     fn read(bytes: &[u8]) -> io::Result<Vec<u8>> {
@@ -109,6 +134,19 @@ mod tests {
         assert_eq!(
             read(b"\n\n\n\n\n").unwrap_err().to_string(),
             "the file has more than 4 lines, the most a file of this kind may have"
+        );
+        let wide = Limits {
+            line_bytes: 100,
+            lines: 100,
+            bytes: 40,
+        };
+        let mut out = Vec::new();
+        assert_eq!(
+            Bounded::new(&[b'x'; 41][..], wide)
+                .read_to_end(&mut out)
+                .unwrap_err()
+                .to_string(),
+            "the file is larger than 40 bytes, the most a file of this kind may have"
         );
     }
 }

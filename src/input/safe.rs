@@ -30,6 +30,38 @@ pub fn quoted(text: &str) -> String {
     format!("`{shown}`")
 }
 
+/// `message` with every span between backquotes shown as [`quoted`] shows a value: cut to
+/// [`QUOTE_CHARS`] characters, control characters escaped. The readers pass their line
+/// errors through it, so that no error echoes a huge field or line.
+pub fn clip_quotes(message: String) -> String {
+    if !message.contains('`') {
+        return message;
+    }
+    message
+        .split('`')
+        .enumerate()
+        .map(|(i, part)| {
+            // A span [`quoted`] already cut (`... (N bytes)`) is short enough to keep.
+            if i % 2 == 1 && part.chars().count() > QUOTE_CHARS + 40 {
+                let q = quoted(part);
+                q[1..q.len() - 1].to_string()
+            } else if i % 2 == 1 {
+                part.chars()
+                    .flat_map(|c| {
+                        let escape = c.is_control();
+                        c.escape_default()
+                            .filter(move |_| escape)
+                            .chain(Some(c).filter(|_| !escape))
+                    })
+                    .collect()
+            } else {
+                part.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("`")
+}
+
 /// A set of characters a value may hold, and its length limits.
 #[derive(Debug, Clone, Copy)]
 pub struct CharSet {
@@ -94,5 +126,23 @@ mod tests {
         assert!(q.chars().count() < 110, "{q}");
         assert!(q.ends_with("... (100000 bytes)`"), "{q}");
         assert_eq!(quoted("a\r\nb"), "`a\\r\\nb`");
+    }
+
+    #[test]
+    fn a_message_quotes_at_most_80_characters_of_each_value() {
+        let long = "9".repeat(1 << 20);
+        let m = clip_quotes(format!(
+            "size line `{long}` is invalid: it must be `rows columns entries`"
+        ));
+        assert!(m.len() < 200, "{m}");
+        assert!(m.starts_with("size line `99999"), "{m}");
+        assert!(
+            m.ends_with("... (1048576 bytes)` is invalid: it must be `rows columns entries`"),
+            "{m}"
+        );
+        assert_eq!(clip_quotes("x = `a` y".into()), "x = `a` y");
+        let once = clip_quotes(format!("`{long}`"));
+        assert_eq!(clip_quotes(once.clone()), once);
+        assert_eq!(clip_quotes("v = `a\nb`".into()), "v = `a\\nb`");
     }
 }
