@@ -10,6 +10,9 @@
 //! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
 //! [`crate::stats`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
+pub mod bounded;
+pub mod safe;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -1,11 +1,14 @@
 //! Merging shard files into the result CSV of the whole study.
 //!
-//! Checks, in order, before anything is produced: every file carries the same fingerprint
-//! and the same N and assignment; no cell is in two files; every cell of the study is in some
-//! file, with `rows per cell` rows, in the shard the assignment gives it. The output is the
-//! header and the rows of every cell in cell order, each record written back by the same CSV
-//! writer settings as [`crate::study::results::write_results`]: a field read and written again
-//! is the same bytes, so the merge is byte for byte the single-machine CSV.
+//! Every shard file was checked row by row when read ([`super::shard_file`]: its rows hash,
+//! every field parsed, numbers finite, a cell's rows agreeing). Then, in order, before anything
+//! is produced: every file carries the same fingerprint and the same N, assignment, modes and
+//! parameters; no cell is in two files; every cell of the study is in some file, with `rows
+//! per cell` rows, in the shard the assignment gives it. The output is the header and the rows
+//! of every cell in cell order, within a cell in the study's order (mode, then parameter),
+//! whatever the order in the file; each record is written back by the same CSV writer settings
+//! as [`crate::study::results::write_results`]: a field read and written again is the same
+//! bytes, so the merge is byte for byte the single-machine CSV.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -143,6 +146,8 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
         if h.spec.count != h0.spec.count
             || h.assignment != h0.assignment
             || h.rows_per_cell != h0.rows_per_cell
+            || h.modes != h0.modes
+            || h.params != h0.params
         {
             return Err(MergeError::Split {
                 file: s.file.clone(),
@@ -155,7 +160,7 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
     }
     let count = h0.spec.count;
     // Rows of every cell, and the file that holds it.
-    let mut cells: BTreeMap<usize, (usize, Vec<&csv::StringRecord>)> = BTreeMap::new();
+    let mut cells: BTreeMap<usize, (usize, Vec<&super::shard_file::ShardRow>)> = BTreeMap::new();
     for (f, s) in shards.iter().enumerate() {
         for row in &s.rows {
             let owner = h0.assignment[row.cell];
@@ -179,7 +184,7 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
                     count,
                 });
             }
-            entry.1.push(&row.record);
+            entry.1.push(row);
         }
     }
     let missing: Vec<(usize, usize, usize)> = (0..h0.assignment.len())
@@ -194,7 +199,7 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
         let mut w = csv::Writer::from_writer(&mut out);
         w.write_record(RESULT_HEADER)
             .map_err(std::io::Error::from)?;
-        for (&cell, (f, rows)) in &cells {
+        for (&cell, (f, rows)) in &mut cells {
             if rows.len() != h0.rows_per_cell {
                 return Err(MergeError::Rows {
                     file: shards[*f].file.clone(),
@@ -203,8 +208,9 @@ pub fn merge(shards: &[ShardFile]) -> Result<Vec<u8>, MergeError> {
                     expected: h0.rows_per_cell,
                 });
             }
-            for record in rows {
-                w.write_record(*record).map_err(std::io::Error::from)?;
+            rows.sort_by_key(|row| row.key);
+            for row in rows.iter() {
+                w.write_record(&row.record).map_err(std::io::Error::from)?;
             }
         }
         w.flush()?;

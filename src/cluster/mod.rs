@@ -8,10 +8,12 @@
 //!
 //! - [`shard`]: `K/N`, the estimated cost of a cell and the balanced assignment;
 //! - [`shard_file`]: the shard result file (it carries the study's fingerprint,
-//!   [`crate::study::fingerprint`]);
+//!   [`crate::study::fingerprint`], and the hash of its rows);
+//! - [`shard_rows`]: every row of a shard checked (fields, finite numbers, a cell's keys);
 //! - [`mod@merge`]: the checks and the merged CSV;
 //! - [`results`]: a result CSV read back for `check --results`;
-//! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script.
+//! - [`slurm`]: the sbatch job array, the dependent merge job and the submit script;
+//! - [`shell`]: the character sets of every value a script holds, and its one quoting routine.
 //!
 //! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
 //! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
@@ -23,6 +25,8 @@ pub mod merge;
 pub mod results;
 pub mod shard;
 pub mod shard_file;
+pub mod shard_rows;
+pub mod shell;
 pub mod slurm;
 
 pub use merge::{MergeError, merge};

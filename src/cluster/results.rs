@@ -5,11 +5,16 @@
 //! The file must be the result of this very study: every cell of the study present, each
 //! with its conditions (n, m, nf, weighting, noise levels, noise distribution, introduced
 //! value) as the study file gives them, and one row per (mode, parameter). The numbers are
-//! read as written (Rust's shortest round-trip decimal), so they are the computed bits.
+//! read as written (Rust's shortest round-trip decimal), so they are the computed bits; a
+//! number that is not finite (NaN, inf), or statistics that contradict the trial counts
+//! (a mean given although every trial failed, or missing although some succeeded), make the
+//! file damaged, not a result. The file is read within [`TABLE`]'s limits.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+use crate::input::bounded::{Bounded, TABLE};
+use crate::input::safe::quoted;
 use crate::stats::Summary;
 use crate::study::results::{Column, RESULT_HEADER};
 use crate::study::{Cell, CellResult, RowStats, Study};
@@ -73,9 +78,9 @@ pub fn read_results<R: Read>(
     let bad = |line: u64, message: String| ResultsError::Line {
         file: file.into(),
         line,
-        message,
+        message: crate::input::safe::clip_quotes(message),
     };
-    let mut csv = csv::Reader::from_reader(reader);
+    let mut csv = csv::Reader::from_reader(Bounded::new(reader, TABLE));
     let header = csv.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     if header.iter().ne(RESULT_HEADER) {
         return Err(bad(
@@ -134,7 +139,7 @@ impl Fields<'_> {
         ResultsError::Line {
             file: self.file.into(),
             line: self.line,
-            message,
+            message: crate::input::safe::clip_quotes(message),
         }
     }
 
@@ -146,15 +151,25 @@ impl Fields<'_> {
     fn parse<T: std::str::FromStr>(&self, column: Column, what: &str) -> Result<T, ResultsError> {
         self.text(column).parse::<T>().map_err(|_| {
             self.bad(format!(
-                "{} = `{}` is not {what}",
+                "{} = {} is not {what}",
                 column.name(),
-                self.text(column)
+                quoted(self.text(column))
             ))
         })
     }
 
+    /// A finite number (NaN and inf are damage, never a statistic).
     fn number(&self, column: Column) -> Result<f64, ResultsError> {
-        self.parse(column, "a number")
+        let v: f64 = self.parse(column, "a number")?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.bad(format!(
+                "{} = {} is not a finite number: the results are damaged",
+                column.name(),
+                quoted(self.text(column))
+            )))
+        }
     }
 
     fn optional(&self, column: Column) -> Result<Option<f64>, ResultsError> {
@@ -206,6 +221,11 @@ fn read_row(
     }
     let trials = f.whole(Column::Trials)?;
     let failures = f.whole(Column::Failures)?;
+    if failures > trials {
+        return Err(f.bad(format!(
+            "failures = {failures} is more than trials = {trials}: the results are damaged"
+        )));
+    }
     let row = RowStats {
         mode,
         param,
@@ -262,10 +282,17 @@ fn check_conditions(
     Ok(())
 }
 
-/// The statistics of a row over its `count` successful trials; None when `mean` is empty
-/// (every trial failed).
+/// The statistics of a row over its `count` successful trials; None when `mean` is empty,
+/// which it must be exactly when every trial failed.
 fn summary(f: &Fields, count: usize) -> Result<Option<Summary>, ResultsError> {
-    let Some(mean) = f.optional(Column::Mean)? else {
+    let mean = f.optional(Column::Mean)?;
+    if mean.is_none() != (count == 0) {
+        return Err(f.bad(format!(
+            "mean is {} although {count} trial(s) succeeded: the results are damaged",
+            if count == 0 { "given" } else { "empty" }
+        )));
+    }
+    let Some(mean) = mean else {
         return Ok(None);
     };
     Ok(Some(Summary {

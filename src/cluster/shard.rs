@@ -89,7 +89,9 @@ pub const FIXED: f64 = 300.0;
 /// The shard (1-based) of every cell, given the cells' costs in cell order, for `count`
 /// shards.
 pub fn assign(costs: &[f64], count: usize) -> Vec<usize> {
-    let count = count.max(1);
+    // More shards than cells leave the extra ones empty: the same assignment as one shard per
+    // cell, without a load vector of N entries.
+    let count = count.clamp(1, costs.len().max(1));
     let mut order: Vec<usize> = (0..costs.len()).collect();
     order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]).then(a.cmp(&b)));
     let mut load = vec![0.0_f64; count];

@@ -9,17 +9,26 @@
 //! # cells: 36
 //! # rows per cell: 8
 //! # assignment: 1 2 3 4 4 3 ...
+//! # modes: 1 2 3 4
+//! # params: ["k1","k2"]
+//! # rows hash: 0c1f9e3b5a7d2846
 //! cell,mode,param,n,...
 //! ```
 //!
 //! The fingerprint is the study's ([`crate::study::fingerprint`]): shards of different study
 //! files, models or jointid versions never merge. `assignment` is the shard (1-based) of every
-//! cell in cell order, so that a merge can name the shard a missing cell belongs to.
+//! cell in cell order, so that a merge can name the shard a missing cell belongs to. `modes`
+//! and `params` (a JSON list) are the study's, in the order of its rows; `rows hash` is the
+//! content hash of everything after the header ([`super::shard_rows::rows_hash`]). A file
+//! whose rows do not match their hash, or whose rows do not parse as the study's
+//! ([`super::shard_rows`]), is refused naming its file, line and fault.
 
 use std::io::{self, BufRead, Read, Write};
 use std::path::{Path, PathBuf};
 
 use super::shard::ShardSpec;
+use super::shard_rows::{CellRows, RowKey, check_row, rows_hash};
+use crate::input::bounded::{Bounded, TABLE};
 use crate::study::results::{RESULT_HEADER, write_results};
 use crate::study::{CellResult, NoiseKind};
 
@@ -40,6 +49,10 @@ pub struct ShardHeader {
     pub rows_per_cell: usize,
     /// The shard (1-based) of every cell of the study, in cell order.
     pub assignment: Vec<usize>,
+    /// The study's modes, in the order of its rows.
+    pub modes: Vec<usize>,
+    /// The study's parameters, in the order of its rows.
+    pub params: Vec<String>,
 }
 
 /// Writes a shard file: the header, then the result CSV of `results` (the shard's cells).
@@ -50,19 +63,29 @@ pub fn write_shard(
     names: &[String],
     noise: NoiseKind,
 ) -> io::Result<()> {
-    let assignment: Vec<String> = header.assignment.iter().map(|s| s.to_string()).collect();
+    let words = |v: &[usize]| {
+        v.iter()
+            .map(|s| s.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut rows = Vec::new();
+    write_results(&mut rows, results, names, noise)?;
     write!(
         out,
-        "{MAGIC}{}\n# study: {}\n# fingerprint: {}\n# tool: {}\n# cells: {}\n# rows per cell: {}\n# assignment: {}\n",
+        "{MAGIC}{}\n# study: {}\n# fingerprint: {}\n# tool: {}\n# cells: {}\n# rows per cell: {}\n# assignment: {}\n# modes: {}\n# params: {}\n# rows hash: {}\n",
         header.spec,
         header.study.replace(['\n', '\r'], " "),
         header.fingerprint,
         header.tool,
         header.assignment.len(),
         header.rows_per_cell,
-        assignment.join(" ")
+        words(&header.assignment),
+        words(&header.modes),
+        serde_json::to_string(&header.params).map_err(io::Error::other)?,
+        rows_hash(&rows)
     )?;
-    write_results(out, results, names, noise)
+    out.write_all(&rows)
 }
 
 /// A shard file that cannot be read.
@@ -97,11 +120,13 @@ pub enum ShardFileError {
     },
 }
 
-/// One result row of a shard: its cell, the record as written, and its line.
+/// One result row of a shard: its cell and place, the record as written, and its line.
 #[derive(Debug, Clone)]
 pub struct ShardRow {
     /// Cell index.
     pub cell: usize,
+    /// Its cell and place in the cell (the merge's order).
+    pub key: RowKey,
     /// The fields.
     pub record: csv::StringRecord,
     /// Line in the shard file, 1-based.
@@ -126,12 +151,13 @@ impl ShardFile {
             file: path.into(),
             cause,
         })?;
-        Self::from_reader(io::BufReader::new(file), path)
+        Self::from_reader(file, path)
     }
 
-    /// Reads a shard file from `reader`; `file` names it in errors.
+    /// Reads a shard file from `reader` (within [`TABLE`]'s limits); `file` names it in
+    /// errors.
     pub fn from_reader<R: Read>(reader: R, file: &Path) -> Result<Self, ShardFileError> {
-        let mut reader = io::BufReader::new(reader);
+        let mut reader = io::BufReader::new(Bounded::new(reader, TABLE));
         let read_err = |cause| ShardFileError::Read {
             file: file.into(),
             cause,
@@ -139,7 +165,7 @@ impl ShardFile {
         let bad = |line: u64, message: String| ShardFileError::Line {
             file: file.into(),
             line,
-            message,
+            message: crate::input::safe::clip_quotes(message),
         };
         let mut fields: Vec<(String, String)> = Vec::new();
         let mut first = true;
@@ -172,9 +198,20 @@ impl ShardFile {
         if first {
             return Err(ShardFileError::NotShard { file: file.into() });
         }
-        let header = parse_header(&fields, &bad)?;
+        let (header, hash) = parse_header(&fields, &bad)?;
         let header_lines = fields.len() as u64;
-        let mut csv = csv::ReaderBuilder::new().from_reader(reader);
+        let mut rest = Vec::new();
+        reader.read_to_end(&mut rest).map_err(read_err)?;
+        if rows_hash(&rest) != hash {
+            return Err(bad(
+                header_lines,
+                format!(
+                    "the rows hash to {} but the header says {hash}: the file was changed, cut or damaged after it was written; rerun its shard",
+                    rows_hash(&rest)
+                ),
+            ));
+        }
+        let mut csv = csv::ReaderBuilder::new().from_reader(&rest[..]);
         let columns = csv
             .headers()
             .map_err(|e| bad(header_lines + 1, e.to_string()))?;
@@ -188,27 +225,32 @@ impl ShardFile {
             ));
         }
         let mut rows = Vec::new();
+        let mut cells = CellRows::default();
         for record in csv.records() {
             let record = record.map_err(|e| {
                 let line = e.position().map_or(0, |p| p.line()) + header_lines;
                 bad(line, e.to_string())
             })?;
             let line = record.position().map_or(0, |p| p.line()) + header_lines;
-            let cell = record
-                .get(0)
-                .and_then(|c| c.parse::<usize>().ok())
-                .filter(|&c| c < header.assignment.len())
-                .ok_or_else(|| {
-                    bad(
-                        line,
-                        format!(
-                            "cell = `{}` is invalid: it must be a cell index below {}",
-                            record.get(0).unwrap_or(""),
-                            header.assignment.len()
-                        ),
-                    )
-                })?;
-            rows.push(ShardRow { cell, record, line });
+            let key = check_row(
+                &record,
+                header.assignment.len(),
+                &header.modes,
+                &header.params,
+            )
+            .and_then(|key| cells.add(key, &record, line).map(|()| key))
+            .map_err(|message| {
+                bad(
+                    line,
+                    format!("{message}: the file is damaged; rerun its shard"),
+                )
+            })?;
+            rows.push(ShardRow {
+                cell: key.cell,
+                key,
+                record,
+                line,
+            });
         }
         Ok(ShardFile {
             file: file.into(),
@@ -218,10 +260,11 @@ impl ShardFile {
     }
 }
 
+/// The header's fields, and the rows hash it states.
 fn parse_header(
     fields: &[(String, String)],
     bad: &dyn Fn(u64, String) -> ShardFileError,
-) -> Result<ShardHeader, ShardFileError> {
+) -> Result<(ShardHeader, String), ShardFileError> {
     let get = |key: &str| {
         fields
             .iter()
@@ -259,14 +302,51 @@ fn parse_header(
                 ),
             )
         })?;
-    Ok(ShardHeader {
+    let (line, text) = get("modes")?;
+    let modes: Vec<usize> = text
+        .split_whitespace()
+        .map(|m| m.parse().ok())
+        .collect::<Option<_>>()
+        .filter(|m: &Vec<usize>| !m.is_empty())
+        .ok_or_else(|| {
+            bad(
+                line,
+                "modes must list the study's modes, e.g. `1 2 3`".into(),
+            )
+        })?;
+    let (line, text) = get("params")?;
+    let params: Vec<String> = serde_json::from_str(text)
+        .ok()
+        .filter(|p: &Vec<String>| !p.is_empty())
+        .ok_or_else(|| {
+            bad(
+                line,
+                "params must list the study's parameters as JSON, e.g. `[\"k1\",\"k2\"]`".into(),
+            )
+        })?;
+    let rows_per_cell = number("rows per cell")?;
+    if rows_per_cell != modes.len() * params.len() {
+        let (line, _) = get("rows per cell")?;
+        return Err(bad(
+            line,
+            format!(
+                "rows per cell = {rows_per_cell} but the header lists {} mode(s) and {} parameter(s)",
+                modes.len(),
+                params.len()
+            ),
+        ));
+    }
+    let header = ShardHeader {
         spec,
         study: get("study")?.1.into(),
         fingerprint: get("fingerprint")?.1.into(),
         tool: get("tool")?.1.into(),
-        rows_per_cell: number("rows per cell")?,
+        rows_per_cell,
         assignment,
-    })
+        modes,
+        params,
+    };
+    Ok((header, get("rows hash")?.1.into()))
 }
 
 #[cfg(test)]
@@ -282,6 +362,8 @@ mod tests {
             tool: "jointid 9".into(),
             rows_per_cell: 8,
             assignment: vec![1, 2, 3, 2],
+            modes: vec![1, 2, 3, 4],
+            params: vec!["k1".into(), "k 2,\"x\"".into()],
         };
         let mut bytes = Vec::new();
         write_shard(&mut bytes, &header, &[], &[], NoiseKind::Uniform).unwrap();
@@ -297,7 +379,10 @@ mod tests {
         );
         let bad = text.replace("cell,mode", "cell,mood");
         let e = ShardFile::from_reader(bad.as_bytes(), Path::new("a.csv")).unwrap_err();
-        assert!(e.to_string().starts_with("a.csv:8: the columns"), "{e}");
+        assert!(
+            e.to_string().starts_with("a.csv:10: the rows hash to "),
+            "{e}"
+        );
     }
 
     #[test]

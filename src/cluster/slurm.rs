@@ -11,6 +11,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use super::shell::{SlurmValue, check_option, check_quoted_path, sh_quote};
 use crate::input::SettingError;
 use crate::study::Study;
 
@@ -39,7 +40,7 @@ pub struct SlurmPlan {
     pub mem: Option<String>,
     /// `--cpus-per-task` of every shard task (the worker threads).
     pub cpus_per_task: usize,
-    /// Further `#SBATCH` options, verbatim, e.g. `--qos=short`.
+    /// Further `#SBATCH` options, one token each, e.g. `--qos=short`.
     pub extra: Vec<String>,
 }
 
@@ -80,11 +81,6 @@ pub struct SlurmScripts {
     pub merge: String,
     /// `NAME.submit.sh`: submits the array, then the merge depending on it.
     pub submit: String,
-}
-
-/// `'text'` for sh, with embedded quotes escaped.
-pub fn sh_quote(text: &str) -> String {
-    format!("'{}'", text.replace('\'', r"'\''"))
 }
 
 fn q(path: &Path) -> String {
@@ -137,8 +133,39 @@ impl SlurmPlan {
         }
     }
 
-    /// The scripts.
-    pub fn scripts(&self) -> SlurmScripts {
+    /// Checks every value the scripts hold (see [`super::shell`]): the study name a file
+    /// name, partition, account, time and memory in their Slurm sets, each extra option one
+    /// token, the folder fit for `#SBATCH --output=`, the quoted paths free of control
+    /// characters.
+    pub fn check(&self) -> Result<(), SettingError> {
+        crate::input::safe::check(&crate::input::safe::FILE_NAME, "name", &self.name)?;
+        for (setting, value, kind) in [
+            ("partition", &self.partition, SlurmValue::Name),
+            ("account", &self.account, SlurmValue::Name),
+            ("time", &self.time, SlurmValue::Time),
+            ("mem", &self.mem, SlurmValue::Memory),
+        ] {
+            if let Some(v) = value {
+                kind.check(setting, v)?;
+            }
+        }
+        for option in &self.extra {
+            check_option("sbatch", option)?;
+        }
+        for (setting, path) in [
+            ("jointid", &self.jointid),
+            ("study", &self.study),
+            ("out", &self.out),
+            ("dir", &self.dir),
+        ] {
+            check_quoted_path(setting, path)?;
+        }
+        SlurmValue::Folder.check("dir", &self.dir.to_string_lossy())
+    }
+
+    /// The scripts, once every value has passed [`SlurmPlan::check`].
+    pub fn scripts(&self) -> Result<SlurmScripts, SettingError> {
+        self.check()?;
         let n = self.shards;
         let mut array = String::new();
         self.common(&mut array, "shards", &format!("{}-shard-%a.out", self.name));
@@ -184,17 +211,17 @@ impl SlurmPlan {
              array=${{array%%;*}}\n\
              merge=$(sbatch --parsable --dependency=afterok:\"$array\" {merge_script})\n\
              merge=${{merge%%;*}}\n\
-             echo \"submitted: shards $array (array 1-{n}), merge $merge -> {out}\"\n",
+             echo \"submitted: shards $array (array 1-{n}), merge $merge -> \"{out}\n",
             name = self.name,
             array_script = q(&self.array_path()),
             merge_script = q(&self.merge_path()),
-            out = self.out.display(),
+            out = q(&self.out),
         );
-        SlurmScripts {
+        Ok(SlurmScripts {
             array,
             merge,
             submit,
-        }
+        })
     }
 }
 
@@ -236,7 +263,7 @@ mod tests {
 
     #[test]
     fn the_array_runs_each_shard_and_the_merge_reads_every_shard_file() {
-        let s = plan().scripts();
+        let s = plan().scripts().unwrap();
         for line in [
             "#SBATCH --array=1-3",
             "#SBATCH --partition=short",
@@ -266,7 +293,36 @@ mod tests {
     }
 
     #[test]
-    fn quotes_survive_the_shell() {
-        assert_eq!(sh_quote("a'b"), r"'a'\''b'");
+    fn a_hostile_value_renders_no_script() {
+        let cases: [(&str, fn(&mut SlurmPlan)); 7] = [
+            ("partition", |p| {
+                p.partition = Some("short\necho pwned".into())
+            }),
+            ("time", |p| p.time = Some("1:00\nrm -rf ~".into())),
+            ("account", |p| p.account = Some("a$(id)".into())),
+            ("mem", |p| p.mem = Some("2G\n#SBATCH --array=1".into())),
+            ("sbatch", |p| p.extra = vec!["--qos=low\ntouch x".into()]),
+            ("dir", |p| p.dir = "/scratch/run\ntouch x".into()),
+            ("name", |p| p.name = "../../x".into()),
+        ];
+        for (setting, spoil) in cases {
+            let mut p = plan();
+            spoil(&mut p);
+            let e = p.scripts().unwrap_err();
+            assert_eq!(e.setting, setting, "{e}");
+        }
+    }
+
+    #[test]
+    fn the_submit_script_quotes_the_output() {
+        let mut p = plan();
+        p.out = "/scratch/$(touch x)`id`\"a.csv".into();
+        let s = p.scripts().unwrap();
+        assert!(
+            s.submit
+                .ends_with("-> \"'/scratch/$(touch x)`id`\"a.csv'\n"),
+            "{}",
+            s.submit
+        );
     }
 }

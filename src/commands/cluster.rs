@@ -7,7 +7,8 @@ use anyhow::Context;
 use crate::cli::{ClusterCommand, SlurmArgs};
 use crate::commands::flagged;
 use jointid::cluster::{SlurmPlan, check_settings};
-use jointid::output::write_atomically;
+use jointid::output::guard::model_inputs;
+use jointid::output::{check_outputs, write_atomically};
 use jointid::study::Study;
 
 pub fn run(command: &ClusterCommand) -> anyhow::Result<()> {
@@ -53,11 +54,39 @@ fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
         cpus_per_task: args.cpus_per_task,
         extra: args.extra.clone(),
     };
-    let scripts = plan.scripts();
-    std::fs::create_dir_all(plan.log_dir())
+    let scripts = plan.scripts().map_err(|e| {
+        flagged(
+            e,
+            &[
+                ("partition", "--partition"),
+                ("account", "--account"),
+                ("time", "--time"),
+                ("mem", "--mem"),
+                ("sbatch", "--sbatch"),
+                ("dir", "--dir"),
+                ("out", "--out"),
+                ("jointid", "--jointid"),
+            ],
+        )
+    })?;
+    // Nothing the run writes (scripts, shard files, the merged CSV) may be one of its
+    // inputs: the study, its model, the files the model names.
+    let mut outputs = vec![
+        plan.array_path(),
+        plan.merge_path(),
+        plan.submit_path(),
+        plan.out.clone(),
+    ];
+    outputs.extend((1..=plan.shards).map(|k| plan.shard_file(k)));
+    let mut inputs = vec![plan.study.clone()];
+    inputs.extend(model_inputs(&study.model_file));
+    let outputs: Vec<&Path> = outputs.iter().map(|p| p.as_path()).collect();
+    let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
+    check_outputs(&outputs, &inputs)?;
+    jointid::output::atomic::create_folders(&plan.log_dir())
         .with_context(|| format!("{}: cannot create the directory", plan.log_dir().display()))?;
     if let Some(parent) = plan.out.parent() {
-        std::fs::create_dir_all(parent)
+        jointid::output::atomic::create_folders(parent)
             .with_context(|| format!("{}: cannot create the directory", parent.display()))?;
     }
     for (path, text) in [

@@ -8,6 +8,7 @@ use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_page::diagnose_page;
 use jointid::output::diagnose_plots::diagnose_figures;
+use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 
 use crate::commands::flagged;
@@ -45,7 +46,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             ],
         )
     })?;
-    let inputs = [args.model.as_path(), args.measured.as_path()];
+    let mut inputs = model_inputs(&args.model);
+    inputs.push(args.measured.clone());
+    let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     let mut outputs: Vec<&std::path::Path> = args.json.iter().map(|p| p.as_path()).collect();
     let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
     outputs.extend(index.as_deref());

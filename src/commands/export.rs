@@ -2,11 +2,11 @@
 //! folder. The files go into a temporary folder beside it, are read back and compared with
 //! the model bit for bit, and the folder is renamed into place: on any error nothing is left.
 //! The target must not exist or be empty, so no file (the model's inputs among them) is ever
-//! overwritten.
+//! overwritten. The temporary folder is created exclusively under an unpredictable name
+//! ([`staging_folder`]): the run removes only what it created.
 
-use jointid::output::atomic::{track, untrack};
+use jointid::output::atomic::{staging_folder, untrack};
 use std::io::Write;
-use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 
@@ -31,14 +31,19 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     }
     let exported = export(&model, &args.model.display().to_string())
         .with_context(|| format!("{}: cannot export", args.model.display()))?;
-    let tmp = temporary_beside(out)?;
-    track(&tmp);
+    if out.file_name().is_none() {
+        bail!("--out {} is not a folder name", out.display());
+    }
+    let tmp = staging_folder(out).with_context(|| {
+        format!(
+            "{}: cannot create a temporary folder beside it",
+            out.display()
+        )
+    })?;
     let result = (|| -> anyhow::Result<()> {
-        std::fs::create_dir(&tmp)
-            .with_context(|| format!("{}: cannot create the folder", tmp.display()))?;
         for (name, bytes) in &exported.files {
             let path = tmp.join(name);
-            let mut f = std::fs::File::create(&path)
+            let mut f = std::fs::File::create_new(&path)
                 .with_context(|| format!("{}: cannot create", path.display()))?;
             f.write_all(bytes)
                 .and_then(|()| f.sync_all())
@@ -76,20 +81,4 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
         model.rigid
     );
     Ok(())
-}
-
-/// A temporary folder name in the parent of `out`.
-fn temporary_beside(out: &Path) -> anyhow::Result<PathBuf> {
-    let parent = match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let Some(name) = out.file_name() else {
-        bail!("--out {} is not a folder name", out.display());
-    };
-    Ok(parent.join(format!(
-        ".{}.export-{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    )))
 }

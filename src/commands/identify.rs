@@ -9,11 +9,15 @@ use crate::commands::flagged;
 use jointid::identify::{Identifier, Selection, Settings};
 use jointid::measured::MeasuredModes;
 use jointid::modal::{ModalSolution, check_elastic};
+use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, identify as out, write_atomically};
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();
-    check_outputs(&outputs, &[&args.model, &args.measured])?;
+    let mut inputs = model_inputs(&args.model);
+    inputs.push(args.measured.clone());
+    let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
+    check_outputs(&outputs, &inputs)?;
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let matrices = model.assemble();

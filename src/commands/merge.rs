@@ -18,7 +18,7 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
         .collect::<Result<Vec<_>, _>>()?;
     let bytes = merge(&shards)?;
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
+        jointid::output::atomic::create_folders(dir)
             .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
     }
     write_atomically(&args.out, |w| w.write_all(&bytes))

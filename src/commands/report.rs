@@ -34,8 +34,8 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The figures and the page, staged in `dir` (created if absent; removed again when it was
-/// created here and a file cannot be staged), to be committed with the run's other outputs.
+/// The figures and the page, staged in `dir` (created if absent and registered, so that a
+/// failed or interrupted run removes it again), to be committed with the run's other outputs.
 pub fn stage_page(
     dir: &Path,
     figures: &[Figure],
@@ -50,8 +50,7 @@ pub fn stage_page(
         .collect();
     let refs: Vec<&Path> = paths.iter().map(|p| p.as_path()).collect();
     check_outputs(&refs, inputs)?;
-    let created = !dir.exists();
-    std::fs::create_dir_all(dir)
+    jointid::output::atomic::create_folders(dir)
         .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
     let contents = figures
         .iter()
@@ -59,18 +58,10 @@ pub fn stage_page(
         .chain(std::iter::once(page.as_bytes()));
     let mut staged = Vec::with_capacity(paths.len());
     for (path, bytes) in paths.iter().zip(contents) {
-        match stage(path, |w| w.write_all(bytes)) {
-            Ok(file) => staged.push(file),
-            Err(e) => {
-                drop(staged);
-                if created {
-                    let _ = std::fs::remove_dir(dir);
-                }
-                return Err(
-                    anyhow::Error::new(e).context(format!("{}: cannot write", path.display()))
-                );
-            }
-        }
+        staged.push(
+            stage(path, |w| w.write_all(bytes))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
     }
     Ok(staged)
 }

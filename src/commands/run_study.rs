@@ -10,6 +10,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::cli::StudyArgs;
 use jointid::cluster::{ShardHeader, ShardSpec, study_assignment, write_shard};
+use jointid::output::guard::model_inputs;
 use jointid::output::study::TrialsWriter;
 use jointid::output::{check_outputs, commit_all, stage};
 use jointid::study::check;
@@ -97,13 +98,25 @@ fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
 /// Reads and validates one study: its cells, its gate when `gate`, its output paths.
 fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow::Result<StudyRun> {
     let study = Study::from_path(path)?;
+    if let Some(spec) = args.shard {
+        let cells = study.cells().len();
+        if spec.count > cells {
+            bail!(
+                "--shard {spec} is invalid: {} has {cells} cell(s), so N must be from 1 to {cells}",
+                study.file.display()
+            );
+        }
+    }
     if gate {
         check::gate(&study)?;
     }
     let out = output_path(&study, args);
     let mut outputs = vec![out.as_path()];
     outputs.extend(args.run.trials_csv.as_deref());
-    check_outputs(&outputs, &[&study.file, &study.model_file])?;
+    let mut inputs = model_inputs(&study.model_file);
+    inputs.push(study.file.clone());
+    let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
+    check_outputs(&outputs, &inputs)?;
     check_memory(
         peak_bytes(&study, threads),
         &format!(
@@ -170,24 +183,17 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
             tool: tool_version(),
             rows_per_cell: run.study.modes.len() * names.len(),
             assignment,
+            modes: run.study.modes.clone(),
+            params: names.clone(),
         }),
         _ => None,
     };
-    let created = create_parent(&out)?;
+    create_parent(&out)?;
     let staged = stage(&out, |w| match &header {
         Some(header) => write_shard(w, header, &results, &names, run.study.noise),
         None => write_results(w, &results, &names, run.study.noise),
     })
-    .with_context(|| format!("{}: cannot write the results", out.display()));
-    let staged = match staged {
-        Ok(s) => s,
-        Err(e) => {
-            if let Some(dir) = created {
-                let _ = std::fs::remove_dir(dir);
-            }
-            return Err(e);
-        }
-    };
+    .with_context(|| format!("{}: cannot write the results", out.display()))?;
     commit_all(trials.into_iter().chain(std::iter::once(staged)).collect())?;
     Ok(Finished {
         run,
@@ -198,19 +204,14 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
     })
 }
 
-/// Creates the directory of `out` when missing; the directory created, if any.
-fn create_parent(out: &Path) -> anyhow::Result<Option<&Path>> {
-    match out
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty() && !d.exists())
-    {
-        Some(dir) => {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
-            Ok(Some(dir))
-        }
-        None => Ok(None),
+/// Creates the directory of `out` when missing (registered: a failed or interrupted run
+/// removes it again).
+fn create_parent(out: &Path) -> anyhow::Result<()> {
+    if let Some(dir) = out.parent() {
+        jointid::output::atomic::create_folders(dir)
+            .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
     }
+    Ok(())
 }
 
 fn progress_bar(total: u64, quiet: bool) -> ProgressBar {

@@ -5,6 +5,7 @@ use anyhow::{Context, bail};
 use crate::cli::{Measure, SimulateArgs};
 use crate::commands::flagged;
 use jointid::input::SettingError;
+use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, write_atomically};
 use jointid::simulate::{Errors, first_modes, simulate};
 use jointid::structure::Observation;
@@ -19,7 +20,9 @@ const FLAGS: &[(&str, &str)] = &[
 ];
 
 pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
-    check_outputs(&[&args.out], &[&args.model])?;
+    let inputs = model_inputs(&args.model);
+    let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
+    check_outputs(&[&args.out], &inputs)?;
     let model = jointid::model::from_path(&args.model)?;
     let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
     let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {

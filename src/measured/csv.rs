@@ -151,7 +151,7 @@ impl Format for Csv {
         let err = |line: u64, message: String| MeasuredError::Line {
             file: file.to_path_buf(),
             line,
-            message,
+            message: crate::input::safe::clip_quotes(message),
         };
         let mut csv = ::csv::ReaderBuilder::new()
             .trim(::csv::Trim::All)

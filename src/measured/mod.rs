@@ -20,6 +20,7 @@ pub mod format;
 pub mod locate;
 pub mod modes;
 
+use crate::input::bounded::{Bounded, WHOLE};
 use std::io::Read;
 use std::path::Path;
 
@@ -36,22 +37,22 @@ pub const FORMATS: &[&dyn Format] = &[&csv::Csv];
 /// Reads and validates the measured modes of the file at `path` against `structure`, in the
 /// format its extension names, else the one its content shows.
 pub fn read(path: &Path, structure: &Structure) -> Result<MeasuredModes, MeasuredError> {
-    let bytes = std::fs::read(path).map_err(|cause| MeasuredError::Read {
+    let file = std::fs::File::open(path).map_err(|cause| MeasuredError::Read {
         file: path.to_path_buf(),
         cause,
     })?;
-    read_bytes(&bytes, path, structure)
+    from_reader(file, path, structure)
 }
 
-/// [`read`] from any reader; `file` names the source in errors and its extension chooses the
-/// format.
+/// [`read`] from any reader, within [`WHOLE`]'s limits (line length, lines, bytes); `file`
+/// names the source in errors and its extension chooses the format.
 pub fn from_reader<R: Read>(
-    mut reader: R,
+    reader: R,
     file: &Path,
     structure: &Structure,
 ) -> Result<MeasuredModes, MeasuredError> {
     let mut bytes = Vec::new();
-    reader
+    Bounded::new(reader, WHOLE)
         .read_to_end(&mut bytes)
         .map_err(|cause| MeasuredError::Read {
             file: file.to_path_buf(),

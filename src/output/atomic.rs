@@ -1,51 +1,140 @@
 //! Files are written whole or not at all: into a temporary file beside the target, renamed
 //! over it once complete. An interrupted or failed run leaves no half file.
 //!
+//! A temporary is created exclusively (`O_EXCL`, never through a symbolic link) in the
+//! target's own folder under an unpredictable name (`.NAME.XXXXXX.tmp`, the `tempfile`
+//! crate), so that no file planted in a shared folder can be overwritten through it, and the
+//! run never deletes a file it did not create.
+//!
 //! A command with several outputs stages each one ([`stage`]) and commits them together
 //! once all are complete, so that one failing output leaves none of the others behind. Every
-//! live temporary is registered: [`remove_temporaries`] deletes them (the binary calls it on
-//! SIGINT and SIGTERM), and a [`Staged`] file that is dropped without being committed removes
-//! its temporary.
+//! live temporary, and every folder the run created ([`create_folders`]), is registered: on a
+//! signal the binary calls [`remove_temporaries_and_exit`], on an error
+//! [`remove_temporaries`]; a [`Staged`] file that is dropped without being committed removes
+//! its temporary. A temporary is created and registered under one lock, and the signal path
+//! keeps that lock until the process ends, so no temporary can appear after the clean-up.
 
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard};
 
-/// Temporaries not yet committed or removed.
-static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// What the run created and has not yet put in place: temporaries (files and staging
+/// folders), and the folders it created, in creation order.
+struct Live {
+    temporaries: Vec<PathBuf>,
+    folders: Vec<PathBuf>,
+}
 
-fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+static LIVE: Mutex<Live> = Mutex::new(Live {
+    temporaries: Vec::new(),
+    folders: Vec::new(),
+});
+
+fn live() -> MutexGuard<'static, Live> {
     LIVE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// Deletes every temporary still live, files and folders (for a signal handler: the process
-/// is about to end).
-pub fn remove_temporaries() {
-    for tmp in live().drain(..) {
+/// Deletes every temporary still live, then every folder the run created that is empty by
+/// now, deepest first; a folder holding a finished output stays.
+fn clean(live: &mut Live) {
+    for tmp in live.temporaries.drain(..) {
         if tmp.is_dir() {
             let _ = std::fs::remove_dir_all(tmp);
         } else {
             let _ = std::fs::remove_file(tmp);
         }
     }
+    for folder in live.folders.drain(..).rev() {
+        let _ = std::fs::remove_dir(folder);
+    }
 }
 
-/// Registers a temporary of the run's own (a folder being filled) for [`remove_temporaries`].
+/// Deletes every temporary still live and every empty folder the run created (after an
+/// error: nothing of the failed run stays behind).
+pub fn remove_temporaries() {
+    clean(&mut live());
+}
+
+/// For a signal handler: cleans up as [`remove_temporaries`], then ends the process with
+/// `code` while still holding the registry, so that no other thread can create a temporary
+/// after the clean-up.
+pub fn remove_temporaries_and_exit(code: i32) -> ! {
+    let mut guard = live();
+    clean(&mut guard);
+    std::process::exit(code)
+}
+
+/// Registers a temporary of the run's own (a folder being filled) for the clean-up.
 pub fn track(path: &Path) {
-    live().push(path.to_path_buf());
+    live().temporaries.push(path.to_path_buf());
 }
 
 /// Withdraws a temporary registered by [`track`] (renamed into place or removed).
 pub fn untrack(path: &Path) {
-    live().retain(|t| t != path);
+    live().temporaries.retain(|t| t != path);
+}
+
+/// The folder of `path` (`.` for a bare name).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// The file name of `path`, for temporaries beside it.
+fn name_of(path: &Path) -> io::Result<String> {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "it names no file"))
+}
+
+/// Creates `dir` and its missing ancestors, registering each folder this call created for the
+/// clean-up after a signal or an error (a folder that already existed is never removed).
+pub fn create_folders(dir: &Path) -> io::Result<()> {
+    let mut missing = Vec::new();
+    let mut at = Some(dir);
+    while let Some(d) = at.filter(|d| !d.as_os_str().is_empty() && !d.exists()) {
+        missing.push(d.to_path_buf());
+        at = d.parent();
+    }
+    for d in missing.into_iter().rev() {
+        let mut guard = live();
+        match std::fs::create_dir(&d) {
+            Ok(()) => guard.folders.push(d),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && d.is_dir() => {}
+            Err(e) => return Err(e),
+        }
+    }
+    if dir.as_os_str().is_empty() || dir.is_dir() {
+        Ok(())
+    } else {
+        Err(io::Error::new(
+            io::ErrorKind::AlreadyExists,
+            "it exists and is not a folder",
+        ))
+    }
+}
+
+/// A new, empty folder beside `target` under an unpredictable name (`.NAME.XXXXXX.tmp`),
+/// created exclusively and registered as a temporary: the staging folder of an output folder.
+pub fn staging_folder(target: &Path) -> io::Result<PathBuf> {
+    let name = name_of(target)?;
+    let mut guard = live();
+    let dir = tempfile::Builder::new()
+        .prefix(&format!(".{name}."))
+        .suffix(".tmp")
+        .tempdir_in(folder_of(target))?
+        .keep();
+    guard.temporaries.push(dir.clone());
+    Ok(dir)
 }
 
 /// A complete temporary file waiting to replace its target.
 #[derive(Debug)]
 pub struct Staged {
-    tmp: PathBuf,
+    tmp: Option<tempfile::NamedTempFile>,
     path: PathBuf,
-    committed: bool,
 }
 
 impl Staged {
@@ -57,18 +146,20 @@ impl Staged {
     /// Renames the temporary over the target.
     pub fn commit(mut self) -> io::Result<()> {
         refuse_non_regular(&self.path)?;
-        std::fs::rename(&self.tmp, &self.path)?;
-        self.committed = true;
-        live().retain(|t| t != &self.tmp);
-        Ok(())
+        let tmp = self.tmp.take().expect("a staged file holds its temporary");
+        let tmp_path = tmp.path().to_path_buf();
+        let result = tmp.persist(&self.path).map_err(|e| e.error);
+        live().temporaries.retain(|t| t != &tmp_path);
+        result.map(|_| ())
     }
 }
 
 impl Drop for Staged {
     fn drop(&mut self) {
-        if !self.committed {
-            let _ = std::fs::remove_file(&self.tmp);
-            live().retain(|t| t != &self.tmp);
+        if let Some(tmp) = self.tmp.take() {
+            let path = tmp.path().to_path_buf();
+            drop(tmp);
+            live().temporaries.retain(|t| t != &path);
         }
     }
 }
@@ -94,22 +185,21 @@ where
     E: From<io::Error>,
 {
     refuse_non_regular(path)?;
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
+    let name = name_of(path)?;
+    let tmp = {
+        let mut guard = live();
+        let tmp = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".tmp")
+            .tempfile_in(folder_of(path))?;
+        guard.temporaries.push(tmp.path().to_path_buf());
+        tmp
     };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "it names no file"))?;
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    live().push(tmp.clone());
-    let staged = Staged {
-        tmp,
+    let mut staged = Staged {
+        tmp: Some(tmp),
         path: path.to_path_buf(),
-        committed: false,
     };
-    let file = std::fs::File::create(&staged.tmp)?;
+    let file = staged.tmp.as_mut().expect("just created").as_file_mut();
     let mut w = BufWriter::new(file);
     fill(&mut w)?;
     let file = w.into_inner().map_err(|e| e.into_error())?;
@@ -145,6 +235,13 @@ where
 mod tests {
     use super::*;
 
+    /// The tests share the registry: one at a time, so that a clean-up meets only its own.
+    static SERIAL: Mutex<()> = Mutex::new(());
+
+    fn serial() -> MutexGuard<'static, ()> {
+        SERIAL.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
     fn scratch(name: &str) -> PathBuf {
         let dir =
             std::env::temp_dir().join(format!("jointid-atomic-{name}-{}", std::process::id()));
@@ -154,6 +251,7 @@ mod tests {
 
     #[test]
     fn failure_leaves_neither_target_nor_temporary() {
+        let _serial = serial();
         let dir = scratch("fail");
         let target = dir.join("out.csv");
         let r: Result<(), io::Error> = write_atomically(&target, |w| {
@@ -169,6 +267,7 @@ mod tests {
 
     #[test]
     fn staged_files_appear_only_on_commit_and_vanish_when_dropped() {
+        let _serial = serial();
         let dir = scratch("staged");
         let a = stage::<io::Error>(&dir.join("a.csv"), |w| w.write_all(b"a")).unwrap();
         let b = stage::<io::Error>(&dir.join("b.csv"), |w| w.write_all(b"b")).unwrap();
@@ -185,6 +284,7 @@ mod tests {
 
     #[test]
     fn a_directory_is_never_replaced() {
+        let _serial = serial();
         let dir = scratch("dir");
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         let err =
@@ -192,6 +292,57 @@ mod tests {
         assert!(err.to_string().contains("not a regular file"), "{err}");
         assert!(dir.join("sub").is_dir());
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_planted_link_is_neither_followed_nor_removed() {
+        let _serial = serial();
+        let dir = scratch("planted");
+        let victim = dir.join("model.toml");
+        std::fs::write(&victim, "model").unwrap();
+        // Links at every name a predictable temporary could have had.
+        for pid in [std::process::id(), 1, 2] {
+            let link = dir.join(format!(".out.csv.{pid}.tmp"));
+            std::os::unix::fs::symlink(&victim, &link).unwrap();
+        }
+        write_atomically::<io::Error>(&dir.join("out.csv"), |w| w.write_all(b"out")).unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "model");
+        assert!(
+            !std::fs::symlink_metadata(dir.join("out.csv"))
+                .unwrap()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(dir.join("out.csv")).unwrap(), "out");
+        let links = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter(|e| e.as_ref().unwrap().file_type().unwrap().is_symlink())
+            .count();
+        assert_eq!(links, 3, "the planted links are not the run's to remove");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_clean_up_removes_temporaries_and_the_folders_created_but_no_output() {
+        let _serial = serial();
+        let dir = scratch("cleanup");
+        let kept = dir.join("kept");
+        create_folders(&kept).unwrap();
+        write_atomically::<io::Error>(&kept.join("done.csv"), |w| w.write_all(b"x")).unwrap();
+        let deep = dir.join("a/b/c");
+        create_folders(&deep).unwrap();
+        let pending = stage::<io::Error>(&deep.join("f.svg"), |w| w.write_all(b"x")).unwrap();
+        std::mem::forget(pending);
+        let staging = staging_folder(&dir.join("export")).unwrap();
+        std::fs::write(staging.join("model.toml"), "x").unwrap();
+        remove_temporaries();
+        let mut names: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, vec!["kept".to_string()]);
+        assert!(kept.join("done.csv").exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

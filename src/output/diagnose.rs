@@ -2,7 +2,8 @@
 
 use std::io::{self, Write};
 
-use super::table::{sci, write_table};
+use super::table::{plus_minus, sci, write_table};
+use crate::diagnose::Estimate;
 use crate::diagnose::report::Profile;
 use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
@@ -67,11 +68,10 @@ fn corrections(
     for f in flat {
         writeln!(
             out,
-            "  {}: weighted mean {}, slope {} +- {} per kHz, flatness chi^2 {:.1}/{} (p = {:.2e}): {}",
+            "  {}: weighted mean {}, slope {} per kHz, flatness chi^2 {:.1}/{} (p = {:.2e}): {}",
             f.param,
             sci(f.mean),
-            sci(f.slope_per_khz),
-            sci(f.slope_se_per_khz),
+            plus_minus(f.slope_per_khz, f.slope_se_per_khz),
             f.chi2,
             f.dof,
             f.p_value,
@@ -134,17 +134,7 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     write_noise(out, r)?;
     write_errors(out, r)?;
     write_candidates(out, r)?;
-    writeln!(out, "\nfitted parameters after:")?;
-    for e in &r.after.parameters {
-        writeln!(
-            out,
-            "  {} = {} +- {} {}",
-            e.name,
-            sci(e.value),
-            sci(e.se),
-            e.unit
-        )?;
-    }
+    write_parameters(out, &r.after.parameters)?;
     corrections(
         out,
         &format!(
@@ -163,6 +153,21 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     Ok(())
 }
 
+/// The fitted parameters, each `name = value +- se unit`, or `not identifiable`.
+fn write_parameters(out: &mut dyn Write, parameters: &[Estimate]) -> io::Result<()> {
+    writeln!(out, "\nfitted parameters after:")?;
+    for e in parameters {
+        writeln!(
+            out,
+            "  {} = {} {}",
+            e.name,
+            plus_minus(e.value, e.se),
+            e.unit
+        )?;
+    }
+    Ok(())
+}
+
 /// The verdict, with the trend and the misfit's pattern when there are.
 fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = verdict_text(r, true);
@@ -170,10 +175,9 @@ fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     for f in &r.trend {
         writeln!(
             out,
-            "  trend of {}: {} +- {} per kHz ({:.1} standard errors) about a weighted mean of {}",
+            "  trend of {}: {} per kHz ({:.1} standard errors) about a weighted mean of {}",
             f.param,
-            sci(f.slope_per_khz),
-            sci(f.slope_se_per_khz),
+            plus_minus(f.slope_per_khz, f.slope_se_per_khz),
             f.slope_per_khz / f.slope_se_per_khz,
             sci(f.mean)
         )?;
@@ -354,11 +358,7 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
     let fitted_cells = |c: &crate::diagnose::CandidateReport| {
         vec![
             c.name.clone(),
-            format!(
-                "{} +- {}",
-                sci(c.size.unwrap_or(0.0)),
-                sci(c.size_se.unwrap_or(0.0))
-            ),
+            plus_minus(c.size.unwrap_or(0.0), c.size_se.unwrap_or(0.0)),
             format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
             format!("{:.1}", c.lrt.unwrap_or(0.0)),
         ]
@@ -398,4 +398,25 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
             .concat(),
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_parameter_without_a_finite_error_reads_not_identifiable() {
+        let estimate = |value: f64, se: f64| Estimate {
+            name: "joint1.k1".into(),
+            unit: "N/m",
+            value,
+            se,
+        };
+        let mut out = Vec::new();
+        write_parameters(&mut out, &[estimate(1e7, 2e5), estimate(0.0, f64::NAN)]).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "\nfitted parameters after:\n  joint1.k1 = 1.000e7 +- 2.000e5 N/m\n  joint1.k1 = not identifiable N/m\n"
+        );
+    }
 }

@@ -1,8 +1,11 @@
 //! Output paths checked before any work starts: an output never replaces an input of the same
-//! run (compared after resolving `.`, `..` and symbolic links), never replaces something that
-//! is not a regular file, and two outputs of one run never share a path.
+//! run (compared after resolving `.`, `..` and symbolic links, [`resolved`]), never replaces
+//! something that is not a regular file, and two outputs of one run never share a path.
+//!
+//! The inputs of a run are every file it reads: for a model, the model file and every file an
+//! external model names ([`model_inputs`]); for a cluster run, the study and its model.
 
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 
 /// An output path the run must not write.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -33,23 +36,43 @@ pub enum OutputPathError {
     },
 }
 
-/// The path with every existing part resolved; a missing file keeps its name under its
-/// resolved directory.
-fn resolved(path: &Path) -> PathBuf {
-    if let Ok(p) = std::fs::canonicalize(path) {
-        return p;
-    }
-    match (path.parent(), path.file_name()) {
-        (Some(dir), Some(name)) => {
-            let dir = if dir.as_os_str().is_empty() {
-                Path::new(".")
-            } else {
-                dir
-            };
-            resolved(dir).join(name)
+/// The path as the file system will resolve it when the run writes: made absolute, then
+/// walked component by component, each existing prefix canonicalised (symbolic links, `.` and
+/// `..` resolved as the system does) and each missing part taken lexically, so that
+/// `nothere/../m.toml` is `m.toml` even though `nothere` does not exist.
+pub fn resolved(path: &Path) -> PathBuf {
+    let Ok(absolute) = std::path::absolute(path) else {
+        return path.to_path_buf();
+    };
+    let mut out = PathBuf::new();
+    for part in absolute.components() {
+        match part {
+            Component::Prefix(_) | Component::RootDir => out.push(part),
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::Normal(name) => {
+                out.push(name);
+                if let Ok(real) = std::fs::canonicalize(&out) {
+                    out = real;
+                }
+            }
         }
-        _ => path.to_path_buf(),
     }
+    out
+}
+
+/// The inputs a model file brings to a run: the file itself and, for an external model, every
+/// file it names (K, M, the DOF table, each dK/dp and dM/dp). Outputs are checked against
+/// them all.
+pub fn model_inputs(model_file: &Path) -> Vec<PathBuf> {
+    let text = std::fs::read_to_string(model_file).unwrap_or_default();
+    let mut files = vec![model_file.to_path_buf()];
+    files.extend(crate::study::fingerprint::model_data_files(
+        &text, model_file,
+    ));
+    files
 }
 
 /// Checks every output of a run against its inputs and against each other.
@@ -107,6 +130,32 @@ mod tests {
             check_outputs(&[&dir.join("sub")], &[]),
             Err(OutputPathError::NotRegular(_))
         ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_path_through_a_missing_folder_is_resolved() {
+        let dir = std::env::temp_dir().join(format!("jointid-guard-miss-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let input = dir.join("m.toml");
+        std::fs::write(&input, "x").unwrap();
+        for spelling in [
+            "nothere/../m.toml",
+            "a/b/../../m.toml",
+            "nothere/./../m.toml",
+        ] {
+            assert!(
+                matches!(
+                    check_outputs(&[&dir.join(spelling)], &[&input]),
+                    Err(OutputPathError::IsInput { .. })
+                ),
+                "{spelling}"
+            );
+        }
+        assert_eq!(
+            resolved(&dir.join("x/../y/z.csv")),
+            resolved(&dir).join("y/z.csv")
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

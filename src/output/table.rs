@@ -34,9 +34,30 @@ pub fn sci(x: f64) -> String {
     }
 }
 
+/// `value +- se` in [`sci`] form; `not identifiable` when either is not finite (the JSON
+/// report's null), never `NaN`.
+pub fn plus_minus(value: f64, se: f64) -> String {
+    if value.is_finite() && se.is_finite() {
+        format!("{} +- {}", sci(value), sci(se))
+    } else {
+        NOT_IDENTIFIABLE.to_string()
+    }
+}
+
+/// What a report says of an estimate without a finite value or standard error.
+pub const NOT_IDENTIFIABLE: &str = "not identifiable";
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_estimate_without_a_finite_error_is_not_identifiable() {
+        assert_eq!(plus_minus(1.5e7, 2.0e5), "1.500e7 +- 2.000e5");
+        assert_eq!(plus_minus(0.0, 0.0), "0 +- 0");
+        assert_eq!(plus_minus(0.0, f64::NAN), "not identifiable");
+        assert_eq!(plus_minus(f64::INFINITY, 1.0), "not identifiable");
+    }
 
     #[test]
     fn columns_align_right() {

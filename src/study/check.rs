@@ -124,7 +124,9 @@ pub fn evaluate(spec: &CheckSpec, results: &[CellResult], names: &[String]) -> G
                     };
                     let relative = x / t - 1.0;
                     let allowed = spec.max_abs_relative_bias + STANDARD_ERRORS * se / t.abs();
-                    (relative.abs() > allowed).then(|| {
+                    // A NaN compares false: only a finite bias within its bound passes.
+                    let within = relative.abs() <= allowed;
+                    (!within).then(|| {
                         format!(
                             "relative bias of the {label} {relative:+.4} (x = {x:.4e}, introduced {t:.4e}, se {se:.3e}) exceeds {:.4} + 3 se = {allowed:.4}",
                             spec.max_abs_relative_bias

@@ -29,6 +29,9 @@
 //! `grid` may also be an array of tables (`[[grid]]`), each a product of its own axes; the
 //! study's cells are then those of every grid, in order. That expresses condition sets that
 //! are not a product, such as the paper's (m = 7 needs n >= 9).
+//!
+//! `name` names the cluster jobs, scripts and shard files: it must be a plain file name
+//! ([`crate::input::safe::FILE_NAME`]: letters, digits, `.`, `_`, `-`).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -297,6 +300,8 @@ impl Study {
         model_file: &Path,
     ) -> Result<Study, InputError> {
         let check = FieldCheck { file };
+        crate::input::safe::check(&crate::input::safe::FILE_NAME, "name", &raw.name)
+            .map_err(|e| check.invalid("name", e.value, e.allowed))?;
         let base = file.parent().unwrap_or(Path::new(""));
         let params = model.identified();
         if params.is_empty() {

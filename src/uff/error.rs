@@ -78,6 +78,14 @@ pub enum Problem {
     /// The file ends inside a dataset.
     #[error("the file ends inside the dataset: no closing `-1`")]
     Unterminated,
+    /// A dataset longer than any real one.
+    #[error(
+        "the dataset has more than {limit} lines before its closing `-1`, more than any dataset holds (a missing `-1`, or a damaged file)"
+    )]
+    TooManyLines {
+        /// The most lines a dataset may have.
+        limit: usize,
+    },
     /// A required line of the dataset is missing.
     #[error("the record ends before {what}")]
     Truncated {

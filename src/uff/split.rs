@@ -20,6 +20,11 @@ use std::borrow::Cow;
 use super::error::{Located, Problem};
 use super::fields::{Line, integer};
 
+/// The most lines one dataset may hold (a dataset 58 of a million complex points has half a
+/// million): the splitter keeps a dataset's lines, about 32 bytes each beside the file's
+/// bytes, so this bounds its memory to about 130 MB whatever the file holds.
+pub const MAX_DATASET_LINES: usize = 4_000_000;
+
 /// The binary header of a `58b`-style dataset number line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct BinaryHeader {
@@ -168,6 +173,14 @@ impl<'a> Splitter<'a> {
                         payload: None,
                         end_line: number,
                     }));
+                }
+                if lines.len() == MAX_DATASET_LINES {
+                    return Err(in_record(Located::new(
+                        number,
+                        Problem::TooManyLines {
+                            limit: MAX_DATASET_LINES,
+                        },
+                    )));
                 }
                 lines.push(Line {
                     number,
@@ -356,6 +369,17 @@ mod tests {
             kinds(b"\n  -1\n 15\n  -1\n\n  -1\n 18\n  -1"),
             [(15, 3, 0, 4), (18, 7, 0, 8)]
         );
+    }
+
+    #[test]
+    fn a_dataset_of_millions_of_blank_lines_is_refused_not_held() {
+        let mut bytes = b"    -1\n    15\n".to_vec();
+        bytes.extend(std::iter::repeat_n(b'\n', MAX_DATASET_LINES + 10));
+        bytes.extend(b"    -1\n");
+        let e = Splitter::new(&bytes, declared).next().unwrap().unwrap_err();
+        assert_eq!(e.0, Some((1, 15)));
+        assert_eq!(e.1.line, MAX_DATASET_LINES + 3);
+        assert!(matches!(e.1.problem, Problem::TooManyLines { .. }));
     }
 
     #[test]

@@ -86,6 +86,8 @@ fn shard_files_of_the_shipped_studies_merge_into_the_single_run_byte_for_byte() 
                         tool: "jointid test".into(),
                         rows_per_cell: run.study.modes.len() * names.len(),
                         assignment: assignment.clone(),
+                        modes: run.study.modes.clone(),
+                        params: names.clone(),
                     };
                     let mut bytes = Vec::new();
                     write_shard(&mut bytes, &header, &mine, &names, run.study.noise).unwrap();

@@ -14,6 +14,7 @@
 mod common;
 
 mod analytic_beam;
+mod bounded_input;
 mod candidates;
 mod cli_extract;
 mod cli_identify;
@@ -30,11 +31,15 @@ mod identification;
 mod lap_beam;
 mod large_models;
 mod matrices;
+mod merge_integrity;
+mod numerics_refused;
+mod outputs_guarded;
 mod registry;
 mod reliability;
 mod report;
 mod results;
 mod setups;
+mod slurm_injection;
 mod study;
 mod uff_formats;
 mod uff_pyuff;

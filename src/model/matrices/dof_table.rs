@@ -103,13 +103,16 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
     let line_err = |line: u64, message: String| DofTableError::Line {
         file: file.to_path_buf(),
         line,
-        message,
+        message: crate::input::safe::clip_quotes(message),
     };
     let mut csv = ::csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(::csv::Trim::All)
         .flexible(true)
-        .from_reader(reader);
+        .from_reader(crate::input::bounded::Bounded::new(
+            reader,
+            crate::input::bounded::TABLE,
+        ));
     let mut slots: Vec<Option<DofInfo>> = vec![None; size];
     let mut first_line: Vec<u64> = vec![0; size];
     let mut labels: HashMap<String, u64> = HashMap::new();

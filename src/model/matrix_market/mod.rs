@@ -118,7 +118,7 @@ pub fn from_path(path: &Path) -> Result<LowerEntries, MatrixMarketError> {
         file: path.to_path_buf(),
         cause,
     })?;
-    read(io::BufReader::new(file), path)
+    read(file, path)
 }
 
 /// What the header line may be.
@@ -153,12 +153,18 @@ fn is_general(header: &str) -> Result<bool, String> {
     }
 }
 
+/// The largest matrix read, in rows (a model far beyond what the solvers handle).
+pub const MAX_SIZE: usize = 10_000_000;
+
 /// The size N and the declared number of entries of the size line `t` (trimmed, not a
 /// comment); the message when it is not `N N entries`.
 fn size_line(t: &str) -> Result<(usize, usize), String> {
     let fields: Vec<&str> = t.split_whitespace().collect();
     let parsed: Vec<Option<usize>> = fields.iter().map(|f| f.parse().ok()).collect();
     match parsed[..] {
+        [Some(r), Some(c), Some(_)] if r == c && r > MAX_SIZE => Err(format!(
+            "size `{t}` is invalid: the matrix is {r} x {c}; at most {MAX_SIZE} rows are read"
+        )),
         [Some(r), Some(c), Some(nnz)] if r == c && r > 0 => Ok((r, nnz)),
         [Some(r), Some(c), Some(_)] if r != c => Err(format!(
             "size `{t}` is invalid: the matrix is {r} x {c}; it must be square"
@@ -203,13 +209,18 @@ fn entry(t: &str, size: usize, general: bool) -> Result<(usize, usize, f64), Str
     Ok((i, j, value))
 }
 
-/// Reads Matrix Market text from `reader`; `file` names it in errors.
-pub fn read(reader: impl BufRead, file: &Path) -> Result<LowerEntries, MatrixMarketError> {
+/// Reads Matrix Market text from `reader` (within [`crate::input::bounded::TABLE`]'s limits);
+/// `file` names it in errors.
+pub fn read(reader: impl io::Read, file: &Path) -> Result<LowerEntries, MatrixMarketError> {
     let err = |line: usize, message: String| MatrixMarketError::Line {
         file: file.to_path_buf(),
         line,
-        message,
+        message: crate::input::safe::clip_quotes(message),
     };
+    let reader = io::BufReader::new(crate::input::bounded::Bounded::new(
+        reader,
+        crate::input::bounded::TABLE,
+    ));
     let mut lines = reader.lines().enumerate().map(|(i, l)| (i + 1, l));
     let mut next = || -> Result<Option<(usize, String)>, MatrixMarketError> {
         match lines.next() {

@@ -1,0 +1,150 @@
+//! Readers within limits: a huge line is refused naming its line, an error quotes at most
+//! about 80 characters of a value, and `--shard K/N` cannot ask for more shards than cells.
+
+use std::path::Path;
+
+use crate::common::{jointid, scratch};
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Exit 2, `needle` in a short one-line error, no panic.
+fn refused_briefly(args: &[&str], needle: &str) {
+    let o = jointid(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{}", &err[..err.len().min(300)]);
+    assert!(
+        err.len() < 600,
+        "{} bytes of error: {}",
+        err.len(),
+        &err[..300]
+    );
+    assert!(err.contains(needle), "`{needle}` not in {err}");
+    assert!(!err.contains("panicked"));
+}
+
+#[test]
+fn a_shard_count_beyond_the_cells_is_refused_without_allocating() {
+    for spec in ["1/18446744073709551615", "1/1000000000", "3/9"] {
+        refused_briefly(
+            &[
+                "study",
+                "studies/ci-bias.toml",
+                "--quiet",
+                "--shard",
+                spec,
+                "--out",
+                "/nonexistent/x.csv",
+            ],
+            &format!(
+                "--shard {spec} is invalid: studies/ci-bias.toml has 8 cell(s), so N must be from 1 to 8"
+            ),
+        );
+    }
+}
+
+#[test]
+fn a_huge_line_is_refused_naming_it_and_a_long_value_is_quoted_short() {
+    let dir = scratch("bounded", "lines");
+    let long = "9".repeat(2 << 20);
+    let half = "9".repeat(1 << 19);
+    // The results reader (check --results): a 2 MiB line.
+    let results = dir.join("r.csv");
+    let header = "cell,mode,param,n,m,nf,weighting,shape_noise,frequency_noise,noise,introduced,trials,failures,mean,bias,relative_bias,std,rmse,median,mad,q05,q25,q75,q95,bias_se,predicted_std,median_se,unidentified";
+    std::fs::write(&results, format!("{header}\n{long}\n")).unwrap();
+    refused_briefly(
+        &["check", "studies/ci-bias.toml", "--results", s(&results)],
+        "line 2 is longer than 1048576 bytes",
+    );
+    // A half-MiB cell index: quoted short.
+    std::fs::write(
+        &results,
+        format!("{header}\n{half},1,k1{}\n", ",0".repeat(25)),
+    )
+    .unwrap();
+    refused_briefly(
+        &["check", "studies/ci-bias.toml", "--results", s(&results)],
+        "... (524288 bytes)`",
+    );
+    // The measured-modes reader.
+    let measured = dir.join("m.csv");
+    std::fs::write(
+        &measured,
+        format!("mode,frequency_hz,node,dof,value\n1,{long},0,w,1\n"),
+    )
+    .unwrap();
+    refused_briefly(
+        &[
+            "identify",
+            "--model",
+            "models/paper-case-1.toml",
+            "--measured",
+            s(&measured),
+            "--n",
+            "10",
+            "--m",
+            "5",
+            "--weighting",
+            "inverse",
+        ],
+        "line 2 is longer than 1048576 bytes",
+    );
+    std::fs::write(
+        &measured,
+        format!("mode,frequency_hz,node,dof,value\n1,{half},0,w,1\n"),
+    )
+    .unwrap();
+    refused_briefly(
+        &[
+            "identify",
+            "--model",
+            "models/paper-case-1.toml",
+            "--measured",
+            s(&measured),
+            "--n",
+            "10",
+            "--m",
+            "5",
+            "--weighting",
+            "inverse",
+        ],
+        "... (524288 bytes)`",
+    );
+    // The Matrix Market and DOF-table readers of an external model.
+    let fixture = Path::new("tests/fixtures/matrices/two-dof");
+    for name in ["free.toml", "K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"] {
+        std::fs::copy(fixture.join(name), dir.join(name)).unwrap();
+    }
+    let model = dir.join("free.toml");
+    let out = dir.join("o.csv");
+    let args = [
+        "simulate",
+        "--model",
+        s(&model),
+        "--modes",
+        "1",
+        "--out",
+        s(&out),
+    ];
+    let k0 = std::fs::read_to_string(dir.join("K0.mtx")).unwrap();
+    let mut lines: Vec<&str> = k0.lines().collect();
+    let size_at = lines.iter().position(|l| !l.starts_with('%')).unwrap();
+    let quarter = "9".repeat(1 << 18);
+    let huge_size = format!("{quarter} {quarter} 3");
+    lines[size_at] = &huge_size;
+    std::fs::write(dir.join("K0.mtx"), lines.join("\n")).unwrap();
+    refused_briefly(&args, "... (524291 bytes)`");
+    std::fs::write(
+        dir.join("K0.mtx"),
+        format!("{}\n% {long}\n", k0.lines().next().unwrap()),
+    )
+    .unwrap();
+    refused_briefly(&args, "line 2 is longer than 1048576 bytes");
+    std::fs::write(dir.join("K0.mtx"), &k0).unwrap();
+    let dofs = std::fs::read_to_string(dir.join("dofs.csv")).unwrap();
+    std::fs::write(dir.join("dofs.csv"), format!("{dofs}{long}\n")).unwrap();
+    refused_briefly(&args, "is longer than 1048576 bytes");
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,240 @@
+//! Outputs never overwrite an input, and a failed run leaves nothing behind: paths through
+//! missing folders, the files an external model names, planted staging folders, and the
+//! folders a failing run created.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::{jointid, scratch};
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Exit 2 with `needle` in the one error line.
+fn refused(args: &[&str], needle: &str) {
+    let o = jointid(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(needle), "`{needle}` not in: {err}");
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// The CI study, 300 trials, its model by absolute path, its CSV `csv`.
+fn study(dir: &Path, csv: &str) -> PathBuf {
+    let model = std::path::absolute("models/paper-case-1.toml").unwrap();
+    let text = std::fs::read_to_string("studies/ci-bias.toml")
+        .unwrap()
+        .replace("trials = 50000", "trials = 300")
+        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"))
+        .replace("\"../results/ci-bias.csv\"", &format!("{csv:?}"));
+    let path = dir.join("s.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_path_through_a_missing_folder_never_reaches_an_input() {
+    let dir = scratch("guarded", "missing");
+    let spelled = dir.join("nothere/../s.toml");
+    let study_path = study(&dir, "nothere/../s.toml");
+    let before = std::fs::read(&study_path).unwrap();
+    let says = "refused as output: it is the input";
+    refused(
+        &["study", s(&study_path), "--quiet", "--out", s(&spelled)],
+        says,
+    );
+    refused(
+        &[
+            "study",
+            s(&study_path),
+            "--quiet",
+            "--shard",
+            "1/2",
+            "--out",
+            s(&spelled),
+        ],
+        says,
+    );
+    refused(&["study", s(&study_path), "--quiet"], says);
+    assert_eq!(std::fs::read(&study_path).unwrap(), before);
+    assert_eq!(names(&dir), vec!["s.toml"]);
+    // merge: its shard is its input.
+    let study_path = study(&dir, "single.csv");
+    let shard = dir.join("a.csv");
+    let o = jointid(&[
+        "study",
+        s(&study_path),
+        "--quiet",
+        "--shard",
+        "1/1",
+        "--out",
+        s(&shard),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let shard_bytes = std::fs::read(&shard).unwrap();
+    refused(
+        &[
+            "merge",
+            s(&shard),
+            "--out",
+            s(&dir.join("nothere/../a.csv")),
+        ],
+        says,
+    );
+    assert_eq!(std::fs::read(&shard).unwrap(), shard_bytes);
+    assert!(!dir.join("nothere").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_files_an_external_model_names_are_inputs() {
+    let dir = scratch("guarded", "external");
+    let fixture = Path::new("tests/fixtures/matrices/two-dof");
+    for name in ["free.toml", "K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"] {
+        std::fs::copy(fixture.join(name), dir.join(name)).unwrap();
+    }
+    let model = dir.join("free.toml");
+    let before: Vec<Vec<u8>> = ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"]
+        .iter()
+        .map(|n| std::fs::read(dir.join(n)).unwrap())
+        .collect();
+    let measured = dir.join("m.csv");
+    let o = jointid(&[
+        "simulate",
+        "--model",
+        s(&model),
+        "--modes",
+        "1",
+        "--out",
+        s(&measured),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let says = "refused as output: it is the input";
+    for victim in ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"] {
+        let v = dir.join(victim);
+        refused(
+            &[
+                "simulate",
+                "--model",
+                s(&model),
+                "--modes",
+                "1",
+                "--out",
+                s(&v),
+            ],
+            says,
+        );
+        refused(
+            &[
+                "identify",
+                "--model",
+                s(&model),
+                "--measured",
+                s(&measured),
+                "--n",
+                "2",
+                "--m",
+                "1",
+                "--weighting",
+                "inverse",
+                "--out",
+                s(&v),
+            ],
+            says,
+        );
+        refused(
+            &[
+                "diagnose",
+                "--model",
+                s(&model),
+                "--measured",
+                s(&measured),
+                "--json",
+                s(&v),
+            ],
+            says,
+        );
+    }
+    let text = format!(
+        "name = \"x\"\nmodel = \"free.toml\"\n[truth]\ndelta = {{ k = 100.0 }}\n[grid]\nmodes = [1]\nn = [2]\nm = [1]\nnf = [0]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.0]\n[monte_carlo]\ntrials = 10\nseed = 1\nnoise = \"uniform\"\n[output]\ncsv = \"dK.mtx\"\n"
+    );
+    std::fs::write(dir.join("x.toml"), text).unwrap();
+    refused(&["study", s(&dir.join("x.toml")), "--quiet"], says);
+    let after: Vec<Vec<u8>> = ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"]
+        .iter()
+        .map(|n| std::fs::read(dir.join(n)).unwrap())
+        .collect();
+    assert_eq!(after, before);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn export_never_removes_a_folder_it_did_not_create() {
+    let dir = scratch("guarded", "export");
+    // Folders at every name the staging folder of the next processes could once have had
+    // (`.OUT.export-<pid>.tmp`), each holding a file of someone else's.
+    let next: u32 = std::fs::read_to_string("/proc/sys/kernel/ns_last_pid")
+        .ok()
+        .and_then(|t| t.trim().parse().ok())
+        .unwrap_or(0);
+    for pid in next..next + 200 {
+        let planted = dir.join(format!(".out.export-{pid}.tmp"));
+        std::fs::create_dir(&planted).unwrap();
+        std::fs::write(planted.join("theirs"), "x").unwrap();
+    }
+    let o = jointid(&[
+        "export",
+        "models/paper-case-1.toml",
+        "--out",
+        s(&dir.join("out")),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.join("out/model.toml").exists());
+    for pid in next..next + 200 {
+        assert!(dir.join(format!(".out.export-{pid}.tmp/theirs")).exists());
+    }
+    assert_eq!(names(&dir).len(), 201);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_failed_run_removes_the_folders_it_created() {
+    let dir = scratch("guarded", "leftovers");
+    let study_path = study(&dir, "single.csv");
+    // cluster slurm: the logs folder is made before the merged CSV's folder, which cannot be.
+    std::fs::write(dir.join("file"), "x").unwrap();
+    let o = jointid(&[
+        "cluster",
+        "slurm",
+        s(&study_path),
+        "--shards",
+        "2",
+        "--dir",
+        s(&dir.join("jobs")),
+        "--out",
+        s(&dir.join("file/merged.csv")),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(names(&dir), vec!["file", "s.toml"]);
+    // study: the trials CSV `out` cannot replace the folder the results go into.
+    let o = jointid(&[
+        "study",
+        s(&study_path),
+        "--quiet",
+        "--trials-csv",
+        s(&dir.join("out")),
+        "--out",
+        s(&dir.join("out/r.csv")),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(names(&dir), vec!["file", "s.toml"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
