@@ -175,11 +175,18 @@ pub fn refine(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn model(omega: &[f64], poles: &[c64], residues: &[[c64; 2]], p: i32) -> Vec<Vec<c64>> {
-        (0..2)
+    /// The FRFs (quantity power `p`) of modes `poles` with residues `residues[mode][response]`,
+    /// summed directly: the test data of the refinement and of the standard errors.
+    pub(crate) fn model<const R: usize>(
+        omega: &[f64],
+        poles: &[c64],
+        residues: &[[c64; R]],
+        p: i32,
+    ) -> Vec<Vec<c64>> {
+        (0..R)
             .map(|o| {
                 omega
                     .iter()

@@ -315,27 +315,9 @@ fn shape_std(residues: &[c64], cov: &Mat<f64>) -> Vec<f64> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::refine::tests::model;
     use super::super::{lsfd, refine};
     use super::*;
-
-    fn model(omega: &[f64], poles: &[c64], residues: &[[c64; 3]], p: i32) -> Vec<Vec<c64>> {
-        (0..3)
-            .map(|o| {
-                omega
-                    .iter()
-                    .map(|&w| {
-                        let iw = c64::new(0.0, w);
-                        let q = iw.powi(p);
-                        poles
-                            .iter()
-                            .zip(residues)
-                            .map(|(l, r)| q * (r[o] / (iw - l) + r[o].conj() / (iw - l.conj())))
-                            .sum::<c64>()
-                    })
-                    .collect()
-            })
-            .collect()
-    }
 
     /// The estimator itself: poles refined from `start`, residues by LSFD; per mode the
     /// frequency, the damping ratio and the real shape scaled at the peak of the truth.
