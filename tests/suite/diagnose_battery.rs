@@ -23,8 +23,8 @@
 //!   default `cargo test`) asserts every verdict equal to the one recorded in `AS_STATED`, right
 //!   or wrong: a new default candidate or a changed rule that moves a verdict fails here, and
 //!   the change must say why by updating the table;
-//! - `verdicts_per_noise_situation_reach_their_floors` (all 100 cases, ~4 min in a debug
-//!   build, so `#[ignore]`: `.ci/run` runs it in release; by hand `cargo test --release --test
+//! - `verdicts_per_noise_situation_reach_their_floors` (all 100 cases, minutes in an
+//!   unoptimised build, so `#[ignore]`: `.ci/run` runs it in release; by hand `cargo test --release --test
 //!   suite diagnose_battery -- --ignored`) asserts the right verdicts reached today in each situation (`FLOOR`), so
 //!   that a change which loses right verdicts fails; raise a floor when the diagnosis
 //!   improves. bench/battery/run.sh scores the larger battery.
@@ -316,7 +316,7 @@ fn data_standard_errors_per_situation() {
 }
 
 #[test]
-#[ignore = "all 100 cases: minutes in a debug build; .ci/run runs it in release"]
+#[ignore = "all 100 cases, the longest battery: .ci/run runs it in release (seconds there)"]
 fn verdicts_per_noise_situation_reach_their_floors() {
     let cases = all_cases();
     // situation -> (right, cases); clean -> (none, cases)
