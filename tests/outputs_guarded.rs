@@ -165,9 +165,7 @@ fn the_files_an_external_model_names_are_inputs() {
             says,
         );
     }
-    let text = format!(
-        "name = \"x\"\nmodel = \"free.toml\"\n[truth]\ndelta = {{ k = 100.0 }}\n[grid]\nmodes = [1]\nn = [2]\nm = [1]\nnf = [0]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.0]\n[monte_carlo]\ntrials = 10\nseed = 1\nnoise = \"uniform\"\n[output]\ncsv = \"dK.mtx\"\n"
-    );
+    let text = "name = \"x\"\nmodel = \"free.toml\"\n[truth]\ndelta = { k = 100.0 }\n[grid]\nmodes = [1]\nn = [2]\nm = [1]\nnf = [0]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.0]\n[monte_carlo]\ntrials = 10\nseed = 1\nnoise = \"uniform\"\n[output]\ncsv = \"dK.mtx\"\n";
     std::fs::write(dir.join("x.toml"), text).unwrap();
     refused(&["study", s(&dir.join("x.toml")), "--quiet"], says);
     let after: Vec<Vec<u8>> = ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"]
