@@ -99,44 +99,18 @@ fn an_interrupted_diagnose_leaves_no_temporary_and_no_empty_plots_folder() {
     let dir = scratch("signals", "diagnose");
     let model = std::path::absolute("models/paper-case-1.toml").unwrap();
     let model = model.to_str().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_jointid"))
-        .args([
-            "simulate",
-            "--model",
-            model,
-            "--effect",
-            "joint_mass=0.05",
-            "--modes",
-            "6",
-            "--frequency-noise",
-            "0.001",
-            "--shape-noise",
-            "0.02",
-            "--measure",
-            "w",
-            "--seed",
-            "1",
-            "--out",
-        ])
-        .arg(dir.join("test.csv"))
-        .output()
-        .unwrap();
-    assert!(o.status.success());
-    let args = [
-        "diagnose",
-        "--model",
-        model,
-        "--measured",
-        "test.csv",
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.02",
-        "--json",
-        "r.json",
-        "--plots",
-        "plots/deep",
-    ];
+    let test = dir.join("test.csv");
+    let simulate = format!(
+        "simulate --model {model} --effect joint_mass=0.05 --modes 6 --frequency-noise 0.001 \
+         --shape-noise 0.02 --measure w --seed 1 --out {}",
+        test.display()
+    );
+    common::jointid_ok(&simulate.split_whitespace().collect::<Vec<_>>());
+    let diagnose = format!(
+        "diagnose --model {model} --measured test.csv --frequency-noise 0.001 \
+         --shape-noise 0.02 --json r.json --plots plots/deep"
+    );
+    let args: Vec<&str> = diagnose.split_whitespace().collect();
     for signal in ["-INT", "-TERM"] {
         interrupt(
             &dir,
@@ -175,12 +149,7 @@ fn an_interrupted_export_or_study_leaves_no_staging_folder_and_no_empty_folder()
             }
         },
     );
-    let study = std::fs::read_to_string("studies/ci-bias.toml")
-        .unwrap()
-        .replace("trials = 50000", "trials = 2000")
-        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"))
-        .replace("\"../results/ci-bias.csv\"", "\"out/sub/s.csv\"");
-    std::fs::write(dir.join("s.toml"), study).unwrap();
+    common::ci_study(&dir, "s.toml", "ci-bias", "out/sub/s.csv", 2000);
     let args = ["study", "s.toml", "--quiet", "--trials-csv", "out/t.csv"];
     interrupt(
         &dir,
