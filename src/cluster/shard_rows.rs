@@ -29,34 +29,25 @@ pub struct RowKey {
     pub param: usize,
 }
 
-/// The columns every row of one cell states alike: its conditions.
-const CELL_KEYS: [Column; 9] = [
-    Column::N,
-    Column::M,
-    Column::Nf,
-    Column::Weighting,
-    Column::ShapeNoise,
-    Column::FrequencyNoise,
-    Column::Noise,
-    Column::Trials,
-    Column::Unidentified,
-];
+/// The columns every row of one cell states alike: its conditions (`n` to `noise`), its
+/// trials and its unidentified DOFs.
+fn cell_keys() -> Vec<Column> {
+    Column::ALL[Column::N.index()..=Column::Noise.index()]
+        .iter()
+        .copied()
+        .chain([Column::Trials, Column::Unidentified])
+        .collect()
+}
 
-/// The statistics that exist when a trial succeeded (`relative_bias` may still be empty).
-const STATISTICS: [Column; 12] = [
-    Column::Mean,
-    Column::Bias,
-    Column::Std,
-    Column::Rmse,
-    Column::Median,
-    Column::Mad,
-    Column::Q05,
-    Column::Q25,
-    Column::Q75,
-    Column::Q95,
-    Column::BiasSe,
-    Column::MedianSe,
-];
+/// The statistics that exist when a trial succeeded (`mean` to `bias_se` and `median_se`;
+/// `relative_bias` may still be empty).
+fn statistics() -> impl Iterator<Item = Column> {
+    Column::ALL[Column::Mean.index()..=Column::BiasSe.index()]
+        .iter()
+        .copied()
+        .filter(|&c| c != Column::RelativeBias)
+        .chain([Column::MedianSe])
+}
 
 fn text(record: &csv::StringRecord, column: Column) -> &str {
     record.get(column.index()).unwrap_or("")
@@ -143,7 +134,7 @@ pub fn check_row(
             if succeeded { "empty" } else { "given" }
         ));
     }
-    for column in STATISTICS {
+    for column in statistics() {
         finite(record, column, succeeded)?;
     }
     for column in [Column::RelativeBias, Column::PredictedStd] {
@@ -168,7 +159,8 @@ impl CellRows {
         record: &csv::StringRecord,
         line: u64,
     ) -> Result<(), String> {
-        let keys: Vec<String> = CELL_KEYS
+        let columns = cell_keys();
+        let keys: Vec<String> = columns
             .iter()
             .map(|&c| text(record, c).to_string())
             .collect();
@@ -176,10 +168,10 @@ impl CellRows {
             .seen
             .entry(key.cell)
             .or_insert_with(|| (line, keys.clone(), Vec::new()));
-        if let Some(i) = (0..CELL_KEYS.len()).find(|&i| keys[i] != first_keys[i]) {
+        if let Some(i) = (0..columns.len()).find(|&i| keys[i] != first_keys[i]) {
             return Err(format!(
                 "{} = {} but line {first} of cell {} has {}: the rows of a cell must state the same conditions",
-                CELL_KEYS[i].name(),
+                columns[i].name(),
                 crate::input::safe::quoted(&keys[i]),
                 key.cell,
                 crate::input::safe::quoted(&first_keys[i])

@@ -294,7 +294,8 @@ mod tests {
 
     #[test]
     fn a_hostile_value_renders_no_script() {
-        let cases: [(&str, fn(&mut SlurmPlan)); 7] = [
+        type Spoil = fn(&mut SlurmPlan);
+        let cases: [(&str, Spoil); 7] = [
             ("partition", |p| {
                 p.partition = Some("short\necho pwned".into())
             }),

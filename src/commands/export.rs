@@ -5,7 +5,7 @@
 //! overwritten. The temporary folder is created exclusively under an unpredictable name
 //! ([`staging_folder`]): the run removes only what it created.
 
-use jointid::output::atomic::{staging_folder, untrack};
+use jointid::output::atomic::{create_staged_file, staging_folder, untrack};
 use std::io::Write;
 
 use anyhow::{Context, bail};
@@ -43,7 +43,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let result = (|| -> anyhow::Result<()> {
         for (name, bytes) in &exported.files {
             let path = tmp.join(name);
-            let mut f = std::fs::File::create_new(&path)
+            let mut f = create_staged_file(&path)
                 .with_context(|| format!("{}: cannot create", path.display()))?;
             f.write_all(bytes)
                 .and_then(|()| f.sync_all())

@@ -160,6 +160,7 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
         ),
         Some(path) => {
             let mut results = Vec::with_capacity(cells.len());
+            create_parent(path)?;
             let staged = stage(path, |w| {
                 let mut trials = TrialsWriter::new(w)?;
                 for cell in &cells {

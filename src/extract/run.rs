@@ -34,11 +34,25 @@ fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Crite
     each && distinct
 }
 
+/// The RMS of `h`; computed relative to its largest magnitude when the plain sum of squares
+/// overflows or underflows (FRFs scaled by 1e150 or 1e-170 are not zero).
+fn rms_of(h: &[c64]) -> f64 {
+    let plain = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / h.len() as f64).sqrt();
+    if plain > 0.0 && plain.is_finite() {
+        return plain;
+    }
+    let peak = h.iter().map(|v| v.norm()).fold(0.0_f64, f64::max);
+    if peak == 0.0 || !peak.is_finite() {
+        return peak;
+    }
+    peak * (h.iter().map(|v| (v / peak).norm_sqr()).sum::<f64>() / h.len() as f64).sqrt()
+}
+
 /// The responses scaled to unit RMS over the band (`lo`, `hi` in Hz, for the error).
 fn unit_rms(responses: &[Vec<c64>], (lo, hi): (f64, f64)) -> Result<Vec<Vec<c64>>, ExtractError> {
     let mut scaled = Vec::with_capacity(responses.len());
     for (response, h) in responses.iter().enumerate() {
-        let rms = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / h.len() as f64).sqrt();
+        let rms = rms_of(h);
         if rms == 0.0 || !rms.is_finite() {
             return Err(ExtractError::ZeroResponse { response, lo, hi });
         }
@@ -295,5 +309,28 @@ fn line_variances(
                 uncertainty::from_residuals(&band.weights, responses, synthesized, unknowns),
             )
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_response_scaled_far_from_one_is_not_zero() {
+        let h: Vec<c64> = (0..50).map(|k| c64::new(1.0 + k as f64, -0.5)).collect();
+        let unit = unit_rms(std::slice::from_ref(&h), (1.0, 2.0)).unwrap();
+        for scale in [1e-170, 1e-300, 1e150, 1e300] {
+            let far: Vec<c64> = h.iter().map(|v| v * scale).collect();
+            let got = unit_rms(&[far], (1.0, 2.0)).unwrap();
+            for (a, b) in got[0].iter().zip(&unit[0]) {
+                assert!((a - b).norm() < 1e-12, "{scale}: {a} vs {b}");
+            }
+        }
+        let zero = vec![c64::new(0.0, 0.0); 5];
+        assert!(matches!(
+            unit_rms(&[zero], (1.0, 2.0)),
+            Err(ExtractError::ZeroResponse { response: 0, .. })
+        ));
     }
 }

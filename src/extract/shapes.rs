@@ -31,8 +31,32 @@ pub struct RealMode {
     pub angle: f64,
 }
 
-/// MAC of two complex vectors: |a^H b|^2 / (a^H a b^H b); 0 when either is zero.
+/// The largest |re| or |im| of `v` as a power of two 2^e, when it lies outside
+/// 2^-60..2^60, where the sums of squares and their squares below would overflow or
+/// underflow; None inside (no rescaling: the results stay the bits they always were).
+fn far_scale(v: &[c64]) -> Option<f64> {
+    let peak = v
+        .iter()
+        .map(|z| z.re.abs().max(z.im.abs()))
+        .fold(0.0_f64, f64::max);
+    let far = peak.is_finite() && peak > 0.0 && !(2f64.powi(-60)..=2f64.powi(60)).contains(&peak);
+    far.then(|| 2f64.powi((peak.log2().round() as i32).clamp(-1000, 1000)))
+}
+
+/// `v` divided by its [`far_scale`] (exact: a power of two), when it has one.
+fn rescaled(v: &[c64]) -> Option<Vec<c64>> {
+    far_scale(v).map(|s| v.iter().map(|z| z / s).collect())
+}
+
+/// MAC of two complex vectors: |a^H b|^2 / (a^H a b^H b); 0 when either is zero. Scale-free:
+/// vectors of any magnitude a double holds give the same MAC.
 pub fn mac(a: &[c64], b: &[c64]) -> f64 {
+    if let Some(a) = rescaled(a) {
+        return mac(&a, b);
+    }
+    if let Some(b) = rescaled(b) {
+        return mac(a, &b);
+    }
     let ab: c64 = a.iter().zip(b).map(|(x, y)| x.conj() * y).sum();
     let aa: f64 = a.iter().map(|x| x.norm_sqr()).sum();
     let bb: f64 = b.iter().map(|x| x.norm_sqr()).sum();
@@ -102,14 +126,21 @@ fn rotated(v: &[c64], angle: f64) -> Vec<f64> {
 /// `peak` is +1: [`real_mode`]'s shape when `peak` is its largest component, a smooth function
 /// of `v` near it (the standard errors differentiate it with the peak held).
 pub fn real_shape_scaled_at(v: &[c64], peak: usize) -> Vec<f64> {
+    if let Some(v) = rescaled(v) {
+        return real_shape_scaled_at(&v, peak);
+    }
     let (sxx, syy, sxy) = moments(v);
     let shape = rotated(v, 0.5 * (2.0 * sxy).atan2(sxx - syy));
     let at = shape[peak];
     shape.iter().map(|x| x / at).collect()
 }
 
-/// The real normal mode and complexity of a complex shape (see the module docs).
+/// The real normal mode and complexity of a complex shape (see the module docs). Scale-free:
+/// a shape of any magnitude a double holds gives the same mode, MPC and MPD.
 pub fn real_mode(v: &[c64]) -> RealMode {
+    if let Some(v) = rescaled(v) {
+        return real_mode(&v);
+    }
     let (sxx, syy, sxy) = moments(v);
     let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
     let (c, s) = (angle.cos(), angle.sin());
@@ -165,6 +196,32 @@ mod tests {
         }
         assert!((m.mpc - 1.0).abs() < 1e-14);
         assert!(m.mpd_deg.abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_mode_and_its_complexity_do_not_depend_on_the_scale() {
+        let phi: f64 = 0.4;
+        let v = [
+            c64::new(1.0, 0.0),
+            c64::from_polar(1.0, phi),
+            c64::new(-0.3, 0.1),
+        ];
+        let m = real_mode(&v);
+        for scale in [1e-300, 1e-150, 1e-80, 1e80, 1e150, 1e300] {
+            let w: Vec<c64> = v.iter().map(|z| z * scale).collect();
+            let s = real_mode(&w);
+            assert!(
+                (s.mpc - m.mpc).abs() < 1e-12,
+                "{scale}: {} vs {}",
+                s.mpc,
+                m.mpc
+            );
+            assert!((s.mpd_deg - m.mpd_deg).abs() < 1e-9, "{scale}");
+            for (a, b) in s.shape.iter().zip(&m.shape) {
+                assert!((a - b).abs() < 1e-12, "{scale}");
+            }
+            assert!((mac(&w, &v) - mac(&v, &v)).abs() < 1e-12, "{scale}");
+        }
     }
 
     #[test]

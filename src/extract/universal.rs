@@ -96,6 +96,16 @@ pub enum UffInputError {
     /// An abscissa that is not evenly spaced.
     #[error("{}: record {record}: the frequency axis is not evenly spaced", file.display())]
     UnevenAxis { file: PathBuf, record: usize },
+    /// A function of fewer than two points: no axis at all.
+    #[error(
+        "{}: record {record} has {points} point(s): an FRF needs at least two frequency lines",
+        file.display()
+    )]
+    TooFewPoints {
+        file: PathBuf,
+        record: usize,
+        points: usize,
+    },
     /// An FRF of another quantity or units.
     #[error(
         "{}: record {record}: ordinate {what}, but the first FRF has {expected}; mixed units are refused",
@@ -157,11 +167,37 @@ pub enum UffInputError {
     /// A geometry without nodes.
     #[error("{}: no node coordinates (dataset 15 or 2411)", geometry.display())]
     NoGeometry { geometry: PathBuf },
+    /// A node given twice at different places.
+    #[error(
+        "{}: node {node} is given twice, at {first:?} and at {second:?}: a node has one place; remove or renumber one of them",
+        geometry.display()
+    )]
+    DuplicateNode {
+        geometry: PathBuf,
+        node: u64,
+        first: [f64; 3],
+        second: [f64; 3],
+    },
 }
 
 fn axis_of(f: &Function) -> Option<(f64, f64, usize)> {
     f.even_abscissa(AXIS_TOLERANCE)
         .map(|(a, b)| (a, b, f.len()))
+}
+
+/// The axis of a found function, or why it has none (too few points, uneven).
+fn axis_or_error(x: &Found) -> Result<(f64, f64, usize), UffInputError> {
+    if x.f.len() < 2 {
+        return Err(UffInputError::TooFewPoints {
+            file: x.file.to_path_buf(),
+            record: x.record,
+            points: x.f.len(),
+        });
+    }
+    axis_of(x.f).ok_or_else(|| UffInputError::UnevenAxis {
+        file: x.file.to_path_buf(),
+        record: x.record,
+    })
 }
 
 /// Same number of points, start within 1e-6 of a step, step within 1e-6 relative.
@@ -238,10 +274,7 @@ impl Frame<'_> {
     fn check_axis(&self, x: &Found) -> Result<(), UffInputError> {
         let describe =
             |a: (f64, f64, usize)| format!("{} points from {} Hz by {} Hz", a.2, a.0, a.1);
-        let here = axis_of(x.f).ok_or_else(|| UffInputError::UnevenAxis {
-            file: x.file.to_path_buf(),
-            record: x.record,
-        })?;
+        let here = axis_or_error(x)?;
         if same_axis(self.axis, here) {
             Ok(())
         } else {
@@ -364,10 +397,7 @@ pub fn frfs(
                 .join(", "),
         });
     };
-    let axis = axis_of(first.f).ok_or_else(|| UffInputError::UnevenAxis {
-        file: first.file.to_path_buf(),
-        record: first.record,
-    })?;
+    let axis = axis_or_error(first)?;
     let first_quantity = quantity_of(first.f);
     let quantity = match quantity.or(first_quantity) {
         Some(q) => q,
@@ -410,6 +440,15 @@ pub fn frfs(
     })
 }
 
+/// The labels of `nodes` for a message: at most the first 20, then how many in all.
+fn listed(nodes: &[&crate::uff::Node]) -> String {
+    let mut labels: Vec<String> = nodes.iter().take(20).map(|n| n.label.to_string()).collect();
+    if nodes.len() > 20 {
+        labels.push(format!("... ({} in all)", nodes.len()));
+    }
+    labels.join(", ")
+}
+
 /// The X coordinate of each channel's node in the geometry `nodes` (read from `geometry`).
 pub fn positions(
     channels: &[Channel],
@@ -422,6 +461,18 @@ pub fn positions(
             geometry: geometry.to_path_buf(),
         });
     }
+    let mut seen: std::collections::HashMap<u64, [f64; 3]> = std::collections::HashMap::new();
+    for n in &all {
+        let first = *seen.entry(n.label).or_insert(n.coordinates);
+        if first != n.coordinates {
+            return Err(UffInputError::DuplicateNode {
+                geometry: geometry.to_path_buf(),
+                node: n.label,
+                first,
+                second: n.coordinates,
+            });
+        }
+    }
     channels
         .iter()
         .map(|c| {
@@ -433,11 +484,7 @@ pub fn positions(
                     node: c.node,
                     file: c.file.clone(),
                     record: c.record,
-                    present: all
-                        .iter()
-                        .map(|n| n.label.to_string())
-                        .collect::<Vec<_>>()
-                        .join(", "),
+                    present: listed(&all),
                 })
         })
         .collect()
@@ -542,6 +589,24 @@ mod tests {
     #[test]
     fn refusals_name_the_record() {
         let err = |records| frfs(&file(records), None).unwrap_err();
+        // A record of no point has no axis to be uneven: it says so.
+        for abscissa in [
+            Abscissa::Uneven(Vec::new()),
+            Abscissa::Even {
+                start: 0.0,
+                step: 0.5,
+            },
+        ] {
+            let mut empty = function(FunctionType::Frf, 1, 2, 12, "m/s^2/N");
+            if let Record::Function(f) = &mut empty {
+                f.abscissa = abscissa;
+                f.ordinate = Values::Complex(Vec::new());
+            }
+            assert_eq!(
+                err(vec![empty]).to_string(),
+                "f.uff: record 1 has 0 point(s): an FRF needs at least two frequency lines"
+            );
+        }
         assert!(matches!(
             err(vec![function(FunctionType::Coherence, 1, 2, 0, "NONE")]),
             UffInputError::NoFrf { .. }
@@ -639,5 +704,22 @@ mod tests {
             positions(&u.channels, &[], g),
             Err(UffInputError::NoGeometry { .. })
         ));
+        // A node given twice: at the same place it is one node, at another it is refused.
+        let twice = |x| {
+            vec![Nodes {
+                format: crate::uff::NodeFormat::Single15,
+                nodes: vec![node(1, 0.5), node(4, 0.028), node(1, x)],
+            }]
+        };
+        assert_eq!(
+            positions(&u.channels, &twice(0.5), g).unwrap(),
+            vec![0.028, 0.5]
+        );
+        assert_eq!(
+            positions(&u.channels, &twice(0.7), g)
+                .unwrap_err()
+                .to_string(),
+            "g.uff: node 1 is given twice, at [0.5, 0.0, 0.0] and at [0.7, 0.0, 0.0]: a node has one place; remove or renumber one of them"
+        );
     }
 }

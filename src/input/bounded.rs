@@ -63,43 +63,39 @@ impl<R> Bounded<R> {
     }
 }
 
+/// The error of a read past a limit.
+fn refused(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidData, message)
+}
+
 impl<R: Read> Read for Bounded<R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         let n = self.inner.read(buf)?;
         self.bytes += n as u64;
         if self.bytes > self.limits.bytes {
-            return Err(io::Error::new(
-                io::ErrorKind::InvalidData,
-                format!(
-                    "the file is larger than {} bytes, the most a file of this kind may have",
-                    self.limits.bytes
-                ),
-            ));
+            return Err(refused(format!(
+                "the file is larger than {} bytes, the most a file of this kind may have",
+                self.limits.bytes
+            )));
         }
         for &b in &buf[..n] {
             if b == b'\n' {
                 self.newlines += 1;
                 self.line_bytes = 0;
                 if self.newlines > self.limits.lines {
-                    return Err(io::Error::new(
-                        io::ErrorKind::InvalidData,
-                        format!(
-                            "the file has more than {} lines, the most a file of this kind may have",
-                            self.limits.lines
-                        ),
-                    ));
+                    return Err(refused(format!(
+                        "the file has more than {} lines, the most a file of this kind may have",
+                        self.limits.lines
+                    )));
                 }
             } else {
                 self.line_bytes += 1;
                 if self.line_bytes > self.limits.line_bytes {
-                    return Err(io::Error::new(
-                        io::ErrorKind::InvalidData,
-                        format!(
-                            "line {} is longer than {} bytes, the most a line of this file may have",
-                            self.newlines + 1,
-                            self.limits.line_bytes
-                        ),
-                    ));
+                    return Err(refused(format!(
+                        "line {} is longer than {} bytes, the most a line of this file may have",
+                        self.newlines + 1,
+                        self.limits.line_bytes
+                    )));
                 }
             }
         }

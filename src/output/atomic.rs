@@ -130,6 +130,13 @@ pub fn staging_folder(target: &Path) -> io::Result<PathBuf> {
     Ok(dir)
 }
 
+/// A new file in a staging folder of [`staging_folder`], created exclusively under the
+/// registry's lock, so that no file appears in the folder once a signal's clean-up began.
+pub fn create_staged_file(path: &Path) -> io::Result<std::fs::File> {
+    let _guard = live();
+    std::fs::File::create_new(path)
+}
+
 /// A complete temporary file waiting to replace its target.
 #[derive(Debug)]
 pub struct Staged {

@@ -3,11 +3,7 @@
 
 use std::path::Path;
 
-use crate::common::{jointid, scratch};
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use crate::common::{jointid, s, scratch};
 
 /// Exit 2, `needle` in a short one-line error, no panic.
 fn refused_briefly(args: &[&str], needle: &str) {
@@ -69,48 +65,19 @@ fn a_huge_line_is_refused_naming_it_and_a_long_value_is_quoted_short() {
     );
     // The measured-modes reader.
     let measured = dir.join("m.csv");
-    std::fs::write(
-        &measured,
-        format!("mode,frequency_hz,node,dof,value\n1,{long},0,w,1\n"),
-    )
-    .unwrap();
-    refused_briefly(
-        &[
-            "identify",
-            "--model",
-            "models/paper-case-1.toml",
-            "--measured",
-            s(&measured),
-            "--n",
-            "10",
-            "--m",
-            "5",
-            "--weighting",
-            "inverse",
-        ],
-        "line 2 is longer than 1048576 bytes",
+    let identify = format!(
+        "identify --model models/paper-case-1.toml --measured {} --n 10 --m 5 --weighting inverse",
+        s(&measured)
     );
-    std::fs::write(
-        &measured,
-        format!("mode,frequency_hz,node,dof,value\n1,{half},0,w,1\n"),
-    )
-    .unwrap();
-    refused_briefly(
-        &[
-            "identify",
-            "--model",
-            "models/paper-case-1.toml",
-            "--measured",
-            s(&measured),
-            "--n",
-            "10",
-            "--m",
-            "5",
-            "--weighting",
-            "inverse",
-        ],
-        "... (524288 bytes)`",
-    );
+    let identify: Vec<&str> = identify.split_whitespace().collect();
+    for (frequency, says) in [
+        (&long, "line 2 is longer than 1048576 bytes"),
+        (&half, "... (524288 bytes)`"),
+    ] {
+        let text = format!("mode,frequency_hz,node,dof,value\n1,{frequency},0,w,1\n");
+        std::fs::write(&measured, text).unwrap();
+        refused_briefly(&identify, says);
+    }
     // The Matrix Market and DOF-table readers of an external model.
     let fixture = Path::new("tests/fixtures/matrices/two-dof");
     for name in ["free.toml", "K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"] {
@@ -118,15 +85,8 @@ fn a_huge_line_is_refused_naming_it_and_a_long_value_is_quoted_short() {
     }
     let model = dir.join("free.toml");
     let out = dir.join("o.csv");
-    let args = [
-        "simulate",
-        "--model",
-        s(&model),
-        "--modes",
-        "1",
-        "--out",
-        s(&out),
-    ];
+    let args = format!("simulate --model {} --modes 1 --out {}", s(&model), s(&out));
+    let args: Vec<&str> = args.split_whitespace().collect();
     let k0 = std::fs::read_to_string(dir.join("K0.mtx")).unwrap();
     let mut lines: Vec<&str> = k0.lines().collect();
     let size_at = lines.iter().position(|l| !l.starts_with('%')).unwrap();

@@ -143,3 +143,46 @@ fn close_modes_noisy_receptance() {
     let ex = extract(&set, &settings, &|_, _| {}).unwrap();
     assert_modes(&ex, &sys, &[0, 1, 2, 3], &responses, 1e-3, 0.1, 0.999);
 }
+
+#[test]
+fn frfs_scaled_far_from_one_give_the_same_modes() {
+    // The noise-free case above, its FRFs multiplied by 1e-150 .. 1e150: frequencies, damping
+    // and MPC do not depend on the unit of the data.
+    let sys = prescribed(&[50.0, 140.0, 300.0], &[0.002, 0.01, 0.03], 3);
+    let freqs = lines(0.5, 400.0);
+    let responses: Vec<usize> = (0..3).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let settings = Settings {
+        max_order: 24,
+        ..Settings::default()
+    };
+    let base = extract(
+        &frf_set(&h, &freqs, &responses, Quantity::Displacement),
+        &settings,
+        &|_, _| {},
+    )
+    .unwrap();
+    for scale in [1e-150, 1e-90, 1e90, 1e150] {
+        let mut set = frf_set(&h, &freqs, &responses, Quantity::Displacement);
+        for r in &mut set.responses {
+            for v in r.iter_mut() {
+                *v *= scale;
+            }
+        }
+        let ex =
+            extract(&set, &settings, &|_, _| {}).unwrap_or_else(|e| panic!("scale {scale}: {e}"));
+        assert_eq!(ex.modes.len(), base.modes.len(), "scale {scale}");
+        for (a, b) in ex.modes.iter().zip(&base.modes) {
+            assert!(
+                (a.frequency_hz - b.frequency_hz).abs() < 1e-9 * b.frequency_hz,
+                "{scale}"
+            );
+            assert!(
+                (a.mpc - b.mpc).abs() < 1e-9,
+                "scale {scale}: MPC {} vs {}",
+                a.mpc,
+                b.mpc
+            );
+        }
+    }
+}

@@ -6,8 +6,12 @@
 //! dropped or duplicated, bytes flipped) and generated flag values, made by proptest's
 //! strategies, independent of the code under test. `cargo test` runs a bounded number of
 //! cases (32 per property); for a long run: `PROPTEST_CASES=5000 cargo test --release --test suite fuzz::`.
+//! The security surfaces (cluster scripts, merge, external models, geometry) are in
+//! [`security`].
 
 use crate::common;
+
+mod security;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -39,6 +39,7 @@ mod reliability;
 mod report;
 mod results;
 mod setups;
+mod signals;
 mod slurm_injection;
 mod study;
 mod uff_formats;

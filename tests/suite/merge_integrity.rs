@@ -4,23 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::common::{jointid, scratch};
+use crate::common::{ci_study, jointid, refused, s, scratch};
 
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// The CI study, 300 trials, its model by absolute path, its CSV `single.csv` beside it.
+/// The CI study, 300 trials, its CSV `single.csv` beside it.
 fn study(dir: &Path) -> PathBuf {
-    let model = std::path::absolute("models/paper-case-1.toml").unwrap();
-    let text = std::fs::read_to_string("studies/ci-bias.toml")
-        .unwrap()
-        .replace("trials = 50000", "trials = 300")
-        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"))
-        .replace("\"../results/ci-bias.csv\"", "\"single.csv\"");
-    let path = dir.join("s.toml");
-    std::fs::write(&path, text).unwrap();
-    path
+    ci_study(dir, "s.toml", "ci-bias", "single.csv", 300)
 }
 
 fn ok(args: &[&str]) {
@@ -33,13 +21,8 @@ fn ok(args: &[&str]) {
 }
 
 /// Exit 2, every needle in the error, and `out` not written.
-fn refused(args: &[&str], out: &Path, needles: &[&str]) {
-    let o = jointid(args);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-    for n in needles {
-        assert!(err.contains(n), "`{n}` not in: {err}");
-    }
+fn refused_to(args: &[&str], out: &Path, needles: &[&str]) {
+    refused(args, needles);
     assert!(!out.exists(), "{} written", out.display());
 }
 
@@ -99,7 +82,7 @@ fn a_damaged_shard_is_refused_naming_file_line_and_fault() {
     for (what, text) in damaged {
         assert_ne!(text, good, "{what}");
         std::fs::write(&shards[0], &text).unwrap();
-        refused(
+        refused_to(
             &["merge", s(&shards[0]), s(&shards[1]), "--out", s(&merged)],
             &merged,
             &[&format!("{}:", s(&shards[0])), "rerun its shard"],
@@ -114,15 +97,12 @@ fn a_shard_whose_hash_was_refreshed_is_still_checked_row_by_row() {
     let dir = scratch("integrity", "rows");
     let study_path = study(&dir);
     let shard = dir.join("s.1.csv");
-    ok(&[
-        "study",
+    let shard_run = format!(
+        "study {} --quiet --shard 1/1 --out {}",
         s(&study_path),
-        "--quiet",
-        "--shard",
-        "1/1",
-        "--out",
-        s(&shard),
-    ]);
+        s(&shard)
+    );
+    ok(&shard_run.split_whitespace().collect::<Vec<_>>());
     let good = std::fs::read_to_string(&shard).unwrap();
     let merged = dir.join("merged.csv");
     for (line, field, value, fault) in [
@@ -153,7 +133,7 @@ fn a_shard_whose_hash_was_refreshed_is_still_checked_row_by_row() {
             .collect();
         std::fs::write(&shard, format!("{head}{rows}")).unwrap();
         let data_line = text.lines().position(|l| l.starts_with("cell,")).unwrap() + 1 + line;
-        refused(
+        refused_to(
             &["merge", s(&shard), "--out", s(&merged)],
             &merged,
             &[&format!("{}:{data_line}: {fault}", s(&shard))],

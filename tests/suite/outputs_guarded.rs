@@ -4,40 +4,16 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::common::{jointid, scratch};
+use crate::common::{ci_study, jointid, names, refused, s, scratch};
 
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// Exit 2 with `needle` in the one error line.
-fn refused(args: &[&str], needle: &str) {
-    let o = jointid(args);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-    assert!(err.contains(needle), "`{needle}` not in: {err}");
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
-/// The CI study, 300 trials, its model by absolute path, its CSV `csv`.
+/// The CI study, 300 trials, its CSV `csv`.
 fn study(dir: &Path, csv: &str) -> PathBuf {
-    let model = std::path::absolute("models/paper-case-1.toml").unwrap();
-    let text = std::fs::read_to_string("studies/ci-bias.toml")
-        .unwrap()
-        .replace("trials = 50000", "trials = 300")
-        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"))
-        .replace("\"../results/ci-bias.csv\"", &format!("{csv:?}"));
-    let path = dir.join("s.toml");
-    std::fs::write(&path, text).unwrap();
-    path
+    ci_study(dir, "s.toml", "ci-bias", csv, 300)
+}
+
+/// Exit 2 with `needle` in the error.
+fn refused_with(args: &[&str], needle: &str) {
+    refused(args, &[needle]);
 }
 
 #[test]
@@ -47,11 +23,11 @@ fn a_path_through_a_missing_folder_never_reaches_an_input() {
     let study_path = study(&dir, "nothere/../s.toml");
     let before = std::fs::read(&study_path).unwrap();
     let says = "refused as output: it is the input";
-    refused(
+    refused_with(
         &["study", s(&study_path), "--quiet", "--out", s(&spelled)],
         says,
     );
-    refused(
+    refused_with(
         &[
             "study",
             s(&study_path),
@@ -63,24 +39,21 @@ fn a_path_through_a_missing_folder_never_reaches_an_input() {
         ],
         says,
     );
-    refused(&["study", s(&study_path), "--quiet"], says);
+    refused_with(&["study", s(&study_path), "--quiet"], says);
     assert_eq!(std::fs::read(&study_path).unwrap(), before);
     assert_eq!(names(&dir), vec!["s.toml"]);
     // merge: its shard is its input.
     let study_path = study(&dir, "single.csv");
     let shard = dir.join("a.csv");
-    let o = jointid(&[
-        "study",
+    let shard_run = format!(
+        "study {} --quiet --shard 1/1 --out {}",
         s(&study_path),
-        "--quiet",
-        "--shard",
-        "1/1",
-        "--out",
-        s(&shard),
-    ]);
+        s(&shard)
+    );
+    let o = jointid(&shard_run.split_whitespace().collect::<Vec<_>>());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let shard_bytes = std::fs::read(&shard).unwrap();
-    refused(
+    refused_with(
         &[
             "merge",
             s(&shard),
@@ -107,32 +80,15 @@ fn the_files_an_external_model_names_are_inputs() {
         .map(|n| std::fs::read(dir.join(n)).unwrap())
         .collect();
     let measured = dir.join("m.csv");
-    let o = jointid(&[
-        "simulate",
-        "--model",
-        s(&model),
-        "--modes",
-        "1",
-        "--out",
-        s(&measured),
-    ]);
+    let simulate =
+        |out: &Path| format!("simulate --model {} --modes 1 --out {}", s(&model), s(out));
+    let o = jointid(&simulate(&measured).split_whitespace().collect::<Vec<_>>());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let says = "refused as output: it is the input";
     for victim in ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"] {
         let v = dir.join(victim);
-        refused(
-            &[
-                "simulate",
-                "--model",
-                s(&model),
-                "--modes",
-                "1",
-                "--out",
-                s(&v),
-            ],
-            says,
-        );
-        refused(
+        refused_with(&simulate(&v).split_whitespace().collect::<Vec<_>>(), says);
+        refused_with(
             &[
                 "identify",
                 "--model",
@@ -150,7 +106,7 @@ fn the_files_an_external_model_names_are_inputs() {
             ],
             says,
         );
-        refused(
+        refused_with(
             &[
                 "diagnose",
                 "--model",
@@ -163,11 +119,9 @@ fn the_files_an_external_model_names_are_inputs() {
             says,
         );
     }
-    let text = format!(
-        "name = \"x\"\nmodel = \"free.toml\"\n[truth]\ndelta = {{ k = 100.0 }}\n[grid]\nmodes = [1]\nn = [2]\nm = [1]\nnf = [0]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.0]\n[monte_carlo]\ntrials = 10\nseed = 1\nnoise = \"uniform\"\n[output]\ncsv = \"dK.mtx\"\n"
-    );
+    let text = "name = \"x\"\nmodel = \"free.toml\"\n[truth]\ndelta = { k = 100.0 }\n[grid]\nmodes = [1]\nn = [2]\nm = [1]\nnf = [0]\nweighting = [\"inverse\"]\nshape_noise = [0.01]\nfrequency_noise = [0.0]\n[monte_carlo]\ntrials = 10\nseed = 1\nnoise = \"uniform\"\n[output]\ncsv = \"dK.mtx\"\n";
     std::fs::write(dir.join("x.toml"), text).unwrap();
-    refused(&["study", s(&dir.join("x.toml")), "--quiet"], says);
+    refused_with(&["study", s(&dir.join("x.toml")), "--quiet"], says);
     let after: Vec<Vec<u8>> = ["K0.mtx", "M.mtx", "dK.mtx", "dofs.csv"]
         .iter()
         .map(|n| std::fs::read(dir.join(n)).unwrap())
@@ -211,30 +165,32 @@ fn a_failed_run_removes_the_folders_it_created() {
     let study_path = study(&dir, "single.csv");
     // cluster slurm: the logs folder is made before the merged CSV's folder, which cannot be.
     std::fs::write(dir.join("file"), "x").unwrap();
-    let o = jointid(&[
+    let (jobs, merged) = (dir.join("jobs"), dir.join("file/merged.csv"));
+    let slurm = [
         "cluster",
         "slurm",
         s(&study_path),
         "--shards",
         "2",
         "--dir",
-        s(&dir.join("jobs")),
+        s(&jobs),
         "--out",
-        s(&dir.join("file/merged.csv")),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert_eq!(names(&dir), vec!["file", "s.toml"]);
+        s(&merged),
+    ];
     // study: the trials CSV `out` cannot replace the folder the results go into.
-    let o = jointid(&[
+    let (trials, results) = (dir.join("out"), dir.join("out/r.csv"));
+    let study = [
         "study",
         s(&study_path),
         "--quiet",
         "--trials-csv",
-        s(&dir.join("out")),
+        s(&trials),
         "--out",
-        s(&dir.join("out/r.csv")),
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert_eq!(names(&dir), vec!["file", "s.toml"]);
+        s(&results),
+    ];
+    for args in [&slurm[..], &study[..]] {
+        refused(args, &[]);
+        assert_eq!(names(&dir), vec!["file", "s.toml"], "{args:?}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -9,20 +9,21 @@ use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::common::{jointid, scratch};
+use crate::common::{ci_study, jointid, names, refused, s, scratch};
 
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// The CI study with its model by absolute path, named `name`, written as `path`.
-fn study(path: &Path, name: &str) {
-    let model = std::path::absolute("models/paper-case-1.toml").unwrap();
-    let text = std::fs::read_to_string("studies/ci-bias.toml")
-        .unwrap()
-        .replace("name = \"ci-bias\"", &format!("name = {name:?}"))
-        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"));
-    std::fs::write(path, text).unwrap();
+/// `cluster slurm` of `study` in 2 shards, scripts in `jobs`, with `extra` flags.
+fn slurm(study: &Path, jobs: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "cluster",
+        "slurm",
+        s(study),
+        "--shards",
+        "2",
+        "--dir",
+        s(jobs),
+    ];
+    args.extend(extra);
+    jointid(&args)
 }
 
 /// An executable shell script.
@@ -63,22 +64,19 @@ fn hostile_paths_are_quoted_and_the_scripts_run_no_injected_command() {
             s(&calls)
         ),
     );
-    let study_path = dir.join("s \"$(touch PWNED4)\".toml");
-    study(&study_path, "ci-bias");
+    let study_path = ci_study(
+        &dir,
+        "s \"$(touch PWNED4)\".toml",
+        "ci-bias",
+        "single.csv",
+        300,
+    );
     let out = dir.join("out $(touch PWNED5) \"`touch PWNED6`\".csv");
-    let o = jointid(&[
-        "cluster",
-        "slurm",
-        s(&study_path),
-        "--shards",
-        "2",
-        "--dir",
-        s(&jobs),
-        "--out",
-        s(&out),
-        "--jointid",
-        s(&stub),
-    ]);
+    let o = slurm(
+        &study_path,
+        &jobs,
+        &["--out", s(&out), "--jointid", s(&stub)],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // A stub sbatch that answers job ids; the submit script runs on the "login node".
     let bin = dir.join("stubs");
@@ -140,8 +138,7 @@ fn hostile_paths_are_quoted_and_the_scripts_run_no_injected_command() {
 #[test]
 fn values_that_cannot_be_quoted_are_refused_and_nothing_is_written() {
     let dir = scratch("inject", "values");
-    let study_path = dir.join("s.toml");
-    study(&study_path, "ci-bias");
+    let study_path = ci_study(&dir, "s.toml", "ci-bias", "single.csv", 300);
     let jobs = dir.join("jobs");
     let spaced = dir.join("a b");
     let newline_dir = format!("{}\ntouch PWNED", s(&jobs));
@@ -180,16 +177,9 @@ fn values_that_cannot_be_quoted_are_refused_and_nothing_is_written() {
         if flag != "--dir" {
             args.extend(["--dir", s(&jobs)]);
         }
-        let o = jointid(&args);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{flag}: {err}");
-        assert!(err.contains(says), "{flag}: {err}");
+        let err = refused(&args, &[says]);
         assert_eq!(err.lines().count(), 1, "one line: {err}");
-        let left: Vec<String> = std::fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        assert_eq!(left, vec!["s.toml".to_string()], "{flag}");
+        assert_eq!(names(&dir), vec!["s.toml".to_string()], "{flag}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -198,23 +188,14 @@ fn values_that_cannot_be_quoted_are_refused_and_nothing_is_written() {
 fn a_study_name_must_be_a_plain_file_name() {
     let dir = scratch("inject", "name");
     for name in ["x\ntouch PWNED", "../../escape", "a b", "$(id)"] {
-        let study_path = dir.join("s.toml");
-        study(&study_path, name);
-        let o = jointid(&[
-            "cluster",
-            "slurm",
-            s(&study_path),
-            "--shards",
-            "2",
-            "--dir",
-            s(&dir.join("jobs")),
-        ]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{name:?}: {err}");
-        assert!(
-            err.contains("s.toml: name = `")
-                && err.contains("is invalid: it must be 1 to 100 letters"),
-            "{err}"
+        let study_path = ci_study(&dir, "s.toml", name, "single.csv", 300);
+        let args = ["cluster", "slurm", s(&study_path), "--shards", "2"];
+        refused(
+            &[&args[..], &["--dir", s(&dir.join("jobs"))]].concat(),
+            &[
+                "s.toml: name = `",
+                "is invalid: it must be 1 to 100 letters",
+            ],
         );
         assert!(!dir.join("jobs").exists());
         assert!(!dir.parent().unwrap().join("escape.submit.sh").exists());
@@ -225,22 +206,11 @@ fn a_study_name_must_be_a_plain_file_name() {
 #[test]
 fn the_merged_csv_may_not_be_the_study_or_its_model() {
     let dir = scratch("inject", "clobber");
-    let study_path = dir.join("s.toml");
-    study(&study_path, "ci-bias");
+    let study_path = ci_study(&dir, "s.toml", "ci-bias", "single.csv", 300);
     let before = std::fs::read(&study_path).unwrap();
     let model = std::path::absolute("models/paper-case-1.toml").unwrap();
     for out in [study_path.clone(), dir.join("nothere/../s.toml"), model] {
-        let o = jointid(&[
-            "cluster",
-            "slurm",
-            s(&study_path),
-            "--shards",
-            "2",
-            "--dir",
-            s(&dir.join("jobs")),
-            "--out",
-            s(&out),
-        ]);
+        let o = slurm(&study_path, &dir.join("jobs"), &["--out", s(&out)]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains("refused as output: it is the input"), "{err}");

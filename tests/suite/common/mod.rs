@@ -3,6 +3,8 @@
 
 pub mod frf;
 
+use std::path::{Path, PathBuf};
+
 use jointid::structure::{Observation, Structure};
 
 #[allow(unused_imports)]
@@ -97,4 +99,47 @@ pub fn assert_within_fit_range(parameters: &serde_json::Value, nominals: &[f64],
         let v = number(&p["value"]);
         assert!(v > nominal / range && v < nominal * range, "{label}: {p}");
     }
+}
+
+/// The CI study (`studies/ci-bias.toml`) written as `dir/file`: `trials` trials per cell, its
+/// model by absolute path, named `name`, its result CSV `csv` (relative to `dir`).
+pub fn ci_study(dir: &Path, file: &str, name: &str, csv: &str, trials: usize) -> PathBuf {
+    let model = std::path::absolute("models/paper-case-1.toml").unwrap();
+    let text = std::fs::read_to_string("studies/ci-bias.toml")
+        .unwrap()
+        .replace("name = \"ci-bias\"", &format!("name = {name:?}"))
+        .replace("trials = 50000", &format!("trials = {trials}"))
+        .replace("\"../models/paper-case-1.toml\"", &format!("{model:?}"))
+        .replace("\"../results/ci-bias.csv\"", &format!("{csv:?}"));
+    let path = dir.join(file);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The names in `dir`, sorted.
+pub fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs the binary with `args`, expects exit 2 with every one of `needles` in its error, and
+/// returns the error.
+pub fn refused(args: &[&str], needles: &[&str]) -> String {
+    let o = jointid(args);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "`{n}` not in: {err}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+/// `path` as UTF-8.
+pub fn s(path: &Path) -> &str {
+    path.to_str().unwrap()
 }
