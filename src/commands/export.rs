@@ -5,7 +5,7 @@
 //! overwritten. The temporary folder is created exclusively under an unpredictable name
 //! ([`staging_folder`]): the run removes only what it created.
 
-use jointid::output::atomic::{create_staged_file, staging_folder, untrack};
+use jointid::output::atomic::{commit_folder, create_staged_file, staging_folder, untrack};
 use std::io::Write;
 
 use anyhow::{Context, bail};
@@ -54,7 +54,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
         identical(&model, &back).map_err(|why| {
             anyhow::anyhow!("the exported model reads back different from the model: {why}")
         })?;
-        std::fs::rename(&tmp, out).with_context(|| {
+        commit_folder(&tmp, out).with_context(|| {
             format!(
                 "{}: cannot move the exported folder into place",
                 out.display()

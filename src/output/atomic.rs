@@ -130,6 +130,16 @@ pub fn staging_folder(target: &Path) -> io::Result<PathBuf> {
     Ok(dir)
 }
 
+/// Renames a filled staging folder of [`staging_folder`] to `target` and withdraws it from
+/// the clean-up, under the registry's lock: a signal's clean-up either removes the whole
+/// folder first or finds it already in place, never empties it half-way through the rename.
+pub fn commit_folder(staging: &Path, target: &Path) -> io::Result<()> {
+    let mut guard = live();
+    std::fs::rename(staging, target)?;
+    guard.temporaries.retain(|t| t != staging);
+    Ok(())
+}
+
 /// A new file in a staging folder of [`staging_folder`], created exclusively under the
 /// registry's lock, so that no file appears in the folder once a signal's clean-up began.
 pub fn create_staged_file(path: &Path) -> io::Result<std::fs::File> {
@@ -155,8 +165,10 @@ impl Staged {
         refuse_non_regular(&self.path)?;
         let tmp = self.tmp.take().expect("a staged file holds its temporary");
         let tmp_path = tmp.path().to_path_buf();
+        // Under the registry's lock: a signal's clean-up never meets a half-renamed file.
+        let mut guard = live();
         let result = tmp.persist(&self.path).map_err(|e| e.error);
-        live().temporaries.retain(|t| t != &tmp_path);
+        guard.temporaries.retain(|t| t != &tmp_path);
         result.map(|_| ())
     }
 }
