@@ -215,10 +215,22 @@ pub fn fit(
     basis: Basis,
     responses: &[Vec<c64>],
 ) -> Fit {
+    let ls = least_squares(omega, weights, poles, basis, responses);
+    unpack(&ls.x, poles.len(), basis, ls.rank)
+}
+
+/// The least-squares solution behind [`fit`] (one column per response), with its QR for
+/// projections of other vectors.
+pub fn least_squares(
+    omega: &[f64],
+    weights: &[f64],
+    poles: &[c64],
+    basis: Basis,
+    responses: &[Vec<c64>],
+) -> lstsq::LeastSquares {
     let a = design(omega, weights, poles, basis);
     let b = data(weights, responses);
-    let ls = lstsq::solve(a.as_ref(), b.as_ref());
-    unpack(&ls.x, poles.len(), basis, ls.rank)
+    lstsq::solve(a.as_ref(), b.as_ref())
 }
 
 /// The FRFs of the model (poles, fit) on `omega`, `[response][line]`.

@@ -152,13 +152,9 @@ fn modes_of(
     modes
 }
 
-/// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
-/// called after each response of the reduction, each model order and at the end.
-pub fn extract(
-    frf: &FrfSet,
-    settings: &Settings,
-    progress: &dyn Fn(usize, usize),
-) -> Result<Extraction, ExtractError> {
+/// The settings and the FRFs checked, and the analysis band, which must hold enough lines for
+/// the highest model order.
+fn checked_band(frf: &FrfSet, settings: &Settings) -> Result<frf::Band, ExtractError> {
     settings.check().map_err(ExtractError::Setting)?;
     frf.validate()?;
     if let (Some(averages), None) = (settings.averages, &frf.coherence) {
@@ -174,6 +170,31 @@ pub fn extract(
             max_order,
         });
     }
+    Ok(band)
+}
+
+/// The thresholds of the chart and of the choice.
+fn criteria_of(settings: &Settings) -> Criteria {
+    Criteria {
+        frequency_tolerance: settings.frequency_tolerance,
+        damping_tolerance: settings.damping_tolerance,
+        mac_min: settings.mac_min,
+        min_stable: settings
+            .min_stable
+            .unwrap_or_else(|| stabilization::min_stable_default(settings.max_order)),
+        max_damping: settings.max_damping,
+    }
+}
+
+/// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
+/// called after each response of the reduction, each model order and at the end.
+pub fn extract(
+    frf: &FrfSet,
+    settings: &Settings,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Extraction, ExtractError> {
+    let band = checked_band(frf, settings)?;
+    let max_order = settings.max_order;
     let f = &frf.frequencies_hz;
     let frequencies_hz: Vec<f64> = band.lines.iter().map(|&k| f[k]).collect();
     let omega: Vec<f64> = frequencies_hz.iter().map(|x| 2.0 * PI * x).collect();
@@ -213,15 +234,7 @@ pub fn extract(
         progress(done, total);
     }
 
-    let criteria = Criteria {
-        frequency_tolerance: settings.frequency_tolerance,
-        damping_tolerance: settings.damping_tolerance,
-        mac_min: settings.mac_min,
-        min_stable: settings
-            .min_stable
-            .unwrap_or_else(|| stabilization::min_stable_default(max_order)),
-        max_damping: settings.max_damping,
-    };
+    let criteria = criteria_of(settings);
     let mut chart = stabilization::classify(&orders, &criteria);
     let residue_refs: Vec<&[c64]> = orders
         .iter()
@@ -231,17 +244,10 @@ pub fn extract(
     enough_modes(chosen.len(), settings, &criteria, (lo, hi))?;
 
     let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
-    let (poles, refined) = if settings.refine {
-        let r = refine::refine(&omega, &band.weights, &start, basis, &responses);
-        if acceptable(&r.poles, &start, (lo, hi), &criteria) {
-            (r.poles, true)
-        } else {
-            (start, false)
-        }
-    } else {
-        (start, false)
-    };
-    let fit = lsfd::fit(&omega, &band.weights, &poles, basis, &responses);
+    let (poles, refined) =
+        final_poles(&omega, &band, start, basis, &responses, &criteria, settings);
+    let ls = lsfd::least_squares(&omega, &band.weights, &poles, basis, &responses);
+    let fit = lsfd::unpack(&ls.x, poles.len(), basis, ls.rank);
     let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
     let fit_error = relative_errors(&responses, &synthesized);
     let (noise, variances) = line_variances(
@@ -253,8 +259,7 @@ pub fn extract(
         basis,
         poles.len(),
     );
-    let std =
-        uncertainty::standard_errors(&omega, &band.weights, &poles, basis, &responses, &variances);
+    let std = uncertainty::standard_errors(&omega, &band.weights, &poles, basis, &ls, &variances);
     let modes = modes_of(&chosen, &poles, &fit.residues, std);
     let mean_coherence = frf.coherence.as_ref().map(|c| {
         c.iter()
@@ -278,6 +283,28 @@ pub fn extract(
         refined,
         noise,
     })
+}
+
+/// The poles the modes are given with: the chart's `start` refined when the settings ask for
+/// it and the refined poles are [`acceptable`], else `start`; and whether they were refined.
+fn final_poles(
+    omega: &[f64],
+    band: &frf::Band,
+    start: Vec<c64>,
+    basis: lsfd::Basis,
+    responses: &[Vec<c64>],
+    criteria: &Criteria,
+    settings: &Settings,
+) -> (Vec<c64>, bool) {
+    if !settings.refine {
+        return (start, false);
+    }
+    let r = refine::refine(omega, &band.weights, &start, basis, responses);
+    if acceptable(&r.poles, &start, (band.lo, band.hi), criteria) {
+        (r.poles, true)
+    } else {
+        (start, false)
+    }
 }
 
 /// The noise of every line of the band (see [`uncertainty`]): from the coherence when the

@@ -50,7 +50,7 @@ use std::f64::consts::PI;
 
 use faer::{Mat, MatRef, c64};
 
-use super::lsfd::{Basis, data, design, pole_jacobian};
+use super::lsfd::{Basis, pole_jacobian};
 use super::shapes;
 use crate::optim::lstsq;
 
@@ -152,21 +152,20 @@ fn qt_top(ls: &lstsq::LeastSquares, m: MatRef<'_, f64>, top: usize) -> (Mat<f64>
     (head, q)
 }
 
-/// The standard errors of every mode of `poles` (see the module docs), the data `responses`
-/// on `omega` with line weights `weights`, line variances `variances[response][line]`.
+/// The standard errors of every mode of `poles` (see the module docs): `ls` the LSFD solution
+/// of the data on `omega` with line weights `weights` ([`super::lsfd::least_squares`]), line
+/// variances `variances[response][line]`.
 pub fn standard_errors(
     omega: &[f64],
     weights: &[f64],
     poles: &[c64],
     basis: Basis,
-    responses: &[Vec<c64>],
+    ls: &lstsq::LeastSquares,
     variances: &[Vec<f64>],
 ) -> Vec<ModeStd> {
     let nf = omega.len();
     let k2 = 2 * poles.len();
-    let a = design(omega, weights, poles, basis);
-    let m = a.ncols();
-    let ls = lstsq::solve(a.as_ref(), data(weights, responses).as_ref());
+    let m = ls.x.nrows();
     // Z = D R^+ : N^-1 A^T = Z Q_m^T for the QR of A D.
     let r = ls.qr.thin_R();
     let r = Mat::from_fn(m, m, |i, j| if i <= j { r[(i, j)] } else { 0.0 });
@@ -180,7 +179,7 @@ pub fn standard_errors(
 
     let mut s = Mat::<f64>::zeros(k2, k2);
     let mut middle = Mat::<f64>::zeros(k2, k2);
-    let mut parts = Vec::with_capacity(responses.len());
+    let mut parts = Vec::with_capacity(variances.len());
     for (o, variance) in variances.iter().enumerate() {
         let sigma: Vec<f64> = (0..2 * nf)
             .map(|i| {
@@ -189,7 +188,7 @@ pub fn standard_errors(
             })
             .collect();
         let t = pole_jacobian(omega, weights, poles, basis.power, ls.x.col(o));
-        let (head, mut u) = qt_top(&ls, t.as_ref(), m);
+        let (head, mut u) = qt_top(ls, t.as_ref(), m);
         for i in 0..m {
             for j in 0..k2 {
                 u[(i, j)] = 0.0;
@@ -199,7 +198,7 @@ pub fn standard_errors(
         lstsq::apply_q(&ls.qr, u.as_mut());
         let su = scale_rows(&sigma, u.as_ref());
         middle += u.transpose() * &su;
-        let (su_head, _) = qt_top(&ls, su.as_ref(), m);
+        let (su_head, _) = qt_top(ls, su.as_ref(), m);
         let sq = scale_rows(&sigma, q_m.as_ref());
         parts.push(Response {
             a: &z * &head,
@@ -210,15 +209,16 @@ pub fn standard_errors(
     let (s_inv, _) = lstsq::pseudo_inverse(s.as_ref());
     let c_theta = &s_inv * &middle * &s_inv;
     let b: Vec<Mat<f64>> = parts.iter().map(|p| &p.e * &s_inv).collect();
+    let a_c: Vec<Mat<f64>> = parts.iter().map(|p| &p.a * &c_theta).collect();
     poles
         .iter()
         .enumerate()
         .map(|(mode, &lambda)| {
             let block = Mat::from_fn(2, 2, |i, j| c_theta[(2 * mode + i, 2 * mode + j)]);
-            let residues: Vec<c64> = (0..responses.len())
+            let residues: Vec<c64> = (0..ls.x.ncols())
                 .map(|o| c64::new(ls.x[(2 * mode, o)], ls.x[(2 * mode + 1, o)]))
                 .collect();
-            let cov = residue_covariance(mode, &parts, &b, &c_theta);
+            let cov = residue_covariance(mode, &parts, &b, &a_c);
             ModeStd {
                 frequency_hz: quadratic(&frequency_gradient(lambda), &block).sqrt(),
                 damping_ratio: quadratic(&damping_gradient(lambda), &block).sqrt(),
@@ -228,16 +228,16 @@ pub fn standard_errors(
         .collect()
 }
 
-/// Cov of (Re R_mode,o, Im R_mode,o) over the responses o (2N x 2N, response-major).
+/// Cov of (Re R_mode,o, Im R_mode,o) over the responses o (2N x 2N, response-major); `b` the
+/// b_o and `a_c` the a_o C of every response (see the module docs).
 fn residue_covariance(
     mode: usize,
     parts: &[Response],
     b: &[Mat<f64>],
-    c_theta: &Mat<f64>,
+    a_c: &[Mat<f64>],
 ) -> Mat<f64> {
     let n = parts.len();
-    let k2 = c_theta.nrows();
-    let a_c: Vec<Mat<f64>> = parts.iter().map(|p| &p.a * c_theta).collect();
+    let k2 = b.first().map_or(0, |m| m.ncols());
     Mat::from_fn(2 * n, 2 * n, |i, j| {
         let (o, alpha) = (i / 2, i % 2);
         let (q, beta) = (j / 2, j % 2);
@@ -367,7 +367,8 @@ mod tests {
                 let mut variances = vec![vec![0.0; omega.len()]; 3];
                 variances[o][k] = 2.0 * s;
                 let weights = vec![1.0; omega.len()];
-                let std = standard_errors(&omega, &weights, &truth, basis, &data, &variances);
+                let ls = lsfd::least_squares(&omega, &weights, &truth, basis, &data);
+                let std = standard_errors(&omega, &weights, &truth, basis, &ls, &variances);
                 let eps = 1e-5 * data[o][k].norm();
                 let shifted = |d: c64| {
                     let mut plus = data.clone();

@@ -2,7 +2,6 @@
 //! no empty folder the run created: each command is interrupted at delays spread over its
 //! run time, and what is left is checked after each.
 
-
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
