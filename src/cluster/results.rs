@@ -264,7 +264,7 @@ fn check_conditions(
         .copied()
         .zip(c.condition_fields());
     let expected = conditions.chain([
-        (Column::Noise, study.noise.to_string()),
+        (Column::Noise, study.noise_name().to_string()),
         (Column::Introduced, study.delta[param].to_string()),
         (Column::Trials, study.trials.to_string()),
         (Column::Unidentified, c.unidentified_names()),

@@ -29,8 +29,8 @@ use std::path::{Path, PathBuf};
 use super::shard::ShardSpec;
 use super::shard_rows::{CellRows, RowKey, check_row, rows_hash};
 use crate::input::bounded::{Bounded, TABLE};
+use crate::study::CellResult;
 use crate::study::results::{RESULT_HEADER, write_results};
-use crate::study::{CellResult, NoiseKind};
 
 const MAGIC: &str = "# jointid shard ";
 
@@ -61,7 +61,7 @@ pub fn write_shard(
     header: &ShardHeader,
     results: &[CellResult],
     names: &[String],
-    noise: NoiseKind,
+    noise: &str,
 ) -> io::Result<()> {
     let words = |v: &[usize]| {
         v.iter()
@@ -366,7 +366,7 @@ mod tests {
             params: vec!["k1".into(), "k 2,\"x\"".into()],
         };
         let mut bytes = Vec::new();
-        write_shard(&mut bytes, &header, &[], &[], NoiseKind::Uniform).unwrap();
+        write_shard(&mut bytes, &header, &[], &[], "uniform").unwrap();
         let back = ShardFile::from_reader(&bytes[..], Path::new("a.csv")).unwrap();
         assert_eq!(back.header, header);
         assert!(back.rows.is_empty());

@@ -80,6 +80,7 @@ fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
     outputs.extend((1..=plan.shards).map(|k| plan.shard_file(k)));
     let mut inputs = vec![plan.study.clone()];
     inputs.extend(model_inputs(&study.model_file));
+    inputs.extend(study.measured_noise.iter().map(|m| m.file.clone()));
     let outputs: Vec<&Path> = outputs.iter().map(|p| p.as_path()).collect();
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;

@@ -115,6 +115,7 @@ fn prepare(path: &Path, args: &StudyArgs, gate: bool, threads: usize) -> anyhow:
     outputs.extend(args.run.trials_csv.as_deref());
     let mut inputs = model_inputs(&study.model_file);
     inputs.push(study.file.clone());
+    inputs.extend(study.measured_noise.iter().map(|m| m.file.clone()));
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
     check_memory(
@@ -191,8 +192,8 @@ fn execute(run: StudyRun, args: &StudyArgs, pool: &rayon::ThreadPool) -> anyhow:
     };
     create_parent(&out)?;
     let staged = stage(&out, |w| match &header {
-        Some(header) => write_shard(w, header, &results, &names, run.study.noise),
-        None => write_results(w, &results, &names, run.study.noise),
+        Some(header) => write_shard(w, header, &results, &names, run.study.noise_name()),
+        None => write_results(w, &results, &names, run.study.noise_name()),
     })
     .with_context(|| format!("{}: cannot write the results", out.display()))?;
     commit_all(trials.into_iter().chain(std::iter::once(staged)).collect())?;

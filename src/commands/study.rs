@@ -4,7 +4,7 @@ use std::io::Write;
 
 use crate::cli::StudyArgs;
 use crate::commands::run_study::run_studies;
-use jointid::output::study::write_paper_table;
+use jointid::output::study::{noise_description, write_paper_table};
 
 pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
     run_studies(args, false, |finished| {
@@ -19,11 +19,11 @@ pub fn run(args: &StudyArgs) -> anyhow::Result<()> {
         });
         writeln!(
             out,
-            "{}{part}: {} cell(s) x {} trial(s), {} noise; median [q05, q95] of each correction",
+            "{}{part}: {} cell(s) x {} trial(s), {}; median [q05, q95] of each correction",
             study.name,
             finished.results.len(),
             study.trials,
-            study.noise
+            noise_description(study)
         )?;
         write_paper_table(&mut out, &finished.results, &finished.names, &study.modes)?;
         writeln!(out, "results: {}\n", finished.out.display())?;

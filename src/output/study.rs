@@ -5,7 +5,37 @@
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
-use crate::study::{CellResult, CellSamples};
+use crate::study::measured_noise::MeasuredNoise;
+use crate::study::{CellResult, CellSamples, Study};
+
+/// The study's noise in words: `uniform noise`, or, for a noise taken from a measured file,
+/// the file and each mode's relative errors that the grid's levels multiply.
+pub fn noise_description(study: &Study) -> String {
+    match &study.measured_noise {
+        None => format!("{} noise", study.noise),
+        Some(m) => measured_description(m),
+    }
+}
+
+fn measured_description(m: &MeasuredNoise) -> String {
+    let modes: Vec<String> = m
+        .modes
+        .iter()
+        .map(|e| {
+            format!(
+                "mode {} shape {:.3}%, frequency {:.4}%",
+                e.mode,
+                100.0 * e.shape,
+                100.0 * e.frequency
+            )
+        })
+        .collect();
+    format!(
+        "normal noise of the standard errors of {} ({}), times the grid's shape_noise and frequency_noise",
+        m.file.display(),
+        modes.join("; ")
+    )
+}
 
 /// Header of the per-trial CSV.
 pub const TRIALS_HEADER: [&str; 6] = ["cell", "trial", "mode", "param", "correction", "failed"];

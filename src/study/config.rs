@@ -40,6 +40,7 @@ use serde::Deserialize;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{MapAccess, SeqAccess, Visitor};
 
+use super::measured_noise::{MeasuredNoise, ModeNoise};
 use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
 use crate::random::NoiseKind;
@@ -139,6 +140,7 @@ struct RawMonteCarlo {
     trials: i64,
     seed: i64,
     noise: String,
+    measured: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -254,8 +256,11 @@ pub struct Study {
     pub trials: usize,
     /// Seed of every random stream.
     pub seed: u64,
-    /// Noise distribution.
+    /// Noise distribution of the draws (normal under a measured noise).
     pub noise: NoiseKind,
+    /// The noise taken from a measured file (`noise = "measured"`): the grid's noise levels
+    /// are then factors on each mode's measured errors.
+    pub measured_noise: Option<MeasuredNoise>,
     /// Result CSV, resolved.
     pub output_csv: PathBuf,
     /// The CI gate, if any.
@@ -356,15 +361,19 @@ impl Study {
                 Ok(d)
             })
             .collect::<Result<Vec<f64>, InputError>>()?;
+        let kind = match raw.monte_carlo.noise.as_str() {
+            MEASURED => Levels::Factors,
+            _ => Levels::Relative,
+        };
         let grids = match &raw.grid {
-            RawGrids::One(g) => vec![grid(g, "grid", &check, &model)?],
+            RawGrids::One(g) => vec![grid(g, "grid", &check, &model, kind)?],
             RawGrids::Many(list) if list.is_empty() => {
                 return Err(check.invalid("grid", "[]", "at least one grid is required"));
             }
             RawGrids::Many(list) => list
                 .iter()
                 .enumerate()
-                .map(|(i, g)| grid(g, &format!("grid[{i}]"), &check, &model))
+                .map(|(i, g)| grid(g, &format!("grid[{i}]"), &check, &model, kind))
                 .collect::<Result<Vec<_>, _>>()?,
         };
         let modes = grids[0].modes.clone();
@@ -378,20 +387,17 @@ impl Study {
                 ),
             ));
         }
-        let noise: NoiseKind = raw.monte_carlo.noise.parse().map_err(|e: String| {
-            check.invalid(
-                "monte_carlo.noise",
-                format!("\"{}\"", raw.monte_carlo.noise),
-                e,
-            )
-        })?;
+        let (noise, measured_noise) = study_noise(&raw.monte_carlo, &check, base, &model, &modes)?;
+        if let Some(measured) = &measured_noise {
+            check_measured_levels(&grids, measured, &check)?;
+        }
         let trials =
             check.int_range("monte_carlo.trials", raw.monte_carlo.trials, 1, MAX_TRIALS)?;
         let seed = check.int_range("monte_carlo.seed", raw.monte_carlo.seed, 0, i64::MAX)? as u64;
         let check_spec = raw
             .check
             .as_ref()
-            .map(|c| check_spec(c, &check, &names))
+            .map(|c| check_spec(c, &check, &names, kind))
             .transpose()?;
         Ok(Study {
             file: file.to_path_buf(),
@@ -404,9 +410,71 @@ impl Study {
             trials,
             seed,
             noise,
+            measured_noise,
             output_csv: base.join(&raw.output.csv),
             check: check_spec,
         })
+    }
+}
+
+impl Study {
+    /// The noise as the result CSV names it: `uniform`, `gaussian` or `measured`.
+    pub fn noise_name(&self) -> &'static str {
+        match self.measured_noise {
+            Some(_) => MEASURED,
+            None => self.noise.name(),
+        }
+    }
+
+    /// The factors that turn a cell's shape and frequency noise levels into mode r's:
+    /// the mode's measured relative errors under a measured noise, 1 otherwise.
+    pub fn noise_scale(&self, r: usize) -> (f64, f64) {
+        match self.measured_noise.as_ref().and_then(|m| m.of(r)) {
+            Some(m) => (m.shape, m.frequency),
+            None => (1.0, 1.0),
+        }
+    }
+}
+
+/// The name of a noise taken from a measured file.
+const MEASURED: &str = "measured";
+
+/// The draws' distribution and, under `noise = "measured"`, the measured file's errors of
+/// every mode.
+fn study_noise(
+    raw: &RawMonteCarlo,
+    check: &FieldCheck,
+    base: &Path,
+    model: &Structure,
+    modes: &[usize],
+) -> Result<(NoiseKind, Option<MeasuredNoise>), InputError> {
+    match (raw.noise.as_str(), &raw.measured) {
+        (MEASURED, Some(file)) => {
+            let path = base.join(file);
+            let measured =
+                MeasuredNoise::read(&path, model, modes, check, "monte_carlo.measured")?;
+            Ok((NoiseKind::Gaussian, Some(measured)))
+        }
+        (MEASURED, None) => Err(check.invalid(
+            "monte_carlo.noise",
+            "\"measured\"",
+            "a measured noise needs `measured = \"FILE.csv\"`: a measured-modes file with standard errors, relative to the study file",
+        )),
+        (other, Some(file)) => Err(check.invalid(
+            "monte_carlo.measured",
+            format!("\"{file}\""),
+            format!("a measured file is read only under noise = \"measured\", not \"{other}\""),
+        )),
+        (other, None) => other
+            .parse()
+            .map(|kind| (kind, None))
+            .map_err(|e: String| {
+                check.invalid(
+                    "monte_carlo.noise",
+                    format!("\"{other}\""),
+                    format!("{e}, or \"measured\" (with `measured = \"FILE.csv\"`)"),
+                )
+            }),
     }
 }
 
@@ -439,18 +507,70 @@ fn ints(
     Ok(out)
 }
 
+/// What a grid's noise levels are: relative errors, or, under a measured noise, factors on
+/// each mode's measured relative errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Levels {
+    Relative,
+    Factors,
+}
+
 fn levels(
     values: &[f64],
     path: &str,
     unit: &str,
+    kind: Levels,
     check: &FieldCheck,
 ) -> Result<Vec<f64>, InputError> {
     non_empty(values, path, check)?;
     values
         .iter()
         .enumerate()
-        .map(|(i, &v)| check.relative_level(format!("{path}[{i}]"), v, unit))
+        .map(|(i, &v)| match kind {
+            Levels::Relative => check.relative_level(format!("{path}[{i}]"), v, unit),
+            Levels::Factors => check.non_negative(
+                format!("{path}[{i}]"),
+                v,
+                "a factor on the measured file's errors",
+            ),
+        })
         .collect()
+}
+
+/// Under a measured noise, every grid level times every mode's measured relative error must
+/// stay a relative error below 1.
+fn check_measured_levels(
+    grids: &[Grid],
+    measured: &MeasuredNoise,
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    for g in grids {
+        for (field, levels, of) in [
+            (
+                "shape_noise",
+                &g.shape_noise,
+                (|m: &ModeNoise| m.shape) as fn(&ModeNoise) -> f64,
+            ),
+            ("frequency_noise", &g.frequency_noise, |m: &ModeNoise| {
+                m.frequency
+            }),
+        ] {
+            for (i, &factor) in levels.iter().enumerate() {
+                if let Some(m) = measured.modes.iter().find(|m| factor * of(m) >= 1.0) {
+                    return Err(check.invalid(
+                        format!("{}.{field}[{i}]", g.path),
+                        Number(factor),
+                        format!(
+                            "times mode {}'s measured relative error {} it must stay below 1 (100%)",
+                            m.mode,
+                            Number(of(m))
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 fn weightings(
@@ -474,6 +594,7 @@ fn grid(
     path: &str,
     check: &FieldCheck,
     model: &Structure,
+    kind: Levels,
 ) -> Result<Grid, InputError> {
     let dofs = model.dof_count() as i64;
     let deformable = dofs - model.rigid as i64;
@@ -518,12 +639,14 @@ fn grid(
             &raw.shape_noise,
             &at("shape_noise"),
             "relative error",
+            kind,
             check,
         )?,
         frequency_noise: levels(
             &raw.frequency_noise,
             &at("frequency_noise"),
             "relative standard deviation",
+            kind,
             check,
         )?,
     })
@@ -539,7 +662,12 @@ fn dof_of_label(dofs: &DofMap, item: &str) -> Option<usize> {
     })
 }
 
-fn check_spec(raw: &RawCheck, check: &FieldCheck, names: &[&str]) -> Result<CheckSpec, InputError> {
+fn check_spec(
+    raw: &RawCheck,
+    check: &FieldCheck,
+    names: &[&str],
+    kind: Levels,
+) -> Result<CheckSpec, InputError> {
     let w = &raw.filter;
     let statistic = match raw.statistic.as_deref() {
         None | Some("mean") => GateStatistic::Mean,
@@ -570,7 +698,7 @@ fn check_spec(raw: &RawCheck, check: &FieldCheck, names: &[&str]) -> Result<Chec
     };
     let opt_levels = |v: &Option<Vec<f64>>, path: &str| {
         v.as_ref()
-            .map(|v| levels(v, path, "relative", check))
+            .map(|v| levels(v, path, "relative", kind, check))
             .transpose()
     };
     Ok(CheckSpec {

@@ -174,17 +174,17 @@ impl Block<'_> {
             let used = LANES.min(count - start);
             let mut rng = LaneRng::new(self.seed, cell.index as u64, (self.first + start) as u64);
             for (k, mode) in plan.modes.iter().enumerate() {
-                if cell.shape_noise > 0.0 {
+                if mode.shape_noise > 0.0 {
                     #[cfg(target_arch = "x86_64")]
                     if AVX2 && self.noise == NoiseKind::Uniform {
                         // SAFETY: AVX2 is true only in `run_avx2`, called after the CPU was
                         // checked for AVX2.
-                        unsafe { rng.uniform_shape_errors_avx2(cell.shape_noise, &mut s.shape) };
+                        unsafe { rng.uniform_shape_errors_avx2(mode.shape_noise, &mut s.shape) };
                     } else {
-                        rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
+                        rng.shape_errors(self.noise, mode.shape_noise, &mut s.shape);
                     }
                     #[cfg(not(target_arch = "x86_64"))]
-                    rng.shape_errors(self.noise, cell.shape_noise, &mut s.shape);
+                    rng.shape_errors(self.noise, mode.shape_noise, &mut s.shape);
                     for (y, &exact) in s.shape.iter_mut().zip(&mode.truth_shape) {
                         for e in y.iter_mut() {
                             *e = exact * (1.0 + *e);
@@ -196,8 +196,8 @@ impl Block<'_> {
                     }
                 }
                 let mut lambda = [mode.truth_lambda; LANES];
-                if cell.frequency_noise > 0.0 {
-                    let eps = rng.frequency_errors(self.noise, cell.frequency_noise);
+                if mode.frequency_noise > 0.0 {
+                    let eps = rng.frequency_errors(self.noise, mode.frequency_noise);
                     for l in 0..LANES {
                         let f = 1.0 + eps[l];
                         lambda[l] = mode.truth_lambda * f * f;
@@ -235,18 +235,13 @@ impl Block<'_> {
 /// The statistics of every (mode, parameter) of a cell, in (mode, parameter) order. The
 /// columns are gathered and summarised in parallel, one column per task; each column's
 /// result depends on its values alone, so the output does not depend on the thread count.
-pub fn summarize_cell(
-    study: &Study,
-    cell: &Cell,
-    plan: &CellPlan,
-    samples: &CellSamples,
-) -> Vec<RowStats> {
+pub fn summarize_cell(study: &Study, plan: &CellPlan, samples: &CellSamples) -> Vec<RowStats> {
     let (modes, q) = (samples.modes, samples.q);
     let trials = samples.trials();
     let predicted: Vec<_> = plan
         .modes
         .iter()
-        .map(|mode| predicted_std(plan, mode, cell, study.noise))
+        .map(|mode| predicted_std(plan, mode, study.noise))
         .collect();
     (0..modes * q)
         .into_par_iter()

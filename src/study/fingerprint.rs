@@ -4,7 +4,8 @@
 //! The fingerprint is the 64-bit FNV-1a hash (Fowler, Noll, Vo; the parameters of
 //! <http://www.isthe.com/chongo/tech/comp/fnv/>) of the tool version, the study file's bytes,
 //! the model file's bytes and those of the files an external model names (its matrices and
-//! DOF table, [`model_data_files`]), each prefixed by its length. It guards against mistakes,
+//! DOF table, [`model_data_files`]), and the measured file a measured noise reads, each
+//! prefixed by its length. It guards against mistakes,
 //! not against forgery. [`crate::cluster`] writes it into every shard file and merges only
 //! shards that carry the same one.
 
@@ -70,7 +71,8 @@ pub struct FingerprintError {
 }
 
 /// The fingerprint of `study` as this tool runs it: [`tool_version`], the study file, its
-/// model file and the files the model names, read from disk now.
+/// model file, the files the model names and the measured file of a measured noise, read
+/// from disk now.
 pub fn study_fingerprint(study: &Study) -> Result<String, FingerprintError> {
     let read = |path: &Path| {
         std::fs::read(path).map_err(|cause| FingerprintError {
@@ -84,6 +86,9 @@ pub fn study_fingerprint(study: &Study) -> Result<String, FingerprintError> {
         files.push(read(&path)?);
     }
     files.insert(1, model);
+    if let Some(noise) = &study.measured_noise {
+        files.push(read(&noise.file)?);
+    }
     let parts: Vec<&[u8]> = files.iter().map(|f| f.as_slice()).collect();
     Ok(fingerprint(&tool_version(), &parts))
 }

@@ -8,6 +8,7 @@
 //! - the error model and the per-trial random streams are [`crate::random`]'s;
 //! - [`engine`]: the parallel trials and their statistics;
 //! - [`predicted`]: first-order predicted standard deviations;
+//! - [`measured_noise`]: a study's noise taken from a measured file's standard errors;
 //! - [`results`]: the result CSV, its columns and its writer;
 //! - [`check`]: the CI gate on estimator bias;
 //! - [`fingerprint`]: what makes two runs of a study the same computation.
@@ -21,6 +22,7 @@ pub mod check;
 pub mod config;
 pub mod engine;
 pub mod fingerprint;
+pub mod measured_noise;
 pub mod plan;
 pub mod predicted;
 pub mod resources;
@@ -121,7 +123,7 @@ impl StudyRun {
         let plan = CellPlan::new(&self.study, &self.context, cell)
             .expect("cells are validated in StudyRun::new");
         let raw = simulate_cell(&self.study, cell, &plan, progress);
-        let rows = summarize_cell(&self.study, cell, &plan, &raw);
+        let rows = summarize_cell(&self.study, &plan, &raw);
         (
             CellResult {
                 cell: cell.clone(),

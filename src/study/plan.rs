@@ -180,6 +180,11 @@ pub struct ModePlan {
     pub truth_shape: Vec<f64>,
     /// Exact truth eigenvalue.
     pub truth_lambda: f64,
+    /// The shape noise level of this mode: the cell's, times the mode's measured relative
+    /// error under a measured noise ([`Study::noise_scale`]).
+    pub shape_noise: f64,
+    /// The frequency noise level of this mode, likewise.
+    pub frequency_noise: f64,
 }
 
 /// Everything of a cell that does not change between trials.
@@ -237,11 +242,14 @@ impl CellPlan {
                     .basis_index(mode)
                     .map_err(|e| at("modes", k, mode, &e))?;
                 let truth = ctx.truth.vectors();
+                let (shape_scale, frequency_scale) = study.noise_scale(mode);
                 Ok(ModePlan {
                     mode,
                     system: identifier.mode_system(s_r),
                     truth_shape: identified.iter().map(|&d| truth[(d, s_r)]).collect(),
                     truth_lambda: ctx.truth.values()[s_r],
+                    shape_noise: cell.shape_noise * shape_scale,
+                    frequency_noise: cell.frequency_noise * frequency_scale,
                 })
             })
             .collect::<Result<Vec<_>, String>>()?;

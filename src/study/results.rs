@@ -11,7 +11,7 @@
 
 use std::io::{self, Write};
 
-use super::{CellResult, NoiseKind, RowStats};
+use super::{CellResult, RowStats};
 
 /// A column of the result CSV, in file order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -184,12 +184,12 @@ fn stat_fields(row: &RowStats) -> Vec<String> {
 }
 
 /// Writes the result CSV: the header, then every row of every cell of `results`; `names`
-/// are the parameter names, `noise` the study's distribution.
+/// are the parameter names, `noise` the study's noise ([`super::Study::noise_name`]).
 pub fn write_results(
     out: &mut dyn Write,
     results: &[CellResult],
     names: &[String],
-    noise: NoiseKind,
+    noise: &str,
 ) -> io::Result<()> {
     let mut w = csv::Writer::from_writer(out);
     w.write_record(RESULT_HEADER)?;

@@ -66,7 +66,7 @@ fn shard_files_of_the_shipped_studies_merge_into_the_single_run_byte_for_byte() 
             .map(|c| run.run_cell(c, &|_| {}).0)
             .collect();
         let mut single = Vec::new();
-        write_results(&mut single, &results, &names, run.study.noise).unwrap();
+        write_results(&mut single, &results, &names, run.study.noise_name()).unwrap();
         let print = fingerprint("jointid test", &[b"study", b"model"]);
         for n in [1, 2, 5, 17] {
             let assignment = study_assignment(&run.study, &run.cells, n);
@@ -90,7 +90,8 @@ fn shard_files_of_the_shipped_studies_merge_into_the_single_run_byte_for_byte() 
                         params: names.clone(),
                     };
                     let mut bytes = Vec::new();
-                    write_shard(&mut bytes, &header, &mine, &names, run.study.noise).unwrap();
+                    write_shard(&mut bytes, &header, &mine, &names, run.study.noise_name())
+                        .unwrap();
                     ShardFile::from_reader(&bytes[..], Path::new("shard.csv")).unwrap()
                 })
                 .collect();

@@ -42,6 +42,7 @@ mod setups;
 mod signals;
 mod slurm_injection;
 mod study;
+mod study_measured_noise;
 mod uff_formats;
 mod uff_pyuff;
 mod uff_robustness;
