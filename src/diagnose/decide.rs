@@ -61,10 +61,7 @@ impl Judgement {
     /// Whether the model explains the data, the noise estimated being `estimate`.
     pub fn explains(&self, estimate: &NoiseEstimate) -> bool {
         let pass = |p: Option<f64>| p.is_some_and(|p| p >= FIT_ALPHA);
-        estimate.shape_factor <= LARGEST_FACTOR
-            && pass(self.fit)
-            && pass(self.frequency)
-            && pass(self.whiteness)
+        estimate.plausible() && pass(self.fit) && pass(self.frequency) && pass(self.whiteness)
     }
 }
 
@@ -156,9 +153,14 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
     };
     let noise = if estimate.from_data {
         "the data's own standard errors (known: chi^2 tests)".to_string()
+    } else if estimate.stated_kept {
+        format!(
+            "the stated noise ({:.0} degrees of freedom: F tests), no model's residuals passing the checks that do not stand on the noise level (whiteness along the structure, frequencies against the shapes' scale, within {LARGEST_FACTOR}x the stated)",
+            estimate.dof
+        )
     } else {
         format!(
-            "the noise estimated from the shape residuals of the largest model ({}, {:.0} degrees of freedom: F tests)",
+            "the noise estimated from the shape residuals of the largest model that fits ({}, {:.0} degrees of freedom: F tests)",
             estimate.from_model, estimate.dof
         )
     };
@@ -217,6 +219,7 @@ mod tests {
             frequency_factor: 1.0,
             from_differences: 0,
             from_data: false,
+            stated_kept: false,
             frequency_sigmas: None,
             from_levels: 100,
             frequency_values: 6,

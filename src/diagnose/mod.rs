@@ -5,7 +5,8 @@
 //! The pipeline ([`diagnose`]), one step per module, each returning plain data:
 //! 1. [`calibrate`]: the model checked, the effects' context, the joint calibrated;
 //! 2. [`noise`]: every candidate fitted under the stated noise, and the noise estimated from
-//!    what the largest physical model leaves (shape pseudo-residuals and levels);
+//!    what the largest physical model that fits leaves (shape pseudo-residuals and levels;
+//!    [`yardstick`]: the stated noise kept when no model fits);
 //! 3. [`candidate`]: every candidate fitted again under the working noise (the registry of
 //!    candidates: effects of the model library, the frequency-dependent joint, scans);
 //! 4. [`score`]: each fit judged: likelihood-ratio p-value, goodness of fit, lack of fit of
@@ -45,6 +46,7 @@ pub mod score;
 pub mod sensitivity;
 pub mod settings;
 pub mod whiteness;
+pub mod yardstick;
 
 pub use candidate::{Candidate, Tier, catalogue, registry};
 pub use decide::{ALPHA, AMBIGUITY_MARGIN, FIT_ALPHA, TREND_SIGMAS};
@@ -133,14 +135,14 @@ pub fn diagnose(
         base: &first_base,
     };
     let first = candidate::fit_all(&library, &first_stage, None);
-    let physical = first.iter().filter_map(|(c, outcome)| {
-        let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
-        Some((c.name(), fit.model.as_ref()?))
-    });
     let estimate = if stated.measured_std {
+        let physical = first.iter().filter_map(|(c, outcome)| {
+            let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
+            Some((c.name(), fit.model.as_ref()?))
+        });
         noise::from_data(physical, &first_base, measured, &stated)
     } else {
-        noise::from_largest(physical, &first_base, measured, settings.noise)
+        yardstick::choose(&first, &first_stage)
     };
     // Under the working noise: the joint calibrated again, every candidate refitted, judged.
     let working = Calibration {

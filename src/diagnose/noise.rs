@@ -1,6 +1,6 @@
-//! The measurement noise estimated from the data: the residuals of the largest plausible
-//! model fitted (the candidate with the smallest chi^2 under the stated noise), so that the
-//! selection does not stand on a noise level nobody knows well.
+//! The measurement noise estimated from the data: the residuals of the largest physical model
+//! that fits (chosen by module `diagnose::yardstick`), so that the selection does not stand
+//! on a noise level nobody knows well.
 //!
 //! Shapes (each mode scaled to a peak of 1, u_j the measured component, e_j the residual of
 //! the fit): the variance function
@@ -77,32 +77,15 @@ pub struct NoiseEstimate {
     /// factors are then the check of the residuals against them, not a yardstick.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub from_data: bool,
+    /// Whether no model's residuals passed the checks that do not stand on the noise level,
+    /// so that the stated noise is the working noise (known: chi^2 tests) and the estimate
+    /// above, the largest model's, is a check only (module `diagnose::yardstick`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub stated_kept: bool,
     /// With the data's standard errors: the relative standard deviation of each measured
     /// frequency (the working frequency noise is then their RMS, for the summaries).
     #[serde(skip)]
     pub frequency_sigmas: Option<Vec<f64>>,
-}
-
-/// The noise estimated from the largest physical model fitted under the `stated` noise: among
-/// `models` (each candidate's name and its fitted model, for the candidates that have a model
-/// of their own and a physical size), the one with the smallest chi^2 when below the
-/// joint-only fit `base`'s, else `base` (a fit outside its effect's plausible range absorbs
-/// misfit no physical effect explains, and would pass it off as noise).
-pub fn from_largest<'a>(
-    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
-    base: &'a Fitted,
-    measured: &MeasuredModes,
-    stated: Noise,
-) -> NoiseEstimate {
-    let (name, largest) = largest(models, base);
-    estimate(
-        largest,
-        measured,
-        largest.estimates.len(),
-        stated,
-        SHAPE_FLOOR,
-        name,
-    )
 }
 
 /// The model with the smallest chi^2 among `models` when below `base`'s, else `base`.
@@ -118,7 +101,8 @@ fn largest<'a>(
 
 /// The noise of data that carry their own standard errors: they are the working noise (known,
 /// so the tests are chi^2 tests: infinite degrees of freedom), and the residuals of the
-/// largest physical model (chosen as in [`from_largest`]), fitted under them, give the check:
+/// largest physical model (the smallest chi^2 below the joint-only fit's), fitted under them,
+/// give the check:
 /// `shape_factor` and `frequency_factor` are the RMS of the weighted shape and frequency
 /// residuals, corrected for the unknowns spent on them (1 when the data's errors are right
 /// and the model fits). The working noise's `shape` and `frequency` are the RMS relative
@@ -176,21 +160,22 @@ pub fn from_data<'a>(
         from_levels: res.shape.len(),
         frequency_values: res.frequency.len(),
         from_data: true,
+        stated_kept: false,
         frequency_sigmas: Some(sigma_f),
     }
 }
 
-/// Estimates the noise from `fitted` (with `unknowns` model parameters besides the shape
-/// scales); `stated` with floor `stated_floor` (fraction of the peak) starts the iteration.
+/// Estimates the noise from the residuals `res` of a model (with `unknowns` parameters
+/// besides the shape scales); `stated` with floor `stated_floor` (fraction of the peak) starts
+/// the iteration.
 pub fn estimate(
-    fitted: &Fitted,
+    res: &Residuals,
     measured: &MeasuredModes,
     unknowns: usize,
     stated: Noise,
     stated_floor: f64,
     from_model: &str,
 ) -> NoiseEstimate {
-    let res = residuals(fitted, measured);
     let n_s = res.shape.len() as f64;
     let n_f = res.frequency.len() as f64;
     let n = n_s + n_f;
@@ -203,7 +188,7 @@ pub fn estimate(
     // shared between frequencies and shapes by their counts, the shape scales are the
     // shapes' own.
     let (dense, sparse): (Vec<along::Sequence>, Vec<along::Sequence>) =
-        along::of_residuals(&res, measured)
+        along::of_residuals(res, measured)
             .into_iter()
             .partition(along::Sequence::dense);
     let mut rows = pseudo_residuals(&dense);
@@ -243,6 +228,7 @@ pub fn estimate(
         from_levels,
         frequency_values: res.frequency.len(),
         from_data: false,
+        stated_kept: false,
         frequency_sigmas: None,
     }
 }
@@ -476,6 +462,13 @@ fn reweighted(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
 pub const LARGEST_FACTOR: f64 = 4.0;
 
 impl NoiseEstimate {
+    /// Whether the noise level is one a user could have misjudged: the estimate within
+    /// [`LARGEST_FACTOR`] of the stated, or the stated kept as the yardstick (the estimate is
+    /// then a check of a model that does not fit).
+    pub fn plausible(&self) -> bool {
+        self.stated_kept || self.shape_factor <= LARGEST_FACTOR
+    }
+
     /// P(F(dof, nu) > chi^2 / dof): the goodness of fit of a chi^2 computed under the working
     /// noise, whose scale was estimated on nu degrees of freedom.
     pub fn fit_p_value(&self, chi2: f64, dof: usize) -> f64 {

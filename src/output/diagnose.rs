@@ -4,6 +4,7 @@ use std::io::{self, Write};
 
 use super::table::{plus_minus, sci, write_table};
 use crate::diagnose::Estimate;
+use crate::diagnose::noise::LARGEST_FACTOR;
 use crate::diagnose::report::Profile;
 use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
@@ -242,9 +243,22 @@ fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         )
         .and_then(|()| warnings(out, r));
     }
+    if e.stated_kept {
+        return writeln!(
+            out,
+            "noise used: the stated; no model's residuals pass the checks that do not stand on the noise level (whiteness along the structure, frequencies against the shapes' scale, within {}x the stated), so none gives the yardstick. Check: the largest model ({}) leaves shape {:.3e} ({:.2}x stated) and frequencies alone {:.3e} ({:.2}x stated)",
+            LARGEST_FACTOR,
+            e.from_model,
+            e.shape,
+            e.shape_factor,
+            e.frequency_check,
+            e.frequency_factor
+        )
+        .and_then(|()| warnings(out, r));
+    }
     writeln!(
         out,
-        "noise estimated from the shape residuals of the largest model ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); the selection used frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
+        "noise estimated from the shape residuals of the largest model that fits ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); the selection used frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
         e.from_model,
         e.shape,
         e.shape_factor,

@@ -36,8 +36,14 @@ fn html_table(header: &[&str], rows: &[Vec<String>]) -> String {
 /// The noise stated and the one the selection used, in one sentence.
 fn noise_sentence(r: &Report) -> String {
     let e = &r.noise_estimate;
+    if e.stated_kept {
+        return format!(
+            "Noise stated: frequency {}, shape {} (relative standard deviations), and used: no model's residuals pass the checks that do not stand on the noise level. The largest model ({}) leaves shape {:.3e} ({:.2}x stated).",
+            r.noise.frequency, r.noise.shape, e.from_model, e.shape, e.shape_factor
+        );
+    }
     format!(
-        "Noise stated: frequency {}, shape {} (relative standard deviations). Estimated from the shape residuals of the largest model ({}): shape {:.3e} ({:.2}x stated). The selection used frequency {:.3e}, shape {:.3e}.",
+        "Noise stated: frequency {}, shape {} (relative standard deviations). Estimated from the shape residuals of the largest model that fits ({}): shape {:.3e} ({:.2}x stated). The selection used frequency {:.3e}, shape {:.3e}.",
         r.noise.frequency,
         r.noise.shape,
         e.from_model,
