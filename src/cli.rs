@@ -360,6 +360,10 @@ pub struct DiagnoseArgs {
     /// Relative standard deviation of the measured shape components.
     #[arg(long, default_value_t = 0.02)]
     pub shape_noise: f64,
+    /// Judge with the stated noise (--frequency-noise, --shape-noise) even when the measured
+    /// file carries standard errors (they describe the random error of the test alone).
+    #[arg(long)]
+    pub stated_noise: bool,
     /// Also write the report as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,

@@ -55,6 +55,11 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     check_outputs(&outputs, &inputs)?;
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
+    let measured = if args.stated_noise {
+        measured.without_std()
+    } else {
+        measured
+    };
     let report = diagnose(&model, &measured, settings)
         .with_context(|| format!("{}", args.measured.display()))?;
     let mut staged = Vec::new();

@@ -462,11 +462,12 @@ fn reweighted(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
 pub const LARGEST_FACTOR: f64 = 4.0;
 
 impl NoiseEstimate {
-    /// Whether the noise level is one a user could have misjudged: the estimate within
-    /// [`LARGEST_FACTOR`] of the stated, or the stated kept as the yardstick (the estimate is
-    /// then a check of a model that does not fit).
+    /// Whether the residual scale is one a user could have misjudged the noise by: within
+    /// [`LARGEST_FACTOR`] of the stated. With the stated kept as the yardstick it is the
+    /// largest model's, the smallest residual any model reaches: beyond the factor, no model
+    /// explains the data.
     pub fn plausible(&self) -> bool {
-        self.stated_kept || self.shape_factor <= LARGEST_FACTOR
+        self.shape_factor <= LARGEST_FACTOR
     }
 
     /// P(F(dof, nu) > chi^2 / dof): the goodness of fit of a chi^2 computed under the working

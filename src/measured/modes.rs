@@ -127,6 +127,21 @@ impl MeasuredModes {
         Self { modes }
     }
 
+    /// The same modes without their standard errors (frequency, damping, shape values).
+    pub fn without_std(self) -> Self {
+        let modes = self
+            .modes
+            .into_iter()
+            .map(|m| MeasuredMode {
+                frequency_std: None,
+                damping_std: None,
+                value_std: None,
+                ..m
+            })
+            .collect();
+        Self { modes }
+    }
+
     /// The modes, ascending mode number.
     pub fn modes(&self) -> &[MeasuredMode] {
         &self.modes

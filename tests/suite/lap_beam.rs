@@ -111,7 +111,11 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
         let estimate = &r["noise_estimate"];
         assert_eq!(estimate["stated_kept"], true, "seed {seed}: {estimate}");
         assert_eq!(number(&estimate["working"]["shape"]), 0.01, "seed {seed}");
-        assert_eq!(number(&estimate["working"]["frequency"]), 0.001, "seed {seed}");
+        assert_eq!(
+            number(&estimate["working"]["frequency"]),
+            0.001,
+            "seed {seed}"
+        );
         // The remaining error of the calibrated joint: the symmetric modes' 3.4-3.9% (five
         // seeds), the antisymmetric ones within 3 sigma of the 0.1% frequency noise.
         let after = &r["after"];
