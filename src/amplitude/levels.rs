@@ -8,6 +8,7 @@
 //! model = "models/unesp-bert.toml"   # the model the modes' points are read against
 //! reference = 1                      # FRF response node whose peak gives the amplitude
 //! excitation_unit = "V"              # the unit of `excitation` (labels only)
+//! random_band_hz = 110.0             # a flat random excitation of this band, RMS = level
 //!
 //! [[level]]
 //! excitation = 0.05                  # > 0, each level once
@@ -36,6 +37,8 @@ pub struct RawLevels {
     pub reference: Option<u64>,
     /// Unit of the excitation (labels only).
     pub excitation_unit: Option<String>,
+    /// Bandwidth (Hz) of a flat random excitation whose RMS is `excitation`.
+    pub random_band_hz: Option<f64>,
     /// The levels.
     #[serde(default)]
     pub level: Vec<RawLevel>,
@@ -87,6 +90,9 @@ pub struct Levels {
     pub reference: Option<u64>,
     /// Unit of the excitation ("" when not given).
     pub excitation_unit: String,
+    /// Bandwidth (Hz) of a flat random excitation whose RMS is the level (None: harmonic
+    /// excitation of amplitude the level).
+    pub random_band_hz: Option<f64>,
     /// The levels, in the file's order (at least two, distinct excitations).
     pub levels: Vec<Level>,
 }
@@ -115,6 +121,10 @@ impl Levels {
                  excitation",
             ));
         }
+        let random_band_hz = match raw.random_band_hz {
+            Some(b) => Some(check.positive("random_band_hz", b, "Hz")?),
+            None => None,
+        };
         let mut levels: Vec<Level> = Vec::with_capacity(raw.level.len());
         for (i, l) in raw.level.into_iter().enumerate() {
             let excitation = check.positive(format!("level[{i}].excitation"), l.excitation, "the excitation's unit")?;
@@ -173,6 +183,7 @@ impl Levels {
             model: folder.join(raw.model),
             reference: raw.reference,
             excitation_unit: raw.excitation_unit.unwrap_or_default(),
+            random_band_hz,
             levels,
         })
     }

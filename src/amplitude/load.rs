@@ -5,7 +5,10 @@
 //! The amplitude A is the displacement amplitude at the reference sensor, A = a / omega_r^2,
 //! a the acceleration amplitude: given, or the excitation times the magnitude of the
 //! reference's FRF at the mode's frequency (the steady response to a harmonic drive of the
-//! level's size at resonance). The FRF's magnitude is its largest within f_r (1 +- 2 zeta_r),
+//! level's size at resonance). Under a flat random excitation of RMS `excitation` over
+//! `random_band_hz` = B, a is the RMS of the mode's response instead: the integral of the
+//! resonance's |H|^2 (a Lorentzian of half-width zeta f_r) is |H_peak|^2 pi zeta f_r, so
+//! a = excitation |H_peak| sqrt(pi zeta_r f_r / B). The FRF's magnitude is its largest within f_r (1 +- 2 zeta_r),
 //! refined by a parabola through that line and its neighbours; a velocity or displacement FRF
 //! is turned into acceleration by omega or omega^2.
 //!
@@ -28,9 +31,9 @@ pub struct Row {
     pub excitation: f64,
     /// Mode number.
     pub mode: usize,
-    /// Acceleration amplitude at the reference (m/s^2).
+    /// Acceleration amplitude (RMS under random excitation) at the reference (m/s^2).
     pub acceleration: f64,
-    /// Displacement amplitude at the reference (m).
+    /// Displacement amplitude (RMS under random excitation) at the reference (m).
     pub amplitude: f64,
     /// Frequency (Hz).
     pub frequency_hz: f64,
@@ -194,7 +197,12 @@ pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
                             ),
                         )
                     })?;
-                    top * level.excitation
+                    // A random excitation of RMS `excitation` spread flat over B Hz: the mode's
+                    // RMS response is |H_peak| excitation sqrt(pi zeta f_r / B).
+                    let share = levels
+                        .random_band_hz
+                        .map_or(1.0, |b| (PI * damping * m.frequency_hz / b).sqrt());
+                    top * level.excitation * share
                 }
                 (None, None) => 0.0,
             };

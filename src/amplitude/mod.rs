@@ -25,7 +25,7 @@ pub mod select;
 
 use std::path::PathBuf;
 
-pub use fit::Series;
+pub use fit::{Series, Weights};
 pub use iwan::{Iwan, Segalman};
 pub use laws::{LAWS, Law, Regime};
 pub use levels::Levels;
