@@ -248,7 +248,10 @@ pub fn extra_sd(residuals: &[f64], s: &[f64], dof: f64) -> f64 {
     if dof <= 0.0 || chi2(0.0) <= dof {
         return 0.0;
     }
-    let mut hi = residuals.iter().fold(0.0_f64, |m, r| m.max(r.abs())).max(1e-300);
+    let mut hi = residuals
+        .iter()
+        .fold(0.0_f64, |m, r| m.max(r.abs()))
+        .max(1e-300);
     while chi2(hi) > dof {
         hi *= 2.0;
     }
@@ -270,9 +273,7 @@ pub fn raw_residuals(fitted: &Fitted, data: &Series) -> (Vec<f64>, Vec<f64>) {
         .iter()
         .enumerate()
         .map(|(i, &a)| {
-            let e = fitted
-                .law
-                .evaluate(fitted.regime, &fitted.parameters, a);
+            let e = fitted.law.evaluate(fitted.regime, &fitted.parameters, a);
             (e.stiffness - data.stiffness[i], e.damping - data.damping[i])
         })
         .unzip()

@@ -92,9 +92,7 @@ impl Law {
                         && p[2] <= 10.0
                         && p[5] > 0.0
                         && p[5] <= 10.0
-                        && amplitudes
-                            .iter()
-                            .all(|&a| 1.0 - p[1] * a.powf(p[2]) > 0.0)
+                        && amplitudes.iter().all(|&a| 1.0 - p[1] * a.powf(p[2]) > 0.0)
                 }
                 Law::Iwan => {
                     let m = iwan(regime, p, amplitudes);

@@ -127,7 +127,11 @@ impl Levels {
         };
         let mut levels: Vec<Level> = Vec::with_capacity(raw.level.len());
         for (i, l) in raw.level.into_iter().enumerate() {
-            let excitation = check.positive(format!("level[{i}].excitation"), l.excitation, "the excitation's unit")?;
+            let excitation = check.positive(
+                format!("level[{i}].excitation"),
+                l.excitation,
+                "the excitation's unit",
+            )?;
             if let Some(j) = levels.iter().position(|p| p.excitation == excitation) {
                 return Err(check.invalid(
                     format!("level[{i}].excitation"),

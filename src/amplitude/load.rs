@@ -123,8 +123,14 @@ fn peak(frf: &Function, power: i32, mode: &MeasuredMode) -> Option<f64> {
         .filter(|&i| (f[i] - fr).abs() <= half.max(f64::EPSILON))
         .collect();
     let nearest = (0..f.len()).min_by(|&a, &b| (f[a] - fr).abs().total_cmp(&(f[b] - fr).abs()))?;
-    let candidates = if inside.is_empty() { vec![nearest] } else { inside };
-    let k = *candidates.iter().max_by(|&&a, &&b| h[a].norm().total_cmp(&h[b].norm()))?;
+    let candidates = if inside.is_empty() {
+        vec![nearest]
+    } else {
+        inside
+    };
+    let k = *candidates
+        .iter()
+        .max_by(|&&a, &&b| h[a].norm().total_cmp(&h[b].norm()))?;
     if k == 0 || k + 1 >= f.len() || (f[k] - fr).abs() > 2.0 * (half + (f[1] - f[0]).abs()) {
         return None;
     }
@@ -145,14 +151,14 @@ fn peak(frf: &Function, power: i32, mode: &MeasuredMode) -> Option<f64> {
 pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
     let model = crate::model::from_path(&levels.model)?;
     let mut per_level: Vec<(f64, PathBuf, Vec<Row>)> = Vec::new();
-    for level in &levels.levels {
+    for (i, level) in levels.levels.iter().enumerate() {
         let modes = MeasuredModes::from_path(&level.modes, &model)?;
         let mut rows = Vec::new();
         let given: Option<&[f64]> = match &level.source {
             Source::Acceleration(values) if values.len() != modes.modes().len() => {
                 return Err(AmplitudeError::Input(crate::input::InputError::Invalid {
                     file: levels.file.clone(),
-                    path: format!("level[excitation = {}].acceleration", level.excitation),
+                    path: format!("level[{i}].acceleration"),
                     value: format!("{} value(s)", values.len()),
                     allowed: format!(
                         "one per mode of {} ({} modes)",
@@ -223,7 +229,10 @@ pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
     let first: Vec<usize> = per_level[0].2.iter().map(|r| r.mode).collect();
     let mut out: Vec<ModeData> = first
         .iter()
-        .map(|&mode| ModeData { mode, rows: Vec::new() })
+        .map(|&mode| ModeData {
+            mode,
+            rows: Vec::new(),
+        })
         .collect();
     for (_, file, rows) in &per_level {
         for data in &mut out {

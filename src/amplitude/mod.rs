@@ -155,7 +155,11 @@ pub fn estimates(judged: &Judged, amplitudes: &[f64]) -> Vec<Estimate> {
                     .collect();
                 let var = f.covariance.as_ref().map_or(f64::NAN, |c| {
                     (0..p.len())
-                        .map(|a| (0..p.len()).map(|b| grad[a] * c[a][b] * grad[b]).sum::<f64>())
+                        .map(|a| {
+                            (0..p.len())
+                                .map(|b| grad[a] * c[a][b] * grad[b])
+                                .sum::<f64>()
+                        })
                         .sum()
                 });
                 out.push(Estimate {

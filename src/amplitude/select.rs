@@ -98,7 +98,11 @@ fn starts(law: Law, data: &Series) -> Vec<Vec<f64>> {
     let x: Vec<f64> = data.amplitude.iter().map(|a| a / top).collect();
     let (a0, a1) = line(&x, &data.stiffness);
     let (b0, b1) = line(&x, &data.damping);
-    let a0 = if a0 > 0.0 { a0 } else { data.stiffness[0].abs() };
+    let a0 = if a0 > 0.0 {
+        a0
+    } else {
+        data.stiffness[0].abs()
+    };
     match law {
         Law::Constant => vec![vec![a0 + 0.5 * a1, b0 + 0.5 * b1]],
         Law::PowerLaw => [0.5, 1.0, 2.0]

@@ -11,7 +11,10 @@ use jointid::output::amplitude as out;
 use jointid::output::{Staged, check_outputs, commit_all, stage};
 
 /// The CSV tables and their writers.
-type Table = (&'static str, fn(&mut dyn std::io::Write, &jointid::amplitude::AmplitudeFit) -> std::io::Result<()>);
+type Table = (
+    &'static str,
+    fn(&mut dyn std::io::Write, &jointid::amplitude::AmplitudeFit) -> std::io::Result<()>,
+);
 
 const TABLES: [Table; 4] = [
     ("amplitude_levels.csv", out::write_levels),

@@ -158,7 +158,12 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
         };
         let series = vec![Series {
             name: "measured (+- sigma with extra scatter)".to_string(),
-            points: data.amplitude.iter().copied().zip(y.iter().copied()).collect(),
+            points: data
+                .amplitude
+                .iter()
+                .copied()
+                .zip(y.iter().copied())
+                .collect(),
             errors: Some(sigma.clone()),
             line: false,
         }];
@@ -183,8 +188,16 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
                     half_width: band
                         .iter()
                         .map(|p| {
-                            let se = if stiffness { p.stiffness_se } else { p.damping_se };
-                            if chosen && se.is_finite() { BAND_SE * se } else { 0.0 }
+                            let se = if stiffness {
+                                p.stiffness_se
+                            } else {
+                                p.damping_se
+                            };
+                            if chosen && se.is_finite() {
+                                BAND_SE * se
+                            } else {
+                                0.0
+                            }
                         })
                         .collect(),
                 }

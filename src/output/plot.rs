@@ -570,12 +570,23 @@ impl LinePlot<'_> {
         }
         for (k, b) in self.bands.iter().enumerate() {
             let colour = series_colour(axes, self.series.len() + k);
-            let upper = b.points.iter().zip(&b.half_width).map(|(p, w)| (p.0, p.1 + w));
-            let lower = b.points.iter().zip(&b.half_width).map(|(p, w)| (p.0, p.1 - w));
+            let upper = b
+                .points
+                .iter()
+                .zip(&b.half_width)
+                .map(|(p, w)| (p.0, p.1 + w));
+            let lower = b
+                .points
+                .iter()
+                .zip(&b.half_width)
+                .map(|(p, w)| (p.0, p.1 - w));
             let outline: Vec<(f64, f64)> = upper.chain(lower.rev()).collect();
             if b.half_width.iter().any(|w| *w > 0.0) {
                 chart
-                    .draw_series(std::iter::once(Polygon::new(outline, colour.mix(0.2).filled())))
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        colour.mix(0.2).filled(),
+                    )))
                     .map_err(err)?;
             }
             chart

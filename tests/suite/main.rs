@@ -13,6 +13,7 @@
 
 mod common;
 
+mod amplitude;
 mod analytic_beam;
 mod bounded_input;
 mod candidates;
