@@ -12,16 +12,19 @@
 //! refined by a parabola through that line and its neighbours; a velocity or displacement FRF
 //! is turned into acceleration by omega or omega^2.
 //!
-//! Imports: [`super::levels`], [`super::fit`], [`crate::model`], [`crate::measured`],
+//! Imports: [`super::levels`], [`super::fit`], [`crate::input`], [`crate::structure`],
+//! [`crate::model`], [`crate::measured`],
 //! [`crate::uff`].
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use super::AmplitudeError;
 use super::fit::Series;
-use super::levels::{Levels, Source};
+use super::levels::{Level, Levels, Source};
+use crate::input::InputError;
 use crate::measured::{MeasuredMode, MeasuredModes};
+use crate::structure::Structure;
 use crate::uff::{Function, FunctionType, Record};
 
 /// One level's row of one mode, as read.
@@ -146,87 +149,112 @@ fn peak(frf: &Function, power: i32, mode: &MeasuredMode) -> Option<f64> {
     Some(top)
 }
 
+/// A level's amplitudes: given, or from its FRFs.
+enum Amplitudes<'a> {
+    /// Acceleration amplitudes per mode.
+    Given(&'a [f64]),
+    /// The FRF file and its records.
+    Frf(&'a Path, Vec<Record>),
+}
+
+/// The acceleration amplitude of mode `m` (the `k`-th of its file) at `level` (module docs).
+fn acceleration(
+    source: &Amplitudes,
+    k: usize,
+    m: &MeasuredMode,
+    damping: f64,
+    level: &Level,
+    levels: &Levels,
+) -> Result<f64, AmplitudeError> {
+    let (path, records) = match source {
+        Amplitudes::Given(values) => return Ok(values[k]),
+        Amplitudes::Frf(path, records) => (path, records),
+    };
+    let node = levels.reference.unwrap_or_default();
+    let (f, power) = reference_frf(records, node, path)?;
+    let top = peak(f, power, m).ok_or_else(|| {
+        data_error(
+            path,
+            format!(
+                "mode {} at {} Hz lies outside the lines of the FRF of node {node}",
+                m.mode, m.frequency_hz
+            ),
+        )
+    })?;
+    // A random excitation of RMS `excitation` spread flat over B Hz: the mode's RMS response
+    // is |H_peak| excitation sqrt(pi zeta f_r / B).
+    let share = levels
+        .random_band_hz
+        .map_or(1.0, |b| (PI * damping * m.frequency_hz / b).sqrt());
+    Ok(top * level.excitation * share)
+}
+
+/// The rows of level `i`: one per mode of its modes file.
+fn level_rows(
+    i: usize,
+    level: &Level,
+    levels: &Levels,
+    model: &Structure,
+) -> Result<Vec<Row>, AmplitudeError> {
+    let modes = MeasuredModes::from_path(&level.modes, model)?;
+    let source = match &level.source {
+        Source::Acceleration(values) if values.len() != modes.modes().len() => {
+            return Err(AmplitudeError::Input(InputError::Invalid {
+                file: levels.file.clone(),
+                path: format!("level[{i}].acceleration"),
+                value: format!("{} value(s)", values.len()),
+                allowed: format!(
+                    "one per mode of {} ({} modes)",
+                    level.modes.display(),
+                    modes.modes().len()
+                ),
+            }));
+        }
+        Source::Acceleration(values) => Amplitudes::Given(values),
+        Source::Frf(path) => Amplitudes::Frf(path, crate::uff::read_path(path)?),
+    };
+    let mut rows = Vec::with_capacity(modes.modes().len());
+    for (k, m) in modes.modes().iter().enumerate() {
+        let damping = match m.damping_ratio {
+            Some(z) if z > 0.0 => z,
+            _ => {
+                return Err(data_error(
+                    &level.modes,
+                    format!(
+                        "mode {} has no positive damping_ratio: the amplitude fit needs the \
+                         damping of every mode (jointid extract writes it)",
+                        m.mode
+                    ),
+                ));
+            }
+        };
+        let acceleration = acceleration(&source, k, m, damping, level, levels)?;
+        let omega = 2.0 * PI * m.frequency_hz;
+        rows.push(Row {
+            excitation: level.excitation,
+            mode: m.mode,
+            acceleration,
+            amplitude: acceleration / (omega * omega),
+            frequency_hz: m.frequency_hz,
+            frequency_std: m.frequency_std.unwrap_or(0.0),
+            damping,
+            damping_std: m.damping_std.unwrap_or(0.0),
+        });
+    }
+    Ok(rows)
+}
+
 /// Reads every level's modes and amplitudes (module docs): one [`ModeData`] per mode of the
 /// first level, each with a row per level.
 pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
     let model = crate::model::from_path(&levels.model)?;
-    let mut per_level: Vec<(f64, PathBuf, Vec<Row>)> = Vec::new();
-    for (i, level) in levels.levels.iter().enumerate() {
-        let modes = MeasuredModes::from_path(&level.modes, &model)?;
-        let mut rows = Vec::new();
-        let given: Option<&[f64]> = match &level.source {
-            Source::Acceleration(values) if values.len() != modes.modes().len() => {
-                return Err(AmplitudeError::Input(crate::input::InputError::Invalid {
-                    file: levels.file.clone(),
-                    path: format!("level[{i}].acceleration"),
-                    value: format!("{} value(s)", values.len()),
-                    allowed: format!(
-                        "one per mode of {} ({} modes)",
-                        level.modes.display(),
-                        modes.modes().len()
-                    ),
-                }));
-            }
-            Source::Acceleration(values) => Some(values),
-            Source::Frf(_) => None,
-        };
-        let measured = match &level.source {
-            Source::Frf(path) => Some((path, crate::uff::read_path(path)?)),
-            Source::Acceleration(_) => None,
-        };
-        for (k, m) in modes.modes().iter().enumerate() {
-            let damping = match m.damping_ratio {
-                Some(z) if z > 0.0 => z,
-                _ => {
-                    return Err(data_error(
-                        &level.modes,
-                        format!(
-                            "mode {} has no positive damping_ratio: the amplitude fit needs \
-                             the damping of every mode (jointid extract writes it)",
-                            m.mode
-                        ),
-                    ));
-                }
-            };
-            let acceleration = match (given, &measured) {
-                (Some(values), _) => values[k],
-                (None, Some((path, records))) => {
-                    let node = levels.reference.unwrap_or_default();
-                    let (f, power) = reference_frf(records, node, path)?;
-                    let top = peak(f, power, m).ok_or_else(|| {
-                        data_error(
-                            path,
-                            format!(
-                                "mode {} at {} Hz lies outside the lines of the FRF of node \
-                                 {node}",
-                                m.mode, m.frequency_hz
-                            ),
-                        )
-                    })?;
-                    // A random excitation of RMS `excitation` spread flat over B Hz: the mode's
-                    // RMS response is |H_peak| excitation sqrt(pi zeta f_r / B).
-                    let share = levels
-                        .random_band_hz
-                        .map_or(1.0, |b| (PI * damping * m.frequency_hz / b).sqrt());
-                    top * level.excitation * share
-                }
-                (None, None) => 0.0,
-            };
-            let omega = 2.0 * PI * m.frequency_hz;
-            rows.push(Row {
-                excitation: level.excitation,
-                mode: m.mode,
-                acceleration,
-                amplitude: acceleration / (omega * omega),
-                frequency_hz: m.frequency_hz,
-                frequency_std: m.frequency_std.unwrap_or(0.0),
-                damping,
-                damping_std: m.damping_std.unwrap_or(0.0),
-            });
-        }
-        per_level.push((level.excitation, level.modes.clone(), rows));
-    }
-    let first: Vec<usize> = per_level[0].2.iter().map(|r| r.mode).collect();
+    let per_level: Vec<Vec<Row>> = levels
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(i, level)| level_rows(i, level, levels, &model))
+        .collect::<Result<_, _>>()?;
+    let first: Vec<usize> = per_level[0].iter().map(|r| r.mode).collect();
     let mut out: Vec<ModeData> = first
         .iter()
         .map(|&mode| ModeData {
@@ -234,15 +262,17 @@ pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
             rows: Vec::new(),
         })
         .collect();
-    for (_, file, rows) in &per_level {
+    for (level, rows) in levels.levels.iter().zip(&per_level) {
         for data in &mut out {
             let row = rows.iter().find(|r| r.mode == data.mode).ok_or_else(|| {
+                let list: Vec<String> = first.iter().map(|m| m.to_string()).collect();
                 data_error(
-                    file,
+                    &level.modes,
                     format!(
-                        "mode {} is missing: every level must hold the modes of the first level ({})",
+                        "mode {} is missing: every level must hold the modes of the first \
+                         level ({})",
                         data.mode,
-                        first.iter().map(|m| m.to_string()).collect::<Vec<_>>().join(", ")
+                        list.join(", ")
                     ),
                 )
             })?;

@@ -1,5 +1,5 @@
 //! The outputs of an amplitude fit ([`crate::amplitude`]): four CSV tables, the figure of a
-//! mode (stiffness and damping against amplitude, the data with their sigmas, every law's
+//! mode (stiffness change in % and damping against amplitude, the data with their sigmas, every law's
 //! curve and the chosen law's band) and a terminal summary. Formats only: every number comes
 //! from the fit.
 //!
@@ -150,21 +150,39 @@ pub fn write_bands(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<()> {
 pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
     let data = m.data.series();
     let weights = Weights::new(&data, m.fit.tau_stiffness, m.fit.tau_damping);
+    // The stiffness is shown as its change from the level of smallest amplitude (%), the
+    // damping ratio in %.
+    let first = (0..data.len())
+        .min_by(|&a, &b| data.amplitude[a].total_cmp(&data.amplitude[b]))
+        .map_or(1.0, |i| data.stiffness[i]);
+    let change = |k: f64| 100.0 * (k / first - 1.0);
     let panel = |stiffness: bool| {
-        let (y, sigma) = if stiffness {
-            (&data.stiffness, &weights.stiffness)
-        } else {
-            (&data.damping, &weights.damping)
+        // (value, its sigma or se) as drawn.
+        let shown = |value: f64, se: f64| {
+            if stiffness {
+                (change(value), 100.0 * se / first)
+            } else {
+                (100.0 * value, 100.0 * se)
+            }
         };
+        let measured: Vec<(f64, f64)> = (0..data.len())
+            .map(|i| {
+                if stiffness {
+                    shown(data.stiffness[i], weights.stiffness[i])
+                } else {
+                    shown(data.damping[i], weights.damping[i])
+                }
+            })
+            .collect();
         let series = vec![Series {
             name: "measured (+- sigma with extra scatter)".to_string(),
             points: data
                 .amplitude
                 .iter()
-                .copied()
-                .zip(y.iter().copied())
+                .zip(&measured)
+                .map(|(&a, &(y, _))| (a, y))
                 .collect(),
-            errors: Some(sigma.clone()),
+            errors: Some(measured.iter().map(|&(_, s)| s).collect()),
             line: false,
         }];
         let bands: Vec<Band> = m
@@ -174,6 +192,16 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
             .zip(&m.fit.bands)
             .map(|(j, band)| {
                 let chosen = j.fitted.law == m.fit.selected;
+                let curve: Vec<(f64, f64)> = band
+                    .iter()
+                    .map(|p| {
+                        if stiffness {
+                            shown(p.stiffness, p.stiffness_se)
+                        } else {
+                            shown(p.damping, p.damping_se)
+                        }
+                    })
+                    .collect();
                 Band {
                     name: format!(
                         "{}{} (dAICc {:.1})",
@@ -183,16 +211,12 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
                     ),
                     points: band
                         .iter()
-                        .map(|p| (p.amplitude, if stiffness { p.stiffness } else { p.damping }))
+                        .zip(&curve)
+                        .map(|(p, c)| (p.amplitude, c.0))
                         .collect(),
-                    half_width: band
+                    half_width: curve
                         .iter()
-                        .map(|p| {
-                            let se = if stiffness {
-                                p.stiffness_se
-                            } else {
-                                p.damping_se
-                            };
+                        .map(|&(_, se)| {
                             if chosen && se.is_finite() {
                                 BAND_SE * se
                             } else {
@@ -220,7 +244,7 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
         lines_with_bands(
             &top,
             &format!("mode {mode}: modal stiffness against amplitude"),
-            &axes("modal stiffness (2 pi f)^2 ((rad/s)^2)"),
+            &axes("modal stiffness (2 pi f)^2: change from the smallest amplitude (%)"),
             &s,
             &b,
         )?;
@@ -228,7 +252,7 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
         lines_with_bands(
             &bottom,
             &format!("mode {mode}: damping ratio against amplitude"),
-            &axes("damping ratio"),
+            &axes("damping ratio (%)"),
             &s,
             &b,
         )
