@@ -101,7 +101,6 @@ impl Law {
                         && p[1] <= 0.0
                         && p[2] >= 0.0
                         && m.s() >= 0.0
-                        && (regime == Regime::Macroslip || m.phi_max > 0.0)
                         && m.phi_max > 0.0
                         && amplitudes.iter().all(|&a| m.secant(a).value > 0.0)
                 }

@@ -10,6 +10,7 @@
 //! - The synthetic levels of the recovery tests are made by (a), from Segalman's
 //!   (F_S, K_T, chi, beta) converted to (R, S, phi_max) by his eq. (17)-(19) written out here,
 //!   and by the power law written out here; the fitter sees only the numbers.
+//!
 //! Segalman, "A four-parameter Iwan model for lap-type joints", J. Appl. Mech. 72 (2005).
 
 use std::f64::consts::PI;
