@@ -165,7 +165,7 @@ fn aicc(chi2: f64, k: usize, n: usize) -> f64 {
 
 /// The extra variances from the most general law the levels allow (module docs, step 1).
 fn extra_variances(data: &Series) -> (f64, f64, Law) {
-    let general = if enough(data.len(), 6) && data.len() >= 4 {
+    let general = if enough(data.len(), 6) {
         Law::PowerLaw
     } else if enough(data.len(), 4) {
         Law::Iwan
