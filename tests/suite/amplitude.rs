@@ -102,6 +102,14 @@ fn by_jenkins(p: Segalman, a: f64) -> (f64, f64) {
     (peak / a, area.abs())
 }
 
+/// |value - reference| <= tol |reference|.
+fn close(value: f64, reference: f64, tol: f64, what: &str) {
+    assert!(
+        (value - reference).abs() <= tol * reference.abs(),
+        "{what}: {value} against {reference}"
+    );
+}
+
 fn joint() -> Segalman {
     Segalman {
         f_s: 40.0,
@@ -119,26 +127,18 @@ fn iwan_closed_forms_match_quadrature_and_jenkins_loops_in_both_regimes() {
         let a = frac * m.phi_max;
         let (k_q, d_q) = by_quadrature(p, a);
         let (k, d) = (m.secant(a).value, m.dissipation(a).value);
-        assert!(
-            (k - k_q).abs() <= 1e-9 * k,
-            "secant at {frac} phi_max: {k} against {k_q}"
-        );
-        assert!(
-            (d - d_q).abs() <= 1e-8 * d,
-            "dissipation at {frac} phi_max: {d} against {d_q}"
-        );
+        close(k, k_q, 1e-9, &format!("secant at {frac} phi_max"));
+        close(d, d_q, 1e-8, &format!("dissipation at {frac} phi_max"));
         let (k_j, d_j) = by_jenkins(p, a);
         // The elements discretise the density: the loss of stiffness and the dissipation
         // agree to 0.5%.
-        let (soft, soft_j) = (p.k_t - k, p.k_t - k_j);
-        assert!(
-            (soft - soft_j).abs() <= 5e-3 * soft,
-            "softening at {frac}: {soft} against {soft_j}"
+        close(
+            p.k_t - k_j,
+            p.k_t - k,
+            5e-3,
+            &format!("softening at {frac} phi_max"),
         );
-        assert!(
-            (d - d_j).abs() <= 5e-3 * d,
-            "loop area at {frac}: {d} against {d_j}"
-        );
+        close(d_j, d, 5e-3, &format!("loop area at {frac} phi_max"));
     }
     let back = m.segalman();
     assert!((back.f_s - p.f_s).abs() < 1e-10 * p.f_s && (back.beta - p.beta).abs() < 1e-10);
@@ -192,10 +192,11 @@ fn noise_free_microslip_levels_give_back_the_iwan_parameters_and_choose_it() {
         ("R", m.r),
         ("zeta_0", 0.004),
     ] {
-        let (v, _) = param(&fit, Law::Iwan, name, &amplitudes);
-        assert!(
-            (v - truth).abs() <= 1e-6 * truth.abs(),
-            "{name}: {v} against {truth}"
+        close(
+            param(&fit, Law::Iwan, name, &amplitudes).0,
+            truth,
+            1e-6,
+            name,
         );
     }
 }
@@ -215,10 +216,11 @@ fn noise_free_levels_into_macroslip_give_back_all_four_segalman_parameters() {
         ("F_S", p.f_s),
         ("beta", p.beta),
     ] {
-        let (v, _) = param(&fit, Law::Iwan, name, &amplitudes);
-        assert!(
-            (v - truth).abs() <= 1e-5 * truth.abs(),
-            "{name}: {v} against {truth}"
+        close(
+            param(&fit, Law::Iwan, name, &amplitudes).0,
+            truth,
+            1e-5,
+            name,
         );
     }
 }
@@ -293,10 +295,11 @@ fn a_power_law_with_its_own_damping_exponent_is_recovered_and_chosen() {
         ("d", d),
         ("g", g),
     ] {
-        let (v, _) = param(&fit, Law::PowerLaw, name, &amplitudes);
-        assert!(
-            (v - truth).abs() <= 1e-6 * truth,
-            "{name}: {v} against {truth}"
+        close(
+            param(&fit, Law::PowerLaw, name, &amplitudes).0,
+            truth,
+            1e-6,
+            name,
         );
     }
 }
