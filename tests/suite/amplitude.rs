@@ -325,3 +325,25 @@ fn levels_that_do_not_change_choose_the_constant_and_extra_scatter_is_estimated(
         fit.tau_stiffness
     );
 }
+
+#[test]
+fn few_levels_fit_the_laws_they_can_and_say_why_not_the_others() {
+    let p = joint();
+    let phi_max = Iwan::from_segalman(p).phi_max;
+    for (levels, fitted, skipped) in [
+        (2, vec![Law::Constant], vec![Law::PowerLaw, Law::Iwan]),
+        (3, vec![Law::Constant, Law::Iwan], vec![Law::PowerLaw]),
+    ] {
+        let amplitudes: Vec<f64> = (1..=levels).map(|i| 0.2 * i as f64 * phi_max).collect();
+        let fit = fit_mode(&iwan_levels(p, 0.004, &amplitudes, 1.0, 1e-5));
+        let laws: Vec<Law> = fit.laws.iter().map(|j| j.fitted.law).collect();
+        assert_eq!(laws, fitted, "{levels} levels");
+        let not: Vec<Law> = fit.skipped.iter().map(|(l, _)| *l).collect();
+        assert_eq!(not, skipped, "{levels} levels");
+        assert!(
+            fit.skipped
+                .iter()
+                .all(|(_, why)| why.starts_with("needs at least"))
+        );
+    }
+}
