@@ -15,7 +15,10 @@
 # identified on that mode with its standard deviation), replicates.csv (the levels as
 # replicates: the standard error beside the scatter and trend across levels), calibrated.csv (per level: k1, k2 calibrated on
 # both modes, with standard errors) and the figures k2_vs_level.svg and k2_vs_mode.svg
-# (examples/unesp_joint_figure.rs).
+# (examples/unesp_joint_figure.rs). Then levels.toml and `jointid amplitude`: per mode, the
+# stiffness and damping against the response amplitude by three laws with the chosen one
+# (amplitude_levels.csv, amplitude_laws.csv, amplitude_parameters.csv, amplitude_bands.csv,
+# amplitude_mode1.svg, amplitude_mode2.svg).
 #
 # usage: bash scripts/unesp-bert.sh
 set -euo pipefail
@@ -79,6 +82,24 @@ awk -F, '
     }
 ' "$OUT/summary.csv" > "$OUT/replicates.csv"
 "$ROOT/target/release/examples/unesp_joint_figure" "$OUT"
+# Amplitude dependence across the six levels: levels.toml names each level's modes and FRFs
+# (the data folder by a path relative to results/unesp-bert when it is the default one); the
+# amplitude is the RMS response of each mode at the tip accelerometer (node 1) under the flat
+# random drive of 0-110 Hz whose RMS is the level; `jointid amplitude` fits the constant,
+# power and Iwan laws to each mode's stiffness and damping -> amplitude_*.csv, amplitude_mode*.svg.
+DATA_REL=$(realpath --relative-to="$OUT" "$DATA")
+{
+    echo "# The six levels of UNESP-BERT for jointid amplitude (written by scripts/unesp-bert.sh)."
+    echo 'model = "../../models/unesp-bert.toml"'
+    echo "reference = 1"
+    echo 'excitation_unit = "V"'
+    echo "random_band_hz = 110.0"
+    for level in 0p05 0p10 0p15 0p20 0p25 0p30; do
+        printf '\n[[level]]\nexcitation = %s\nmodes = "modes_%sV.csv"\nfrf = "%s/frf_%sV.uff"\n' \
+            "${level/p/.}" "$level" "$DATA_REL" "$level"
+    done
+} > "$OUT/levels.toml"
+"$J" amplitude "$OUT/levels.toml" --out "$OUT"
 column -s, -t "$OUT/summary.csv"
 column -s, -t "$OUT/calibrated.csv"
 column -s, -t "$OUT/replicates.csv"

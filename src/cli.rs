@@ -49,6 +49,21 @@ pub enum Command {
     /// Write a model as an external model (`kind = "matrices"`): Matrix Market K, M, dK/dp
     /// (dM/dp) per parameter, the DOF table and a model.toml that reads back.
     Export(ExportArgs),
+    /// Amplitude dependence across excitation levels: per mode, the stiffness and damping
+    /// against the response amplitude by three laws (constant, power law, Iwan), one chosen
+    /// by AICc, with bands and a figure.
+    Amplitude(AmplitudeArgs),
+}
+
+/// `jointid amplitude`.
+#[derive(Debug, Args)]
+pub struct AmplitudeArgs {
+    /// The levels file (TOML: the model, per level the modes file and the amplitude source).
+    pub levels: PathBuf,
+    /// Folder of the outputs (created if absent): amplitude_levels.csv, amplitude_laws.csv,
+    /// amplitude_parameters.csv, amplitude_bands.csv, amplitude_mode<r>.svg.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `jointid export`.

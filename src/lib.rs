@@ -14,6 +14,9 @@
 //!    [`model::effects`], selection and the before/after report;
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
+//! Beside diagnose, [`amplitude`] fits the joint's amplitude dependence across excitation
+//! levels (constant, power law, four-parameter Iwan).
+//!
 //! Beside the flow: [`input`] (TOML with field paths), [`structure`] (the model-agnostic
 //! structure every step works on), [`random`] (the random streams of studies and simulations),
 //! [`simulate`] (measurements of a model, with effects and errors, for tests, studies and
@@ -36,11 +39,12 @@
 //! 3. models and measurements: [`model`], [`measured`], [`extract`]
 //! 4. identification: [`identify`]
 //! 5. simulation and studies: [`simulate`], [`study`]
-//! 6. diagnosis and results: [`diagnose`], [`report`], [`cluster`]
+//! 6. diagnosis and results: [`diagnose`], [`report`], [`cluster`], [`amplitude`]
 //! 7. outputs: [`output`]
 //!
 //! Above them all, the binary (`main.rs`, `cli.rs`, `commands/`) may import any of them.
 
+pub mod amplitude;
 pub mod cluster;
 pub mod diagnose;
 pub mod extract;

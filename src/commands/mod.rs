@@ -1,5 +1,6 @@
 //! One file per command: each reads its inputs, calls the library and writes its outputs.
 
+mod amplitude;
 mod bench;
 mod bench_limit;
 mod check;
@@ -45,5 +46,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Report(args) => report::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Export(args) => export::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Amplitude(args) => amplitude::run(&args).map(|()| ExitCode::SUCCESS),
     }
 }

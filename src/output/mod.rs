@@ -5,8 +5,9 @@
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
 //! [`crate::model`], [`crate::measured`], [`crate::extract`], [`crate::identify`],
 //! [`crate::simulate`], [`crate::study`], [`crate::diagnose`], [`crate::report`],
-//! [`crate::cluster`].
+//! [`crate::cluster`], [`crate::amplitude`].
 
+pub mod amplitude;
 pub mod atomic;
 pub mod catalogue;
 pub mod diagnose;

@@ -238,6 +238,17 @@ pub struct Series {
     pub line: bool,
 }
 
+/// A fitted curve with its uncertainty band, drawn as a shaded region around a line without
+/// markers (a law beside the measured points it was fitted to).
+pub struct Band {
+    /// Legend text.
+    pub name: String,
+    /// Points (x, y) of the curve.
+    pub points: Vec<(f64, f64)>,
+    /// Half-width of the band at each point (0: the curve alone).
+    pub half_width: Vec<f64>,
+}
+
 /// Axis ranges and scales of a line chart.
 pub struct LineAxes {
     /// x label with unit.
@@ -416,6 +427,18 @@ pub fn lines(
     axes: &LineAxes,
     series: &[Series],
 ) -> Result<(), PlotError> {
+    lines_with_bands(whole, title, axes, series, &[])
+}
+
+/// [`lines`] with fitted curves and their bands drawn under the series (the bands take the
+/// colours after the series').
+pub fn lines_with_bands(
+    whole: &DrawingArea<SVGBackend, Shift>,
+    title: &str,
+    axes: &LineAxes,
+    series: &[Series],
+    bands: &[Band],
+) -> Result<(), PlotError> {
     let mut entries: Vec<Entry> = Vec::new();
     if let Some((_, label)) = &axes.reference {
         entries.push((label.clone(), PALETTE[1], Mark::Line));
@@ -423,16 +446,39 @@ pub fn lines(
     for (k, s) in series.iter().enumerate() {
         entries.push((s.name.clone(), series_colour(axes, k), Mark::Dot));
     }
+    for (k, b) in bands.iter().enumerate() {
+        entries.push((
+            b.name.clone(),
+            series_colour(axes, series.len() + k),
+            Mark::Line,
+        ));
+    }
     let (area, legend_area) = with_legend_strip(whole, &entries);
     legend(&legend_area, &entries)?;
+    let band_ys = bands.iter().flat_map(|b| {
+        b.points
+            .iter()
+            .zip(&b.half_width)
+            .flat_map(|(p, w)| [p.1 - w, p.1 + w])
+    });
+    let ys = line_y_range(axes, series);
+    let ys = span(band_ys.chain([ys.start, ys.end]), axes.log_y);
     let plot = LinePlot {
         axes,
         series,
+        bands,
         xs: span(
-            series.iter().flat_map(|s| s.points.iter().map(|p| p.0)),
+            series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.0))
+                .chain(bands.iter().flat_map(|b| b.points.iter().map(|p| p.0))),
             axes.log_x,
         ),
-        ys: line_y_range(axes, series),
+        ys: if bands.is_empty() {
+            line_y_range(axes, series)
+        } else {
+            ys
+        },
         whole_x: integer_x(series),
     };
     let (xs, ys) = (plot.xs.clone(), plot.ys.clone());
@@ -466,6 +512,7 @@ pub fn lines(
 struct LinePlot<'s> {
     axes: &'s LineAxes,
     series: &'s [Series],
+    bands: &'s [Band],
     xs: Range<f64>,
     ys: Range<f64>,
     /// Whether every x is an integer (then only integer ticks are labelled).
@@ -519,6 +566,31 @@ impl LinePlot<'_> {
                     5,
                     PALETTE[1].stroke_width(2),
                 ))
+                .map_err(err)?;
+        }
+        for (k, b) in self.bands.iter().enumerate() {
+            let colour = series_colour(axes, self.series.len() + k);
+            let upper = b
+                .points
+                .iter()
+                .zip(&b.half_width)
+                .map(|(p, w)| (p.0, p.1 + w));
+            let lower = b
+                .points
+                .iter()
+                .zip(&b.half_width)
+                .map(|(p, w)| (p.0, p.1 - w));
+            let outline: Vec<(f64, f64)> = upper.chain(lower.rev()).collect();
+            if b.half_width.iter().any(|w| *w > 0.0) {
+                chart
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        colour.mix(0.2).filled(),
+                    )))
+                    .map_err(err)?;
+            }
+            chart
+                .draw_series(LineSeries::new(b.points.clone(), colour.stroke_width(2)))
                 .map_err(err)?;
         }
         for (k, s) in self.series.iter().enumerate() {

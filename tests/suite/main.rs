@@ -13,6 +13,8 @@
 
 mod common;
 
+mod amplitude;
+mod amplitude_levels;
 mod analytic_beam;
 mod bounded_input;
 mod candidates;

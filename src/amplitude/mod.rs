@@ -1,0 +1,197 @@
+//! Amplitude dependence of a joint across excitation levels: per mode, the modal stiffness
+//! lambda = (2 pi f)^2 and the damping ratio against the response amplitude, fitted by three
+//! laws (constant, power law, Segalman's four-parameter Iwan model), one chosen by AICc, with
+//! standard errors and uncertainty bands (docs/method.md, "Amplitude dependence").
+//!
+//! The steps, in the order of the data:
+//! - [`levels`]: the levels file (which modes file and amplitude source per level);
+//! - [`load`](mod@load): the modes and amplitudes of every level, per mode;
+//! - [`iwan`]: the Iwan model's closed forms (secant stiffness, dissipation) and derivatives;
+//! - [`laws`]: the three laws of stiffness and damping against amplitude;
+//! - [`fit`](mod@fit): weighted least squares of one law, the extra variance of the scatter;
+//! - [`select`]: every law on one mode, the choice, the bands.
+//!
+//! Entry point: [`fit_levels`]. Returns data; `crate::output::amplitude` writes it.
+//!
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::input`], [`crate::optim`], [`crate::uff`], [`crate::model`], [`crate::measured`]).
+
+pub mod fit;
+pub mod iwan;
+pub mod laws;
+pub mod levels;
+pub mod load;
+pub mod select;
+
+use std::path::PathBuf;
+
+pub use fit::{Series, Weights};
+pub use iwan::{Iwan, Segalman};
+pub use laws::{LAWS, Law, Regime};
+pub use levels::Levels;
+pub use load::{ModeData, Row, load};
+pub use select::{BandPoint, Judged, ModeFit, fit_mode};
+
+/// An amplitude fit that cannot be made.
+#[derive(Debug, thiserror::Error)]
+pub enum AmplitudeError {
+    /// The levels file or the model.
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
+    /// A measured-modes file.
+    #[error(transparent)]
+    Measured(#[from] crate::measured::MeasuredError),
+    /// An FRF file.
+    #[error(transparent)]
+    Uff(#[from] crate::uff::UffError),
+    /// A file whose content does not serve the fit.
+    #[error("{file}: {message}")]
+    Data {
+        /// The file.
+        file: PathBuf,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+}
+
+/// A parameter of a fitted law, or a quantity derived from them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimate {
+    /// Name (`lambda_0`, `F_S`, `phi_max_min`, ...).
+    pub name: String,
+    /// Value.
+    pub value: f64,
+    /// Standard error (NaN when the data do not determine it, or for a bound).
+    pub std: f64,
+}
+
+/// One mode's data and fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModeResult {
+    /// The data.
+    pub data: ModeData,
+    /// The fit.
+    pub fit: ModeFit,
+}
+
+/// Every mode of a levels file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AmplitudeFit {
+    /// Unit of the excitation ("" when not given).
+    pub excitation_unit: String,
+    /// One result per mode.
+    pub modes: Vec<ModeResult>,
+}
+
+/// Reads the levels of `levels` and fits every mode (module docs).
+pub fn fit_levels(levels: &Levels) -> Result<AmplitudeFit, AmplitudeError> {
+    let modes = load(levels)?
+        .into_iter()
+        .map(|data| {
+            let fit = fit_mode(&data.series());
+            ModeResult { data, fit }
+        })
+        .collect();
+    Ok(AmplitudeFit {
+        excitation_unit: levels.excitation_unit.clone(),
+        modes,
+    })
+}
+
+/// The parameters of a judged law with their standard errors, then for the Iwan law
+/// Segalman's F_S and beta: under macroslip with standard errors by the delta method (the
+/// conversion's gradient by central differences); under microslip, where phi_max is only
+/// bounded (above the largest amplitude, below where S = 0), their values at both bounds
+/// (`_at_phi_max_min`, `_at_phi_max_max`, no standard error).
+pub fn estimates(judged: &Judged, amplitudes: &[f64]) -> Vec<Estimate> {
+    let f = &judged.fitted;
+    let names = f.law.parameters(f.regime);
+    let std = |i: usize| {
+        f.covariance
+            .as_ref()
+            .map_or(f64::NAN, |c| c[i][i].max(0.0).sqrt())
+    };
+    let mut out: Vec<Estimate> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| Estimate {
+            name: n.to_string(),
+            value: f.parameters[i],
+            std: std(i),
+        })
+        .collect();
+    if f.law != Law::Iwan {
+        return out;
+    }
+    let p = &f.parameters;
+    let at = |phi_max: f64| Iwan {
+        k_t: p[0],
+        chi: p[1],
+        r: p[2],
+        phi_max,
+    };
+    match f.regime {
+        Regime::Macroslip => {
+            let s = at(p[4]).segalman();
+            for (k, value) in [("F_S", s.f_s), ("beta", s.beta)] {
+                let pick = |q: &[f64]| {
+                    let m = Iwan {
+                        k_t: q[0],
+                        chi: q[1],
+                        r: q[2],
+                        phi_max: q[4],
+                    }
+                    .segalman();
+                    if k == "F_S" { m.f_s } else { m.beta }
+                };
+                let grad: Vec<f64> = (0..p.len())
+                    .map(|j| {
+                        let h = 1e-6 * p[j].abs().max(1e-300);
+                        let (mut up, mut down) = (p.clone(), p.clone());
+                        up[j] += h;
+                        down[j] -= h;
+                        (pick(&up) - pick(&down)) / (2.0 * h)
+                    })
+                    .collect();
+                let var = f.covariance.as_ref().map_or(f64::NAN, |c| {
+                    (0..p.len())
+                        .map(|a| {
+                            (0..p.len())
+                                .map(|b| grad[a] * c[a][b] * grad[b])
+                                .sum::<f64>()
+                        })
+                        .sum()
+                });
+                out.push(Estimate {
+                    name: k.to_string(),
+                    value,
+                    std: var.max(0.0).sqrt(),
+                });
+            }
+        }
+        Regime::Microslip => {
+            let lo = amplitudes.iter().fold(0.0_f64, |m, &a| m.max(a));
+            let e = p[1] + 1.0;
+            let hi = if p[2] > 0.0 {
+                (p[0] * e / p[2]).powf(1.0 / e)
+            } else {
+                f64::INFINITY
+            };
+            for (suffix, phi) in [("min", lo), ("max", hi)] {
+                let s = at(phi).segalman();
+                for (name, value) in [
+                    (format!("phi_max_{suffix}"), phi),
+                    (format!("F_S_at_phi_max_{suffix}"), s.f_s),
+                    (format!("beta_at_phi_max_{suffix}"), s.beta),
+                ] {
+                    out.push(Estimate {
+                        name,
+                        value,
+                        std: f64::NAN,
+                    });
+                }
+            }
+        }
+    }
+    out
+}

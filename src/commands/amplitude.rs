@@ -1,0 +1,64 @@
+//! `jointid amplitude`: the amplitude dependence of every mode across the levels of a levels
+//! file, as CSV tables and one figure per mode, all written or none.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
+use crate::cli::AmplitudeArgs;
+use jointid::amplitude::{Levels, fit_levels};
+use jointid::output::amplitude as out;
+use jointid::output::{Staged, check_outputs, commit_all, stage};
+
+/// The CSV tables and their writers.
+type Table = (
+    &'static str,
+    fn(&mut dyn std::io::Write, &jointid::amplitude::AmplitudeFit) -> std::io::Result<()>,
+);
+
+const TABLES: [Table; 4] = [
+    ("amplitude_levels.csv", out::write_levels),
+    ("amplitude_laws.csv", out::write_laws),
+    ("amplitude_parameters.csv", out::write_parameters),
+    ("amplitude_bands.csv", out::write_bands),
+];
+
+pub fn run(args: &AmplitudeArgs) -> anyhow::Result<()> {
+    let levels = Levels::from_path(&args.levels)?;
+    let fit = fit_levels(&levels)?;
+    let figures: Vec<(PathBuf, String)> = fit
+        .modes
+        .iter()
+        .map(|m| {
+            let name = format!("amplitude_mode{}.svg", m.data.mode);
+            out::figure(m).map(|svg| (args.out.join(name), svg))
+        })
+        .collect::<Result<_, _>>()?;
+    let tables: Vec<PathBuf> = TABLES.iter().map(|(n, _)| args.out.join(n)).collect();
+    let outputs: Vec<&Path> = tables
+        .iter()
+        .chain(figures.iter().map(|(p, _)| p))
+        .map(|p| p.as_path())
+        .collect();
+    let inputs = levels.inputs();
+    let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
+    check_outputs(&outputs, &inputs)?;
+    jointid::output::atomic::create_folders(&args.out)
+        .with_context(|| format!("{}: cannot create the directory", args.out.display()))?;
+    let mut staged: Vec<Staged> = Vec::new();
+    for ((_, write), path) in TABLES.iter().zip(&tables) {
+        staged.push(
+            stage(path, |w| write(w, &fit))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    for (path, svg) in &figures {
+        staged.push(
+            stage(path, |w| w.write_all(svg.as_bytes()))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    commit_all(staged)?;
+    print!("{}", out::summary(&fit));
+    Ok(())
+}
