@@ -1,11 +1,11 @@
 //! Which noise judges the candidates of data without standard errors: the residual scale of a
 //! model that fits, never that of one that does not.
 //!
-//! The physical models fitted under the stated noise are taken in the order of their chi^2
-//! (the smallest first, among those below the joint-only fit's, then the joint-only fit). The
-//! first that is *adequate* gives the noise estimate ([`super::noise::estimate`] of its
-//! residuals). Adequate means that its residuals pass the checks that do not stand on the
-//! noise level, each at [`FIT_ALPHA`]:
+//! The largest physical model fitted under the stated noise (the smallest chi^2, when below
+//! the joint-only fit's; else the joint-only fit) gives the noise estimate
+//! ([`super::noise::estimate`] of its residuals) when it is *adequate*: when its residuals,
+//! refitted under that estimate, pass the checks that do not stand on the noise level, each
+//! at [`FIT_ALPHA`]:
 //! - the whiteness of its shape residuals along the structure ([`whiteness`]: smooth
 //!   residuals are misfit, whatever their size);
 //! - its frequency residuals against the frequency noise its own shape residuals imply (the
@@ -13,8 +13,10 @@
 //!   misstatement of the instrument's quality affects both alike);
 //! - a residual scale within [`LARGEST_FACTOR`] of the stated.
 //!
-//! When no model is adequate, what every model leaves is not noise alone, and no residual
-//! scale may become the yardstick: the stated noise is kept, the largest model's estimate is
+//! Its residual scale is the smallest any model reaches: a smaller model's, larger, would make
+//! every model look better than the largest one does at its own scale. When the largest model
+//! is not adequate, what every model leaves is not noise alone, and no residual scale may
+//! become the yardstick: the stated noise is kept, the largest model's estimate is
 //! reported as the check, and a candidate explains the data only when it fits under the
 //! stated noise. The statement is taken as known to the precision the data could have
 //! checked it: the tests stay F tests on the check's degrees of freedom. A misstated noise then costs, at worst, an `unexplained`
@@ -37,15 +39,15 @@ struct Leaves {
     unknowns: usize,
 }
 
-/// The noise that judges the candidates (see the module docs): the estimate of the first
-/// adequate model among the candidates of `first` (fitted on the stage `first_stage`, under
-/// the stated noise) that have a model of their own, whose size is physical and whose chi^2
-/// is below the joint-only fit's, in
-/// ascending chi^2, then the joint-only fit; the stated noise when none is adequate.
+/// The noise that judges the candidates (see the module docs): the estimate of the largest
+/// model (the smallest chi^2, below the joint-only fit's, among the candidates of `first`
+/// fitted on the stage `first_stage` under the stated noise, that have a model of their own
+/// and a physical size; else the joint-only fit) when it is adequate; else the stated noise,
+/// that estimate kept as the check.
 pub fn choose(first: &[Tried], first_stage: &Stage) -> NoiseEstimate {
     let base = first_stage.base;
     let stated = first_stage.calibration.noise;
-    let mut ordered: Vec<(usize, f64)> = first
+    let largest = first
         .iter()
         .enumerate()
         .filter_map(|(i, (_, outcome))| {
@@ -53,47 +55,37 @@ pub fn choose(first: &[Tried], first_stage: &Stage) -> NoiseEstimate {
                 .as_ref()
                 .ok()
                 .filter(|f| f.excluded.is_none() && f.model.is_some())?;
-            (fit.chi2 < base.chi2).then_some((i, fit.chi2))
+            (fit.chi2 < base.chi2).then_some((i, fit))
         })
-        .collect();
-    ordered.sort_by(|a, b| a.1.total_cmp(&b.1));
-    // The estimate from model i (the joint-only fit for None), and whether the model is
-    // adequate (else the estimate is a check).
-    let judge = |i: Option<usize>, leaves: Leaves| {
-        let name = i.map_or(JOINT_ONLY, |i| first[i].0.name());
-        let e = estimate(
-            &leaves.residuals,
-            first_stage.measured,
-            leaves.unknowns,
-            stated,
-            SHAPE_FLOOR,
-            name,
-        );
-        let fits =
-            refitted(first, first_stage, i, &e).is_some_and(|l| adequate(&e, &l, first_stage));
-        (e, fits)
+        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2));
+    let (i, leaves) = match largest {
+        Some((i, fit)) => (
+            Some(i),
+            Leaves {
+                residuals: fit.residuals.clone(),
+                unknowns: fit.unknowns,
+            },
+        ),
+        None => (
+            None,
+            Leaves {
+                residuals: residuals(base, first_stage.measured),
+                unknowns: base.estimates.len(),
+            },
+        ),
     };
-    let mut largest = None;
-    for (i, _) in ordered {
-        let Ok(fit) = &first[i].1 else { continue };
-        let leaves = Leaves {
-            residuals: fit.residuals.clone(),
-            unknowns: fit.unknowns,
-        };
-        match judge(Some(i), leaves) {
-            (e, true) => return e,
-            (e, false) => {
-                largest.get_or_insert(e);
-            }
-        }
-    }
-    let leaves = Leaves {
-        residuals: residuals(base, first_stage.measured),
-        unknowns: base.estimates.len(),
-    };
-    match judge(None, leaves) {
-        (e, true) => e,
-        (e, false) => stated_yardstick(largest.unwrap_or(e), stated),
+    let e = estimate(
+        &leaves.residuals,
+        first_stage.measured,
+        leaves.unknowns,
+        stated,
+        SHAPE_FLOOR,
+        i.map_or(JOINT_ONLY, |i| first[i].0.name()),
+    );
+    if refitted(first, first_stage, i, &e).is_some_and(|l| adequate(&e, &l, first_stage)) {
+        e
+    } else {
+        stated_yardstick(e, stated)
     }
 }
 
