@@ -49,6 +49,19 @@ pub enum Command {
     /// Write a model as an external model (`kind = "matrices"`): Matrix Market K, M, dK/dp
     /// (dM/dp) per parameter, the DOF table and a model.toml that reads back.
     Export(ExportArgs),
+    /// Make a 3D brick model of a bolted lap specimen (two bars tied by interface springs)
+    /// from a TOML file, written as an external model.
+    Solid(SolidArgs),
+}
+
+/// `jointid solid`.
+#[derive(Debug, Args)]
+pub struct SolidArgs {
+    /// The specimen (TOML: width, overlap, material, two bars, interface, mesh).
+    pub config: PathBuf,
+    /// A new folder for the files (it must not exist, or be empty).
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 /// `jointid export`.

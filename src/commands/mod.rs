@@ -13,6 +13,7 @@ mod report;
 mod resources;
 mod run_study;
 mod simulate;
+mod solid;
 mod study;
 
 use std::process::ExitCode;
@@ -45,5 +46,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Report(args) => report::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Export(args) => export::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Solid(args) => solid::run(&args).map(|()| ExitCode::SUCCESS),
     }
 }

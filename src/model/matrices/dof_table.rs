@@ -203,10 +203,16 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
 
 /// Writes the table of `dofs` (in index order), positions in shortest round-trip form.
 pub fn write(out: &mut dyn Write, dofs: &[DofInfo]) -> io::Result<()> {
+    write_iter(out, dofs.iter().cloned())
+}
+
+/// [`write`] from an iterator of the DOFs in index order (a large table written as it is
+/// made).
+pub fn write_iter(out: &mut dyn Write, dofs: impl Iterator<Item = DofInfo>) -> io::Result<()> {
     let mut w = ::csv::Writer::from_writer(out);
     let to_io = |e: ::csv::Error| io::Error::other(e.to_string());
     w.write_record(HEADER).map_err(to_io)?;
-    for (i, d) in dofs.iter().enumerate() {
+    for (i, d) in dofs.enumerate() {
         let [x, y, z] = d.position.map(|v| v.to_string());
         w.write_record([
             (i + 1).to_string(),
