@@ -41,6 +41,7 @@ mod results;
 mod setups;
 mod signals;
 mod slurm_injection;
+mod solid;
 mod study;
 mod uff_formats;
 mod uff_pyuff;

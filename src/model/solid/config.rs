@@ -208,7 +208,10 @@ impl RawSolid {
         let m = &self.material;
         let material = Material {
             youngs_modulus: check.positive("material.youngs_modulus", m.youngs_modulus, "Pa")?,
-            poisson_ratio: if m.poisson_ratio.is_finite() && m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5 {
+            poisson_ratio: if m.poisson_ratio.is_finite()
+                && m.poisson_ratio > -1.0
+                && m.poisson_ratio < 0.5
+            {
                 m.poisson_ratio
             } else {
                 return Err(check.invalid(
@@ -226,7 +229,10 @@ impl RawSolid {
                 "a lap specimen has exactly two [[bar]]: the lower one, then the upper one",
             ));
         };
-        let mut bars = [BarSize { length: 0.0, thickness: 0.0 }; 2];
+        let mut bars = [BarSize {
+            length: 0.0,
+            thickness: 0.0,
+        }; 2];
         for (i, (raw, bar)) in [lower, upper].into_iter().zip(&mut bars).enumerate() {
             bar.thickness = check.positive(format!("bar[{i}].thickness"), raw.thickness, "m")?;
             bar.length = check.positive(format!("bar[{i}].length"), raw.length, "m")?;
@@ -256,7 +262,11 @@ impl RawSolid {
                     Err(check.invalid(
                         at(field),
                         Number(v),
-                        format!("the centre must lie on the lap: from {} to {} m", Number(lo), Number(hi)),
+                        format!(
+                            "the centre must lie on the lap: from {} to {} m",
+                            Number(lo),
+                            Number(hi)
+                        ),
                     ))
                 }
             };
@@ -266,11 +276,16 @@ impl RawSolid {
                     inside(b.y, 0.0, width, "y")?,
                 ],
                 radius: check.positive(at("radius"), b.radius, "m")?,
-                factor: check.positive(at("factor"), b.factor, "the patch's stiffness per area over the interface's")?,
+                factor: check.positive(
+                    at("factor"),
+                    b.factor,
+                    "the patch's stiffness per area over the interface's",
+                )?,
             });
         }
         let size = check.positive("mesh.size", self.mesh.size, "m")?;
-        let layers = check.int_range("mesh.layers", self.mesh.layers.unwrap_or(2), 1, MAX_LAYERS)?;
+        let layers =
+            check.int_range("mesh.layers", self.mesh.layers.unwrap_or(2), 1, MAX_LAYERS)?;
         let config = SolidConfig {
             width,
             overlap,
@@ -355,14 +370,46 @@ pub(crate) mod tests {
     #[test]
     fn bad_fields_are_named_with_the_value_and_what_is_allowed() {
         let cases = [
-            ("width = 0.02", "width = -1", "lap.toml: width = -1 is invalid: it must be finite and > 0 (m)"),
-            ("poisson_ratio = 0.3", "poisson_ratio = 0.5", "lap.toml: material.poisson_ratio = 0.5 is invalid: it must be above -1 and below 0.5"),
-            ("length = 0.1\n", "length = 0.03\n", "lap.toml: bar[1].length = 0.03 is invalid: it must be at least the overlap, 0.04 m"),
-            ("layers = 1", "layers = 0", "lap.toml: mesh.layers = 0 is invalid: it must be an integer from 1 to 64"),
-            ("size = 0.01", "size = 1e-5", "lap.toml: mesh.size = 1e-5 is invalid: the mesh would have 264156012 DOFs, above the 1000000 an external model may have: give a larger size"),
-            ("normal = 1e13", "normal = 0", "lap.toml: interface.normal = 0 is invalid: it must be finite and > 0 (N/m^3, stiffness per area of the lap)"),
-            ("[mesh]", "[[interface.bolt]]\nx = 0.01\ny = 0.01\nradius = 0.001\nfactor = 5\n[mesh]", "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.08 to 0.12 m"),
-            ("[mesh]", "[[interface.bolt]]\nx = 0.095\ny = 0.005\nradius = 0.001\nfactor = 5\n[mesh]", "lap.toml: interface.bolt[0].radius = 0.001 is invalid: no interface node lies within it at mesh.size = 0.01 m: give a larger radius or a smaller mesh.size"),
+            (
+                "width = 0.02",
+                "width = -1",
+                "lap.toml: width = -1 is invalid: it must be finite and > 0 (m)",
+            ),
+            (
+                "poisson_ratio = 0.3",
+                "poisson_ratio = 0.5",
+                "lap.toml: material.poisson_ratio = 0.5 is invalid: it must be above -1 and below 0.5",
+            ),
+            (
+                "length = 0.1\n",
+                "length = 0.03\n",
+                "lap.toml: bar[1].length = 0.03 is invalid: it must be at least the overlap, 0.04 m",
+            ),
+            (
+                "layers = 1",
+                "layers = 0",
+                "lap.toml: mesh.layers = 0 is invalid: it must be an integer from 1 to 64",
+            ),
+            (
+                "size = 0.01",
+                "size = 1e-5",
+                "lap.toml: mesh.size = 1e-5 is invalid: the mesh would have 264156012 DOFs, above the 1000000 an external model may have: give a larger size",
+            ),
+            (
+                "normal = 1e13",
+                "normal = 0",
+                "lap.toml: interface.normal = 0 is invalid: it must be finite and > 0 (N/m^3, stiffness per area of the lap)",
+            ),
+            (
+                "[mesh]",
+                "[[interface.bolt]]\nx = 0.01\ny = 0.01\nradius = 0.001\nfactor = 5\n[mesh]",
+                "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.08 to 0.12 m",
+            ),
+            (
+                "[mesh]",
+                "[[interface.bolt]]\nx = 0.095\ny = 0.005\nradius = 0.001\nfactor = 5\n[mesh]",
+                "lap.toml: interface.bolt[0].radius = 0.001 is invalid: no interface node lies within it at mesh.size = 0.01 m: give a larger radius or a smaller mesh.size",
+            ),
         ];
         for (from, to, message) in cases {
             let text = SMALL.replacen(from, to, 1);

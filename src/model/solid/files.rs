@@ -33,21 +33,47 @@ impl Solid {
         let note = |what: &str| vec![format!("{what}, made by `jointid solid` from {source}")];
         match name {
             "model.toml" => out.write_all(self.model_toml(source).as_bytes()),
-            "K.mtx" => write_entries(out, n, self.k.len(), self.k.iter(), &note("K of the two bars without the interface")),
-            "M.mtx" => write_entries(out, n, self.m.len(), self.m.iter(), &note("consistent M of the two bars")),
+            "K.mtx" => write_entries(
+                out,
+                n,
+                self.k.len(),
+                self.k.iter(),
+                &note("K of the two bars without the interface"),
+            ),
+            "M.mtx" => write_entries(
+                out,
+                n,
+                self.m.len(),
+                self.m.iter(),
+                &note("consistent M of the two bars"),
+            ),
             "dofs.csv" => dof_table::write_iter(
                 out,
-                self.mesh.nodes.iter().enumerate().flat_map(|(node, &position)| {
-                    DIRECTIONS.into_iter().map(move |direction| DofInfo {
-                        label: format!("{}:{direction}", node + 1),
-                        position,
-                        direction,
-                        node: None,
-                    })
-                }),
+                self.mesh
+                    .nodes
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(node, &position)| {
+                        DIRECTIONS.into_iter().map(move |direction| DofInfo {
+                            label: format!("{}:{direction}", node + 1),
+                            position,
+                            direction,
+                            node: None,
+                        })
+                    }),
             ),
-            other => match self.parameters.iter().find(|p| format!("dK_{}.mtx", p.name) == other) {
-                Some(p) => write_entries(out, n, p.dk.len(), p.dk.iter(), &note(&format!("dK/d{} (N/m)", p.name))),
+            other => match self
+                .parameters
+                .iter()
+                .find(|p| format!("dK_{}.mtx", p.name) == other)
+            {
+                Some(p) => write_entries(
+                    out,
+                    n,
+                    p.dk.len(),
+                    p.dk.iter(),
+                    &note(&format!("dK/d{} (N/m)", p.name)),
+                ),
                 None => Err(io::Error::new(
                     io::ErrorKind::InvalidInput,
                     format!("{other} is not a file of the model"),

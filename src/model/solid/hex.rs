@@ -5,8 +5,7 @@
 //!
 //! Why incompatible modes: the plain trilinear brick locks in bending (a parasitic shear
 //! strain appears when its faces bend), so a bar meshed with a few bricks through the thickness
-//! is far too stiff: with one element through the thickness and an aspect ratio of 1 its first
-//! bending frequency comes out about 1.5 times too high. The three bubble modes
+//! is far too stiff, the more so the longer the bricks. The three bubble modes
 //! P_i = 1 - xi_i^2 per displacement component (nine internal DOFs) let the element bend; they
 //! are condensed out per element (K = K_uu - K_ua K_aa^-1 K_au). Their derivatives are taken
 //! with the Jacobian at the element's centre and weighted with its determinant there, so
@@ -52,9 +51,7 @@ impl Material {
         let mu = e / (2.0 * (1.0 + nu));
         let mut d = [[0.0; 6]; 6];
         for i in 0..3 {
-            for j in 0..3 {
-                d[i][j] = lambda;
-            }
+            d[i][..3].fill(lambda);
             d[i][i] = lambda + 2.0 * mu;
             d[i + 3][i + 3] = mu;
         }
@@ -141,7 +138,14 @@ fn gauss_points() -> [[f64; 3]; 8] {
 }
 
 /// Adds w B1^T D B2 to `out` (`rows` x `cols`, row-major), B given as column blocks of 3.
-fn add_btdb(out: &mut [f64], cols: usize, b1: &[[f64; 6]], b2: &[[f64; 6]], d: &[[f64; 6]; 6], w: f64) {
+fn add_btdb(
+    out: &mut [f64],
+    cols: usize,
+    b1: &[[f64; 6]],
+    b2: &[[f64; 6]],
+    d: &[[f64; 6]; 6],
+    w: f64,
+) {
     for (r, br) in b1.iter().enumerate() {
         let mut db = [0.0; 6];
         for (i, dbi) in db.iter_mut().enumerate() {
@@ -157,9 +161,7 @@ fn add_btdb(out: &mut [f64], cols: usize, b1: &[[f64; 6]], b2: &[[f64; 6]], d: &
 fn columns(blocks: impl Iterator<Item = [[f64; 3]; 6]>) -> Vec<[f64; 6]> {
     let mut cols = Vec::new();
     for b in blocks {
-        for dir in 0..3 {
-            cols.push(std::array::from_fn(|s| b[s][dir]));
-        }
+        cols.extend((0..3).map(|dir| std::array::from_fn(|s| b[s][dir])));
     }
     cols
 }
@@ -292,7 +294,11 @@ mod tests {
                         let mut w = [0.0; 3];
                         w[motion - 3] = 1.0;
                         let r = x[a];
-                        [w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]][dir]
+                        [
+                            w[1] * r[2] - w[2] * r[1],
+                            w[2] * r[0] - w[0] * r[2],
+                            w[0] * r[1] - w[1] * r[0],
+                        ][dir]
                     }
                 })
                 .collect();

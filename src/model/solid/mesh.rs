@@ -58,7 +58,11 @@ impl Mesh {
         let [lower, upper] = &config.bars;
         let size = config.mesh.size;
         let lap_start = lower.length - config.overlap;
-        let n_before = if lap_start > 0.0 { divisions(lap_start, size) } else { 0 };
+        let n_before = if lap_start > 0.0 {
+            divisions(lap_start, size)
+        } else {
+            0
+        };
         let n_lap = divisions(config.overlap, size);
         let lap_end = lap_start + upper.length;
         let n_after = if upper.length > config.overlap {
@@ -110,22 +114,7 @@ impl Mesh {
                     }
                 }
             }
-            for i in 0..bar.xs.len() - 1 {
-                for j in 0..nj - 1 {
-                    for k in 0..nk - 1 {
-                        bricks.push([
-                            at(i, j, k),
-                            at(i + 1, j, k),
-                            at(i + 1, j + 1, k),
-                            at(i, j + 1, k),
-                            at(i, j, k + 1),
-                            at(i + 1, j, k + 1),
-                            at(i + 1, j + 1, k + 1),
-                            at(i, j + 1, k + 1),
-                        ]);
-                    }
-                }
-            }
+            bricks.extend(grid_bricks([bar.xs.len(), nj, nk], at));
         }
         let pairs = interface(&bars, &ids, &ys, &config.interface.bolts);
         Mesh {
@@ -134,6 +123,57 @@ impl Mesh {
             pairs,
         }
     }
+}
+
+impl Mesh {
+    /// A box `[0, lx] x [0, ly] x [0, lz]` of `nx x ny x nz` equal bricks, nodes numbered x
+    /// slowest, z fastest (a monolithic bar, a patch test), without interface.
+    pub fn block(lengths: [f64; 3], divisions: [usize; 3]) -> Mesh {
+        let axis = |d: usize| -> Vec<f64> {
+            std::iter::once(0.0)
+                .chain(stations(0.0, lengths[d], divisions[d]))
+                .collect()
+        };
+        let (xs, ys, zs) = (axis(0), axis(1), axis(2));
+        let (nj, nk) = (ys.len(), zs.len());
+        let at = |i: usize, j: usize, k: usize| (i * nj + j) * nk + k;
+        let mut nodes = Vec::with_capacity(xs.len() * nj * nk);
+        for &x in &xs {
+            for &y in &ys {
+                for &z in &zs {
+                    nodes.push([x, y, z]);
+                }
+            }
+        }
+        let bricks = grid_bricks([xs.len(), nj, nk], at);
+        Mesh {
+            nodes,
+            bricks,
+            pairs: Vec::new(),
+        }
+    }
+}
+
+/// The bricks of a structured grid of `n` nodes per axis whose node (i, j, k) is `at(i, j, k)`.
+fn grid_bricks(n: [usize; 3], at: impl Fn(usize, usize, usize) -> usize) -> Vec<[usize; 8]> {
+    let mut bricks = Vec::with_capacity((n[0] - 1) * (n[1] - 1) * (n[2] - 1));
+    for i in 0..n[0] - 1 {
+        for j in 0..n[1] - 1 {
+            for k in 0..n[2] - 1 {
+                bricks.push([
+                    at(i, j, k),
+                    at(i + 1, j, k),
+                    at(i + 1, j + 1, k),
+                    at(i, j + 1, k),
+                    at(i, j, k + 1),
+                    at(i + 1, j, k + 1),
+                    at(i + 1, j + 1, k + 1),
+                    at(i, j + 1, k + 1),
+                ]);
+            }
+        }
+    }
+    bricks
 }
 
 /// Node numbers of each bar, indexed `(i * ny + j) * nz + k`: station by station of the
@@ -171,7 +211,11 @@ fn tributary(xs: &[f64]) -> Vec<f64> {
     (0..xs.len())
         .map(|i| {
             let left = if i > 0 { xs[i] - xs[i - 1] } else { 0.0 };
-            let right = if i + 1 < xs.len() { xs[i + 1] - xs[i] } else { 0.0 };
+            let right = if i + 1 < xs.len() {
+                xs[i + 1] - xs[i]
+            } else {
+                0.0
+            };
             0.5 * (left + right)
         })
         .collect()
@@ -179,7 +223,12 @@ fn tributary(xs: &[f64]) -> Vec<f64> {
 
 /// The interface pairs over the lap: the lower bar's top nodes and the upper bar's bottom
 /// nodes at its stations, weighted by their tributary area and any bolt patch's factor.
-fn interface(bars: &[Bar; 2], ids: &[Vec<usize>; 2], ys: &[f64], bolts: &[Bolt]) -> Vec<(usize, usize, f64)> {
+fn interface(
+    bars: &[Bar; 2],
+    ids: &[Vec<usize>; 2],
+    ys: &[f64],
+    bolts: &[Bolt],
+) -> Vec<(usize, usize, f64)> {
     let (lower, upper) = (&bars[0], &bars[1]);
     let lap: Vec<f64> = lower.xs[upper.offset..].to_vec();
     let (tx, ty) = (tributary(&lap), tributary(ys));

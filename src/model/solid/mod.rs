@@ -133,12 +133,12 @@ pub fn assemble(mesh: &Mesh, material: &hex::Material) -> Result<(Lower, Lower),
         let key: [u64; 24] = std::array::from_fn(|i| x[i / 3][i % 3].to_bits());
         let element = match shapes.entry(key) {
             std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
-            std::collections::hash_map::Entry::Vacant(v) => v.insert(hex8(&x, material).ok_or(
-                DegenerateBrick {
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert(hex8(&x, material).ok_or(DegenerateBrick {
                     brick: e,
                     nodes: *brick,
-                },
-            )?),
+                })?)
+            }
         };
         for (a, &node) in brick.iter().enumerate() {
             for d in 0..3 {
