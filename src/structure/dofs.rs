@@ -111,6 +111,11 @@ pub struct DofMap {
     by_label: HashMap<String, usize>,
     constrained: HashMap<String, String>,
     lines: Vec<LineElement>,
+    /// How far a sensor given by coordinates may lie from its nearest DOF, m (`None`: the
+    /// default of [`super::nearest`]).
+    sensor_tolerance: Option<f64>,
+    /// The DOFs sorted by x, built at the first search by coordinates.
+    by_x: std::sync::OnceLock<super::nearest::Index>,
 }
 
 impl DofMap {
@@ -132,7 +137,27 @@ impl DofMap {
             by_label,
             constrained: constrained.into_iter().collect(),
             lines,
+            sensor_tolerance: None,
+            by_x: std::sync::OnceLock::new(),
         }
+    }
+
+    /// The map with the distance a sensor given by coordinates may lie from its nearest DOF,
+    /// m (`None`: the default, see [`super::nearest`]).
+    pub fn with_sensor_tolerance(mut self, tolerance: Option<f64>) -> Self {
+        self.sensor_tolerance = tolerance;
+        self
+    }
+
+    /// The tolerance set by [`DofMap::with_sensor_tolerance`], if any.
+    pub fn sensor_tolerance_set(&self) -> Option<f64> {
+        self.sensor_tolerance
+    }
+
+    /// The DOFs sorted by x (built once).
+    pub(super) fn index_by_x(&self) -> &super::nearest::Index {
+        self.by_x
+            .get_or_init(|| super::nearest::Index::new(&self.dofs))
     }
 
     /// Number of DOFs N.

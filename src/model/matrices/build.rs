@@ -62,7 +62,8 @@ impl MatricesFile {
         for (i, p) in self.parameters.iter().enumerate() {
             parameters.push(self.parameter(i, p, n, &read)?);
         }
-        let dofs = DofMap::new(infos, Vec::new(), Vec::new());
+        let dofs =
+            DofMap::new(infos, Vec::new(), Vec::new()).with_sensor_tolerance(self.sensor_tolerance);
         let base = Matrices {
             k: SymMatrix::from_entries(n, &k.both_triangles()),
             m: SymMatrix::from_entries(n, &m.both_triangles()),
