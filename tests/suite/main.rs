@@ -38,6 +38,7 @@ mod registry;
 mod reliability;
 mod report;
 mod results;
+mod sensors_in_space;
 mod setups;
 mod signals;
 mod slurm_injection;
