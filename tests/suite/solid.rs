@@ -350,3 +350,77 @@ fn the_command_writes_a_model_that_reads_back_and_refuses_bad_input() {
     assert!(!target.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Bad input on a 3D external model: a DOF without a direction, two DOFs at one position
+/// and direction that nothing ties (unmerged nodes), a declared rigid-body count the model
+/// does not have. Each is refused with exit 2, naming the file and what is allowed, and
+/// `simulate` writes nothing.
+#[test]
+fn bad_3d_models_are_refused_and_nothing_is_written() {
+    let dir = scratch("solid", "bad");
+    let solid = lap();
+    write(&solid, &dir);
+    let dofs = std::fs::read_to_string(dir.join("dofs.csv")).unwrap();
+    let model = std::fs::read_to_string(dir.join("model.toml")).unwrap();
+    // Node 1 sits at (0, 0, 0); node 2 at (0, 0, 0.01), on the same bar: tied by its bricks.
+    assert!(dofs.contains("\n3,1:z,0,0,0,z\n") && dofs.contains("\n6,2:z,0,0,0.01,z\n"));
+    let last = solid.mesh.nodes.len();
+    let coincident = format!(
+        "and dof {} (`{last}:x`) are both direction x at (0, 0, 0) m, and no entry of K or of a dK/dp couples them",
+        3 * last - 2
+    );
+    let cases = [
+        (
+            "direction",
+            dofs.replace("\n3,1:z,0,0,0,z\n", "\n3,1:z,0,0,0,\n"),
+            model.clone(),
+            vec![
+                "dofs.csv:4: direction is empty: every DOF needs one, of w, theta, x, y, z, rx, ry, rz",
+            ],
+        ),
+        (
+            // The last node of the upper bar moved onto node 1: nothing ties the two.
+            "coincident",
+            {
+                let p = solid.mesh.nodes[last - 1];
+                let mut text = dofs.clone();
+                for d in ["x", "y", "z"] {
+                    let from = format!(",{last}:{d},{},{},{},{d}\n", p[0], p[1], p[2]);
+                    assert!(text.contains(&from), "{from}");
+                    text = text.replace(&from, &format!(",{last}:{d},0,0,0,{d}\n"));
+                }
+                text
+            },
+            model.clone(),
+            vec![coincident.as_str(), "dof 1 (`1:x`)"],
+        ),
+        (
+            "rigid",
+            dofs.clone(),
+            model.replace("rigid_body_modes = 6", "rigid_body_modes = 5"),
+            vec![
+                "model.toml: rigid_body_modes = 5 is invalid: the model has 6",
+                "declare the count the model has",
+            ],
+        ),
+    ];
+    for (name, dofs_text, model_text, needles) in cases {
+        std::fs::write(dir.join("dofs.csv"), dofs_text).unwrap();
+        std::fs::write(dir.join("model.toml"), model_text).unwrap();
+        let out = dir.join(format!("{name}.csv"));
+        refused(
+            &[
+                "simulate",
+                "--model",
+                s(&dir.join("model.toml")),
+                "--modes",
+                "3",
+                "--out",
+                s(&out),
+            ],
+            &needles,
+        );
+        assert!(!out.exists(), "{name}: nothing is written");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

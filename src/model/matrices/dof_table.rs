@@ -90,6 +90,12 @@ fn placement(xyz: [&str; 3], direction: &str) -> Result<([f64; 3], Direction), S
     }
     let Some(direction) = Direction::parse(direction) else {
         let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
+        if direction.is_empty() {
+            return Err(format!(
+                "direction is empty: every DOF needs one, of {}",
+                names.join(", ")
+            ));
+        }
         return Err(format!(
             "direction = `{direction}` is invalid: it must be one of {}",
             names.join(", ")
@@ -289,6 +295,14 @@ mod tests {
             (
                 format!("{h}1,,0,0,0,w\n"),
                 "dofs.csv:2: label is empty: every DOF needs a label",
+            ),
+            (
+                format!("{h}1,a,0,0,0,\n"),
+                "dofs.csv:2: direction is empty: every DOF needs one, of w, theta, x, y, z, rx, ry, rz",
+            ),
+            (
+                format!("{h}1,a,0,0,0\n"),
+                "dofs.csv:2: 5 fields: a row has 6 (dof,label,x,y,z,direction)",
             ),
         ];
         for (text, message) in cases {
