@@ -212,6 +212,11 @@ pub struct ExtractArgs {
     #[arg(long)]
     pub chart: Option<PathBuf>,
     /// No progress on stderr.
+    /// Rows by coordinates in space (`x,y,z,dof`: the geometry's coordinates, the response
+    /// direction x, y, z, rx, ry, rz) for an external 3D model, instead of `x,dof` along a
+    /// beam; every response direction is then allowed.
+    #[arg(long)]
+    pub space: bool,
     #[arg(long)]
     pub quiet: bool,
 }
