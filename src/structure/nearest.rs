@@ -202,3 +202,75 @@ impl DofMap {
         Ok(Observation::dof(self, i))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn map(points: &[([f64; 3], Direction)]) -> DofMap {
+        let dofs = points
+            .iter()
+            .enumerate()
+            .map(|(i, &(position, direction))| DofInfo {
+                label: format!("d{i}"),
+                position,
+                direction,
+                node: None,
+            })
+            .collect();
+        DofMap::new(dofs, Vec::new(), Vec::new())
+    }
+
+    #[test]
+    fn the_nearest_dof_of_the_direction_is_found_from_either_side() {
+        // A 1 m x 0.1 m x 0.1 m box of nodes every 0.1 m along x, x and z DOFs.
+        let mut points = Vec::new();
+        for i in 0..11 {
+            for (y, z) in [(0.0, 0.0), (0.1, 0.1)] {
+                let p = [0.1 * f64::from(i), y, z];
+                points.push((p, Direction::X));
+                points.push((p, Direction::Z));
+            }
+        }
+        let m = map(&points);
+        let (tolerance, _) = m.sensor_tolerance();
+        assert!((tolerance - 0.01 * 1.02f64.sqrt()).abs() < 1e-15);
+        let label = |p: [f64; 3], d| m.nearest(p, d).map(|o| o.label);
+        assert_eq!(label([0.501, 0.099, 0.1], Direction::Z), Ok("d23".into()));
+        assert_eq!(label([0.499, 0.001, 0.0], Direction::X), Ok("d20".into()));
+        assert_eq!(label([1.005, 0.0, 0.0], Direction::X), Ok("d40".into()));
+        assert!(matches!(
+            m.nearest([0.55, 0.0, 0.0], Direction::X),
+            Err(NearestError::Far { distance, .. }) if (distance - 0.05).abs() < 1e-12
+        ));
+        assert_eq!(
+            m.nearest([0.5, 0.0, 0.0], Direction::Y)
+                .unwrap_err()
+                .to_string(),
+            "direction y is not one of the model's DOFs (it has x, z)"
+        );
+        let m = m.with_sensor_tolerance(Some(0.1));
+        assert_eq!(m.sensor_tolerance().0, 0.1);
+        assert_eq!(
+            m.nearest([0.55, 0.0, 0.0], Direction::X).map(|o| o.label),
+            Ok("d20".into()),
+            "a tie goes to the lower DOF"
+        );
+    }
+
+    #[test]
+    fn coincident_dofs_make_a_point_ambiguous() {
+        let p = [0.2, 0.0, 0.0];
+        let m = map(&[
+            ([0.0; 3], Direction::X),
+            (p, Direction::X),
+            (p, Direction::X),
+        ]);
+        assert_eq!(
+            m.nearest([0.2, 0.0, 0.001], Direction::X)
+                .unwrap_err()
+                .to_string(),
+            "the point (0.2, 0, 0.001) m is nearest to `d1` and `d2`, two x DOFs at the same position (coincident nodes): name the one measured by label"
+        );
+    }
+}
