@@ -19,45 +19,11 @@
 //! stopping where |dx| alone exceeds the best distance (a few cross-sections of a bar-like
 //! model, not the whole table).
 
-use super::dofs::{Direction, DofInfo, DofMap};
+use super::dofs::{Direction, DofMap};
 use super::observation::Observation;
 
 /// The default tolerance, relative to the diagonal of the model's bounding box.
 pub const DEFAULT_TOLERANCE: f64 = 1e-2;
-
-/// The DOFs sorted by x, and the model's bounding-box diagonal.
-#[derive(Debug, Clone)]
-pub struct Index {
-    /// (x, DOF index), ascending x.
-    sorted: Vec<(f64, usize)>,
-    /// The diagonal of the box of every DOF's position, m.
-    diagonal: f64,
-}
-
-impl Index {
-    /// The index of `dofs`.
-    pub fn new(dofs: &[DofInfo]) -> Index {
-        let mut sorted: Vec<(f64, usize)> = dofs
-            .iter()
-            .enumerate()
-            .map(|(i, d)| (d.position[0], i))
-            .collect();
-        sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for d in dofs {
-            for k in 0..3 {
-                lo[k] = lo[k].min(d.position[k]);
-                hi[k] = hi[k].max(d.position[k]);
-            }
-        }
-        let diagonal = (0..3)
-            .map(|k| (hi[k] - lo[k]).max(0.0).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        Index { sorted, diagonal }
-    }
-}
 
 /// Why a point in space does not resolve to a DOF.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -115,7 +81,7 @@ impl DofMap {
         match self.sensor_tolerance_set() {
             Some(t) => (t, "sensor_tolerance of the model".to_string()),
             None => (
-                DEFAULT_TOLERANCE * self.index_by_x().diagonal,
+                DEFAULT_TOLERANCE * self.index_by_x().diagonal(),
                 format!(
                     "the default, {DEFAULT_TOLERANCE} times the model's size, the diagonal of its bounding box"
                 ),
@@ -131,7 +97,7 @@ impl DofMap {
         direction: Direction,
     ) -> Result<Observation, NearestError> {
         let index = self.index_by_x();
-        let sorted = &index.sorted;
+        let sorted = index.sorted();
         let start = sorted.partition_point(|e| e.0 < point[0]);
         let mut best: Option<(f64, usize)> = None;
         let consider = |best: &mut Option<(f64, usize)>, i: usize| {
@@ -177,7 +143,7 @@ impl DofMap {
         let found = self.get(i);
         let (tolerance, origin) = self.sensor_tolerance();
         let distance = dist2.sqrt();
-        if !(distance <= tolerance) {
+        if distance.is_nan() || distance > tolerance {
             return Err(NearestError::Far {
                 point,
                 direction,
@@ -206,6 +172,7 @@ impl DofMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::structure::DofInfo;
 
     fn map(points: &[([f64; 3], Direction)]) -> DofMap {
         let dofs = points

@@ -10,9 +10,10 @@
 //! lower bar's node first), then across y, then up z, so that the matrices' bandwidth is
 //! about three times the nodes of one or two cross-sections, the lap's springs included.
 //!
-//! May import: the solid's configuration.
+//! May import: the solid's configuration, the shared input checks (the bolt patches' check).
 
-use super::config::{Bolt, SolidConfig};
+use super::config::{Bolt, SolidConfig, divisions};
+use crate::input::{FieldCheck, InputError, Number};
 
 /// The mesh: node positions, bricks, interface node pairs.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,11 +37,6 @@ fn stations(from: f64, to: f64, n: usize) -> impl Iterator<Item = f64> {
             from + (to - from) * i as f64 / n as f64
         }
     })
-}
-
-/// The number of elements of a length at the target element size (at least 1).
-pub fn divisions(length: f64, size: f64) -> usize {
-    ((length / size) * (1.0 - 1e-12)).ceil().max(1.0) as usize
 }
 
 /// One bar: its stations along x, its z levels, and where its stations sit in the merged
@@ -152,6 +148,28 @@ impl Mesh {
             pairs: Vec::new(),
         }
     }
+}
+
+/// Every bolt patch of `config` (read from `file`) holds at least one interface node.
+pub fn check_bolts(config: &SolidConfig, file: &std::path::Path) -> Result<(), InputError> {
+    let mesh = Mesh::of(config);
+    for (i, bolt) in config.interface.bolts.iter().enumerate() {
+        let hit = mesh
+            .pairs
+            .iter()
+            .any(|&(a, _, _)| bolt.contains(mesh.nodes[a][0], mesh.nodes[a][1]));
+        if !hit {
+            return Err(FieldCheck { file }.invalid(
+                format!("interface.bolt[{i}].radius"),
+                Number(bolt.radius),
+                format!(
+                    "no interface node lies within it at mesh.size = {} m: give a larger radius or a smaller mesh.size",
+                    Number(config.mesh.size)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The bricks of a structured grid of `n` nodes per axis whose node (i, j, k) is `at(i, j, k)`.

@@ -34,6 +34,24 @@ use hex::{HexMatrices, hex8};
 use mesh::Mesh;
 use triplets::{Lower, Triplets};
 
+impl SolidConfig {
+    /// Reads and validates the file at `path`.
+    pub fn from_path(path: &std::path::Path) -> Result<SolidConfig, crate::input::InputError> {
+        Self::from_toml(&crate::input::read_file(path)?, path)
+    }
+
+    /// Parses and validates TOML text (every field, then every bolt patch against the mesh);
+    /// `file` names it in errors.
+    pub fn from_toml(
+        text: &str,
+        file: &std::path::Path,
+    ) -> Result<SolidConfig, crate::input::InputError> {
+        let config = SolidConfig::parse(text, file)?;
+        mesh::check_bolts(&config, file)?;
+        Ok(config)
+    }
+}
+
 /// The names of the interface parameters, in the order of the directions x, y, z.
 pub const PARAMETERS: [&str; 3] = ["k_shear_x", "k_shear_y", "k_normal"];
 
