@@ -211,12 +211,12 @@ pub struct ExtractArgs {
     /// Also write the stabilisation chart (SVG) with the FRF sum and the synthesised FRFs.
     #[arg(long)]
     pub chart: Option<PathBuf>,
-    /// No progress on stderr.
     /// Rows by coordinates in space (`x,y,z,dof`: the geometry's coordinates, the response
     /// direction x, y, z, rx, ry, rz) for an external 3D model, instead of `x,dof` along a
     /// beam; every response direction is then allowed.
     #[arg(long)]
     pub space: bool,
+    /// No progress on stderr.
     #[arg(long)]
     pub quiet: bool,
 }
