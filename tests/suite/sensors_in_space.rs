@@ -71,6 +71,28 @@ fn measured(dir: &Path, model: &Path, structure: &Structure, offset: f64) -> (St
     (by_label, by_xyz)
 }
 
+/// The arguments of `jointid identify` on `model` and `measured` (n = 20, m = 10, equal
+/// weights), writing `out` when given.
+fn identify<'a>(model: &'a Path, measured: &'a Path, out: Option<&'a Path>) -> Vec<&'a str> {
+    let mut args = vec![
+        "identify",
+        "--model",
+        s(model),
+        "--measured",
+        s(measured),
+        "--n",
+        "20",
+        "--m",
+        "10",
+        "--weighting",
+        "equal",
+    ];
+    if let Some(out) = out {
+        args.extend(["--out", s(out)]);
+    }
+    args
+}
+
 #[test]
 fn sensors_by_coordinates_read_their_nearest_dofs_and_identify_the_same() {
     let dir = scratch("space", "same");
@@ -83,28 +105,11 @@ fn sensors_by_coordinates_read_their_nearest_dofs_and_identify_the_same() {
         MeasuredModes::from_path(&a, &structure).unwrap(),
         MeasuredModes::from_path(&b, &structure).unwrap()
     );
-    let identify = |measured: &Path, out: &Path| {
-        jointid_ok(&[
-            "identify",
-            "--model",
-            s(&model),
-            "--measured",
-            s(measured),
-            "--n",
-            "20",
-            "--m",
-            "10",
-            "--weighting",
-            "equal",
-            "--out",
-            s(out),
-        ]);
+    let run = |measured: &Path, out: &Path| {
+        jointid_ok(&identify(&model, measured, Some(out)));
         std::fs::read(out).unwrap()
     };
-    assert_eq!(
-        identify(&a, &dir.join("a.csv")),
-        identify(&b, &dir.join("b.csv"))
-    );
+    assert_eq!(run(&a, &dir.join("a.csv")), run(&b, &dir.join("b.csv")));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -122,24 +127,7 @@ fn a_sensor_off_the_model_or_ambiguous_is_refused_naming_the_point_and_the_neare
         let file = dir.join(name);
         std::fs::write(&file, format!("mode,frequency_hz,x,y,z,dof,value\n{rows}")).unwrap();
         let out = dir.join(format!("{name}.out.csv"));
-        refused(
-            &[
-                "identify",
-                "--model",
-                s(&model),
-                "--measured",
-                s(&file),
-                "--n",
-                "20",
-                "--m",
-                "10",
-                "--weighting",
-                "equal",
-                "--out",
-                s(&out),
-            ],
-            needles,
-        );
+        refused(&identify(&model, &file, Some(&out)), needles);
         assert!(!out.exists(), "{name}: nothing is written");
     };
     // 0.1 m above the top: off by more than the tolerance (mm for m would be far more).
@@ -185,19 +173,7 @@ fn a_sensor_off_the_model_or_ambiguous_is_refused_naming_the_point_and_the_neare
     let file = dir.join("offset.csv");
     std::fs::write(&file, by_xyz).unwrap();
     refused(
-        &[
-            "identify",
-            "--model",
-            s(&tight),
-            "--measured",
-            s(&file),
-            "--n",
-            "20",
-            "--m",
-            "10",
-            "--weighting",
-            "equal",
-        ],
+        &identify(&tight, &file, None),
         &[
             "offset.csv:2: the point (0.0001, 0, 0) m is off the model",
             "is 1.0000e-4 m away, beyond the sensor tolerance 5.0000e-5 m (sensor_tolerance of the model)",
@@ -212,19 +188,7 @@ fn a_sensor_off_the_model_or_ambiguous_is_refused_naming_the_point_and_the_neare
     )
     .unwrap();
     refused(
-        &[
-            "identify",
-            "--model",
-            paper,
-            "--measured",
-            s(&chain),
-            "--n",
-            "20",
-            "--m",
-            "10",
-            "--weighting",
-            "equal",
-        ],
+        &identify(Path::new(paper), &chain, None),
         &[
             "chain.csv:2: rows by x,y,z apply to models without beam elements (external models): on a beam chain give `x,dof`",
         ],
