@@ -53,6 +53,9 @@ pub enum Command {
     /// against the response amplitude by three laws (constant, power law, Iwan), one chosen
     /// by AICc, with bands and a figure.
     Amplitude(AmplitudeArgs),
+    /// Make a 3D brick model of a bolted lap specimen (two bars tied by interface springs)
+    /// from a TOML file, written as an external model.
+    Solid(SolidArgs),
 }
 
 /// `jointid amplitude`.
@@ -62,6 +65,16 @@ pub struct AmplitudeArgs {
     pub levels: PathBuf,
     /// Folder of the outputs (created if absent): amplitude_levels.csv, amplitude_laws.csv,
     /// amplitude_parameters.csv, amplitude_bands.csv, amplitude_mode<r>.svg.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `jointid solid`.
+#[derive(Debug, Args)]
+pub struct SolidArgs {
+    /// The specimen (TOML: width, overlap, material, two bars, interface, mesh).
+    pub config: PathBuf,
+    /// A new folder for the files (it must not exist, or be empty).
     #[arg(long)]
     pub out: PathBuf,
 }
@@ -213,6 +226,11 @@ pub struct ExtractArgs {
     /// Also write the stabilisation chart (SVG) with the FRF sum and the synthesised FRFs.
     #[arg(long)]
     pub chart: Option<PathBuf>,
+    /// Rows by coordinates in space (`x,y,z,dof`: the geometry's coordinates, the response
+    /// direction x, y, z, rx, ry, rz) for an external 3D model, instead of `x,dof` along a
+    /// beam; every response direction is then allowed.
+    #[arg(long)]
+    pub space: bool,
     /// No progress on stderr.
     #[arg(long)]
     pub quiet: bool,

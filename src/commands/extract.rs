@@ -118,7 +118,12 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         FrfQuantity::Velocity => Quantity::Velocity,
         FrfQuantity::Acceleration => Quantity::Acceleration,
     });
-    let input = universal::frfs(&files, quantity)?;
+    let responses = if args.space {
+        universal::Responses::Space
+    } else {
+        universal::Responses::Bending
+    };
+    let input = universal::frfs_of(&files, quantity, responses)?;
     let units = chart_units(&files, input.set.quantity);
     drop(files);
     let geometry: Vec<_> = read_path(&args.geometry)?
@@ -128,7 +133,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             _ => None,
         })
         .collect();
-    let x = universal::positions(&input.channels, &geometry, &args.geometry)?;
+    let xyz = universal::coordinates(&input.channels, &geometry, &args.geometry)?;
     let inputs = args
         .frf
         .iter()
@@ -183,7 +188,13 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     };
     let mut staged = vec![
         stage(&args.out, |w| {
-            csv::write_modes(w, &ex.modes, &input.channels, &x).map_err(std::io::Error::other)
+            if args.space {
+                csv::write_modes_in_space(w, &ex.modes, &input.channels, &xyz)
+            } else {
+                let x: Vec<f64> = xyz.iter().map(|c| c[0]).collect();
+                csv::write_modes(w, &ex.modes, &input.channels, &x)
+            }
+            .map_err(std::io::Error::other)
         })
         .with_context(|| format!("{}: cannot write", args.out.display()))?,
     ];

@@ -14,6 +14,7 @@ mod report;
 mod resources;
 mod run_study;
 mod simulate;
+mod solid;
 mod study;
 
 use std::process::ExitCode;
@@ -47,5 +48,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Bench(args) => bench::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Export(args) => export::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Amplitude(args) => amplitude::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Solid(args) => solid::run(&args).map(|()| ExitCode::SUCCESS),
     }
 }

@@ -18,35 +18,71 @@ pub fn write_modes<W: Write>(
     channels: &[Channel],
     x: &[f64],
 ) -> Result<(), ::csv::Error> {
+    let point = |o: usize| {
+        let dof = if channels[o].is_rotation() {
+            "theta"
+        } else {
+            "w"
+        };
+        vec![x[o].to_string(), dof.to_string()]
+    };
+    write_rows(out, modes, channels.len(), &["x", "dof"], &point)
+}
+
+/// Writes `modes` with rows by coordinates in space (`x,y,z,dof`, the form of a measured
+/// file for an external model): the channel nodes' coordinates `xyz` (as the geometry gives
+/// them) and the response direction (x, y, z, rx, ry, rz).
+pub fn write_modes_in_space<W: Write>(
+    out: W,
+    modes: &[Mode],
+    channels: &[Channel],
+    xyz: &[[f64; 3]],
+) -> Result<(), ::csv::Error> {
+    let point = |o: usize| {
+        let names = ["x", "y", "z", "rx", "ry", "rz"];
+        let dof = names[(channels[o].direction.unsigned_abs() as usize).clamp(1, 6) - 1];
+        let mut row: Vec<String> = xyz[o].iter().map(f64::to_string).collect();
+        row.push(dof.to_string());
+        row
+    };
+    write_rows(out, modes, channels.len(), &["x", "y", "z", "dof"], &point)
+}
+
+/// The rows of `modes` over `responses` responses, located by `point(response)` under the
+/// header fields `location`.
+fn write_rows<W: Write>(
+    out: W,
+    modes: &[Mode],
+    responses: usize,
+    location: &[&str],
+    point: &dyn Fn(usize) -> Vec<String>,
+) -> Result<(), ::csv::Error> {
     let mut w = ::csv::Writer::from_writer(out);
-    w.write_record([
-        "mode",
-        "frequency_hz",
-        "x",
-        "dof",
+    let mut head = vec!["mode", "frequency_hz"];
+    head.extend(location);
+    head.extend([
         "value",
         "damping_ratio",
         "mpc",
         "frequency_std",
         "damping_std",
         "value_std",
-    ])?;
+    ]);
+    w.write_record(&head)?;
     for (r, m) in modes.iter().enumerate() {
-        let rows = channels.iter().zip(x).zip(&m.real_shape).zip(&m.std.shape);
-        for (((c, &xc), &v), &v_std) in rows {
-            let dof = if c.is_rotation() { "theta" } else { "w" };
-            w.write_record([
-                (r + 1).to_string(),
-                m.frequency_hz.to_string(),
-                xc.to_string(),
-                dof.to_string(),
+        let rows = m.real_shape.iter().zip(&m.std.shape).take(responses);
+        for (o, (&v, &v_std)) in rows.enumerate() {
+            let mut row = vec![(r + 1).to_string(), m.frequency_hz.to_string()];
+            row.extend(point(o));
+            row.extend([
                 v.to_string(),
                 m.damping_ratio.to_string(),
                 m.mpc.to_string(),
                 m.std.frequency_hz.to_string(),
                 m.std.damping_ratio.to_string(),
                 v_std.to_string(),
-            ])?;
+            ]);
+            w.write_record(&row)?;
         }
     }
     w.flush()?;

@@ -7,7 +7,8 @@
 //! reference DOF for every FRF, one frequency axis (start, step, number of points), one
 //! ordinate quantity and one units label (no FRF in m/s^2/N beside one in g/N), no response DOF
 //! twice, a bending DOF (translation along Y or Z, rotation about Y or Z: the beam lies along
-//! X), and every response node present in the geometry. A negative direction (the sensor
+//! X; any direction for a structure in space, [`Responses::Space`]), and every response node
+//! present in the geometry. A negative direction (the sensor
 //! mounted the other way round) flips the sign of its FRF so that every shape component is in
 //! the positive sense of its axis.
 //!
@@ -152,6 +153,17 @@ pub enum UffInputError {
         node: u64,
         direction: i32,
     },
+    /// A DOF that is not a direction in space.
+    #[error(
+        "{}: record {record}: response node {node} direction {direction} is not a direction in space; allowed: +-1, +-2, +-3 (translation X, Y, Z), +-4, +-5, +-6 (rotation about X, Y, Z)",
+        file.display()
+    )]
+    NotInSpace {
+        file: PathBuf,
+        record: usize,
+        node: u64,
+        direction: i32,
+    },
     /// A response node absent from the geometry.
     #[error(
         "{}: response node {node} (record {record} of {}) is not in the geometry; its nodes: {present}",
@@ -267,6 +279,8 @@ struct Frame<'a> {
     units: String,
     /// The quantity the first FRF declares.
     quantity: Option<Quantity>,
+    /// The response directions allowed.
+    responses: Responses,
 }
 
 impl Frame<'_> {
@@ -320,7 +334,15 @@ impl Frame<'_> {
             });
         }
         let (node, direction) = (f.response.node, f.response.direction);
-        if !matches!(direction.abs(), 2 | 3 | 5 | 6) {
+        if self.responses == Responses::Space && !(1..=6).contains(&direction.abs()) {
+            return Err(UffInputError::NotInSpace {
+                file: x.file.to_path_buf(),
+                record: x.record,
+                node,
+                direction,
+            });
+        }
+        if self.responses == Responses::Bending && !matches!(direction.abs(), 2 | 3 | 5 | 6) {
             return Err(UffInputError::NotBending {
                 file: x.file.to_path_buf(),
                 record: x.record,
@@ -387,6 +409,25 @@ pub fn frfs(
     files: &[(PathBuf, Vec<Record>)],
     quantity: Option<Quantity>,
 ) -> Result<UffFrfs, UffInputError> {
+    frfs_of(files, quantity, Responses::Bending)
+}
+
+/// Which response directions a set may have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Responses {
+    /// The bending DOFs of a beam along X: +-2, +-3, +-5, +-6.
+    Bending,
+    /// Any direction of a structure in space: +-1 to +-6 (translations X, Y, Z, rotations
+    /// about them).
+    Space,
+}
+
+/// [`frfs`] with the response directions `responses` allows.
+pub fn frfs_of(
+    files: &[(PathBuf, Vec<Record>)],
+    quantity: Option<Quantity>,
+    responses: Responses,
+) -> Result<UffFrfs, UffInputError> {
     let (frf, coherence) = gather(files);
     let Some(first) = frf.first() else {
         return Err(UffInputError::NoFrf {
@@ -416,6 +457,7 @@ pub fn frfs(
         reference: (first.f.reference.node, first.f.reference.direction),
         units: first.f.ordinate_axis.units.clone(),
         quantity: first_quantity,
+        responses,
     };
     let mut channels: Vec<Channel> = Vec::new();
     let mut responses = Vec::new();
@@ -455,6 +497,19 @@ pub fn positions(
     nodes: &[Nodes],
     geometry: &Path,
 ) -> Result<Vec<f64>, UffInputError> {
+    Ok(coordinates(channels, nodes, geometry)?
+        .into_iter()
+        .map(|c| c[0])
+        .collect())
+}
+
+/// The coordinates (X, Y, Z, as the geometry gives them) of each channel's node in the
+/// geometry `nodes` (read from `geometry`).
+pub fn coordinates(
+    channels: &[Channel],
+    nodes: &[Nodes],
+    geometry: &Path,
+) -> Result<Vec<[f64; 3]>, UffInputError> {
     let all: Vec<_> = nodes.iter().flat_map(|n| &n.nodes).collect();
     if all.is_empty() {
         return Err(UffInputError::NoGeometry {
@@ -478,7 +533,7 @@ pub fn positions(
         .map(|c| {
             all.iter()
                 .find(|n| n.label == c.node)
-                .map(|n| n.coordinates[0])
+                .map(|n| n.coordinates)
                 .ok_or_else(|| UffInputError::MissingNode {
                     geometry: geometry.to_path_buf(),
                     node: c.node,
@@ -553,6 +608,31 @@ mod tests {
 
     fn file(records: Vec<Record>) -> Vec<(PathBuf, Vec<Record>)> {
         vec![(PathBuf::from("f.uff"), records)]
+    }
+
+    /// In space every direction of +-1..+-6 is a response; on a beam only the bending ones.
+    #[test]
+    fn responses_in_space_take_every_direction() {
+        let records = || {
+            vec![
+                function(FunctionType::Frf, 1, 1, 12, "m/s^2/N"),
+                function(FunctionType::Frf, 2, -4, 12, "m/s^2/N"),
+            ]
+        };
+        let u = frfs_of(&file(records()), None, Responses::Space).unwrap();
+        let directions: Vec<i32> = u.channels.iter().map(|c| c.direction).collect();
+        assert_eq!(directions, [1, -4]);
+        assert!(matches!(
+            frfs_of(&file(records()), None, Responses::Bending).unwrap_err(),
+            UffInputError::NotBending { direction: 1, .. }
+        ));
+        let seven = vec![function(FunctionType::Frf, 1, 7, 12, "m/s^2/N")];
+        assert_eq!(
+            frfs_of(&file(seven), None, Responses::Space)
+                .unwrap_err()
+                .to_string(),
+            "f.uff: record 1: response node 1 direction 7 is not a direction in space; allowed: +-1, +-2, +-3 (translation X, Y, Z), +-4, +-5, +-6 (rotation about X, Y, Z)"
+        );
     }
 
     #[test]

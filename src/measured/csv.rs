@@ -7,6 +7,8 @@
 //! 1,18.8,0.176,w,0.31
 //! mode,frequency_hz,label,value           a DOF label or a declared sensor's label
 //! 1,150.2,7:w,0.8812
+//! mode,frequency_hz,x,y,z,dof,value       coordinates in space, m, and a direction x|y|z
+//! 1,150.2,0.3,0.01,0.02,z,0.8812          (the nearest DOF of an external model)
 //! ```
 //! `mode` is the deformable mode number r (1 = first elastic mode). A point absent for a mode
 //! is not identified (the paper's NF). Every row of a mode carries the same frequency. A row may
@@ -80,9 +82,10 @@ struct Header {
 }
 
 fn header(fields: &[&str]) -> Result<Header, String> {
-    let allowed = "the header must be `mode,frequency_hz,` then `node,dof`, `x,dof` or `label`, then `value`, then optionally any of `damping_ratio`, `mpc`, `frequency_std`, `damping_std`, `value_std`";
+    let allowed = "the header must be `mode,frequency_hz,` then `node,dof`, `x,dof`, `x,y,z,dof` or `label`, then `value`, then optionally any of `damping_ratio`, `mpc`, `frequency_std`, `damping_std`, `value_std`";
     let location = match fields.get(2).copied() {
         Some("node") => Location::Node,
+        Some("x") if fields.get(3) == Some(&"y") => Location::Space,
         Some("x") => Location::Position,
         Some("label") => Location::Label,
         _ => return Err(format!("{allowed}; found `{}`", fields.join(","))),
@@ -422,6 +425,11 @@ impl MeasuredModes {
                     }
                     Location::Position => {
                         row.push(o.x.to_string());
+                        row.push(o.direction.name().to_string());
+                    }
+                    Location::Space => {
+                        let at = o.single_dof().map(|d| structure.dofs.get(d).position);
+                        row.extend(at.unwrap_or([f64::NAN; 3]).map(|c| c.to_string()));
                         row.push(o.direction.name().to_string());
                     }
                     Location::Label => row.push(o.label.clone()),

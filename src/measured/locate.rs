@@ -1,6 +1,7 @@
 //! Point resolution, shared by every format: a measured point named by node and DOF, by
-//! position along a chain and DOF, or by label (a DOF label or a declared sensor's), resolved
-//! into an [`Observation`] of the structure.
+//! position along a chain and DOF, by coordinates in space and direction (the nearest DOF of
+//! a model without beam elements, [`crate::structure::nearest`]) or by label (a DOF label or
+//! a declared sensor's), resolved into an [`Observation`] of the structure.
 //!
 //! May import: the structure.
 
@@ -15,6 +16,8 @@ pub enum Location {
     Position,
     /// `label`.
     Label,
+    /// `x,y,z,dof`: coordinates in space and a direction.
+    Space,
 }
 
 impl Location {
@@ -24,6 +27,7 @@ impl Location {
             Location::Node => &["node", "dof"],
             Location::Position => &["x", "dof"],
             Location::Label => &["label"],
+            Location::Space => &["x", "y", "z", "dof"],
         }
     }
 }
@@ -78,6 +82,23 @@ pub fn locate(
                     format!("x = `{}` is invalid: it must be a number (m)", fields[0])
                 })?;
             dofs.at_x(x, direction(fields[1])?)
+                .map_err(|e| e.to_string())
+        }
+        Location::Space => {
+            if !dofs.lines().is_empty() {
+                return Err("rows by x,y,z apply to models without beam elements (external models): on a beam chain give `x,dof` (read along the elements) or `node,dof`".to_string());
+            }
+            let mut point = [0.0; 3];
+            for ((p, text), name) in point.iter_mut().zip(fields).zip(["x", "y", "z"]) {
+                *p = text
+                    .parse()
+                    .ok()
+                    .filter(|v: &f64| v.is_finite())
+                    .ok_or_else(|| {
+                        format!("{name} = `{text}` is invalid: it must be a number (m)")
+                    })?;
+            }
+            dofs.nearest(point, direction(fields[3])?)
                 .map_err(|e| e.to_string())
         }
         Location::Label => {

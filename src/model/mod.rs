@@ -5,6 +5,8 @@
 //! - [`matrices`]: external finite-element models (Matrix Market K, M, dK/dp, a DOF table),
 //!   and the export of any structure as one;
 //! - [`matrix_market`]: the Matrix Market reader and writer;
+//! - [`solid`]: a 3D brick model of a bolted lap specimen, written as an external model
+//!   (independent of the chain: test data for external models);
 //! - [`effects`]: physical effects a model may lack, for `diagnose` and `simulate`.
 //!
 //! A model file is TOML; `kind` says which builder reads it: `"chain"` (the default) or
@@ -18,6 +20,7 @@ pub mod chain;
 pub mod effects;
 pub mod matrices;
 pub mod matrix_market;
+pub mod solid;
 
 use std::path::Path;
 

@@ -111,6 +111,11 @@ pub struct DofMap {
     by_label: HashMap<String, usize>,
     constrained: HashMap<String, String>,
     lines: Vec<LineElement>,
+    /// How far a sensor given by coordinates may lie from its nearest DOF, m (`None`: the
+    /// default of [`super::nearest`]).
+    sensor_tolerance: Option<f64>,
+    /// The DOFs sorted by x, built at the first search by coordinates.
+    by_x: std::sync::OnceLock<Index>,
 }
 
 impl DofMap {
@@ -132,7 +137,26 @@ impl DofMap {
             by_label,
             constrained: constrained.into_iter().collect(),
             lines,
+            sensor_tolerance: None,
+            by_x: std::sync::OnceLock::new(),
         }
+    }
+
+    /// The map with the distance a sensor given by coordinates may lie from its nearest DOF,
+    /// m (`None`: the default, see [`super::nearest`]).
+    pub fn with_sensor_tolerance(mut self, tolerance: Option<f64>) -> Self {
+        self.sensor_tolerance = tolerance;
+        self
+    }
+
+    /// The tolerance set by [`DofMap::with_sensor_tolerance`], if any.
+    pub fn sensor_tolerance_set(&self) -> Option<f64> {
+        self.sensor_tolerance
+    }
+
+    /// The DOFs sorted by x (built once).
+    pub(super) fn index_by_x(&self) -> &Index {
+        self.by_x.get_or_init(|| Index::new(&self.dofs))
     }
 
     /// Number of DOFs N.
@@ -173,5 +197,49 @@ impl DofMap {
     /// The label of node `node`, direction `direction` (`7:w`).
     pub fn node_label(node: usize, direction: Direction) -> String {
         format!("{node}:{direction}")
+    }
+}
+
+/// The DOFs sorted by x, and the model's bounding-box diagonal.
+#[derive(Debug, Clone)]
+pub struct Index {
+    /// (x, DOF index), ascending x.
+    sorted: Vec<(f64, usize)>,
+    /// The diagonal of the box of every DOF's position, m.
+    diagonal: f64,
+}
+
+impl Index {
+    /// The index of `dofs`.
+    pub fn new(dofs: &[DofInfo]) -> Index {
+        let mut sorted: Vec<(f64, usize)> = dofs
+            .iter()
+            .enumerate()
+            .map(|(i, d)| (d.position[0], i))
+            .collect();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for d in dofs {
+            for k in 0..3 {
+                lo[k] = lo[k].min(d.position[k]);
+                hi[k] = hi[k].max(d.position[k]);
+            }
+        }
+        let diagonal = (0..3)
+            .map(|k| (hi[k] - lo[k]).max(0.0).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        Index { sorted, diagonal }
+    }
+
+    /// (x, DOF index), ascending x.
+    pub fn sorted(&self) -> &[(f64, usize)] {
+        &self.sorted
+    }
+
+    /// The diagonal of the box of every DOF's position, m.
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
     }
 }

@@ -11,6 +11,7 @@
 //! - [`matrix`]: K and M, compressed sparse columns;
 //! - [`dofs`]: the DOF map (labels, positions, directions, line elements);
 //! - [`observation`]: what a sensor reads, c^T u, at a DOF or between nodes;
+//! - [`nearest`]: a sensor given by coordinates in space, resolved to the nearest DOF;
 //! - [`sites`]: joints, elements and free ends, for the effects.
 //!
 //! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
@@ -18,6 +19,7 @@
 
 pub mod dofs;
 pub mod matrix;
+pub mod nearest;
 pub mod observation;
 pub mod sites;
 pub mod sparse;

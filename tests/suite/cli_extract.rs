@@ -216,6 +216,43 @@ fn extracts_three_modes_to_a_csv_the_beam_model_reads() {
     }
 }
 
+/// `--space`: rows by the geometry's coordinates and the response direction (`x,y,z,dof`),
+/// the form a measured file takes for an external 3D model; the modes are those of the rows
+/// by `x,dof`.
+#[test]
+fn with_space_the_rows_are_the_geometry_coordinates_and_directions() {
+    let dir = Scratch::new("space");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3, 100]);
+    let (along, space) = (dir.path("along.csv"), dir.path("space.csv"));
+    assert!(run(&files, &geometry, &along, &[]).status.success());
+    let output = run(&files, &geometry, &space, &["--space"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let (along, space) = (
+        std::fs::read_to_string(&along).unwrap(),
+        std::fs::read_to_string(&space).unwrap(),
+    );
+    let mut rows = space.lines();
+    assert_eq!(
+        rows.next(),
+        Some(
+            "mode,frequency_hz,x,y,z,dof,value,damping_ratio,mpc,frequency_std,damping_std,value_std"
+        )
+    );
+    for (a, b) in along.lines().skip(1).zip(rows) {
+        // mode,f,x,w,rest  against  mode,f,x,0,0,y,rest: the response direction 2 is y.
+        let a: Vec<&str> = a.split(',').collect();
+        let b: Vec<&str> = b.split(',').collect();
+        assert_eq!(a[..3], b[..3]);
+        assert_eq!((a[3], b[3], b[4], b[5]), ("w", "0", "0", "y"));
+        assert_eq!(a[4..], b[6..]);
+    }
+    assert_eq!(along.lines().count(), space.lines().count());
+}
+
 #[test]
 fn averages_need_the_coherence_and_two_of_them() {
     let dir = Scratch::new("averages");

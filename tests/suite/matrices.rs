@@ -240,6 +240,29 @@ fn bad_inputs_are_refused_with_file_line_and_field() {
             "grounded.toml: rigid_body_modes = 1 is invalid: the model has 0 (eigenvalues below the rigid-body tolerance",
         ),
         (
+            "rigid-remedy",
+            vec![("grounded.toml", toml("rigid_body_modes = 1\n"))],
+            "Hz: declare the count the model has, or find why it differs (more: a part or a DOF that nothing ties to the rest; fewer: a support or a spring to the ground)",
+        ),
+        (
+            "dofs-direction",
+            vec![("dofs.csv", "dof,label,x,y,z,direction\n1,m1,0,0,0,x\n2,m2,0.1,0,0,\n".into())],
+            "grounded.toml: dofs: ",
+        ),
+        (
+            "dofs-direction-message",
+            vec![("dofs.csv", "dof,label,x,y,z,direction\n1,m1,0,0,0,x\n2,m2,0.1,0,0,\n".into())],
+            "dofs.csv:3: direction is empty: every DOF needs one, of w, theta, x, y, z, rx, ry, rz",
+        ),
+        (
+            "dofs-coincident",
+            vec![
+                ("dofs.csv", "dof,label,x,y,z,direction\n1,m1,0,0,0,x\n2,m2,0,0,0,x\n".into()),
+                ("dK.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1\n2 2 1\n".into()),
+            ],
+            "dofs.csv: dof 1 (`m1`) and dof 2 (`m2`) are both direction x at (0, 0, 0) m, and no entry of K or of a dK/dp couples them: coincident nodes that nothing ties are unmerged nodes (a crack in the mesh); merge them, tie them (a spring between them), or correct their positions",
+        ),
+        (
             "k-indefinite",
             vec![("K.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n1 1 -20000\n".into())],
             "grounded.toml: stiffness: K (with the parameters' p dK/dp) is not positive semidefinite",

@@ -62,7 +62,9 @@ impl MatricesFile {
         for (i, p) in self.parameters.iter().enumerate() {
             parameters.push(self.parameter(i, p, n, &read)?);
         }
-        let dofs = DofMap::new(infos, Vec::new(), Vec::new());
+        self.tied(&infos, &k, &parameters)?;
+        let dofs =
+            DofMap::new(infos, Vec::new(), Vec::new()).with_sensor_tolerance(self.sensor_tolerance);
         let base = Matrices {
             k: SymMatrix::from_entries(n, &k.both_triangles()),
             m: SymMatrix::from_entries(n, &m.both_triangles()),
@@ -80,6 +82,32 @@ impl MatricesFile {
         structure.rigid = self.rigid_body_modes(&assembled)?;
         structure.sites.beam_mass = translational_mass(&assembled.m, &structure.dofs);
         Ok(structure)
+    }
+
+    /// Coincident DOFs are tied by K or a dK/dp ([`super::coincident`]).
+    fn tied(
+        &self,
+        infos: &[crate::structure::DofInfo],
+        k: &LowerEntries,
+        parameters: &[Parameter],
+    ) -> Result<(), MatricesError> {
+        let lists = std::iter::once(k.entries.as_slice())
+            .chain(parameters.iter().map(|p| p.stiffness.entries()));
+        match super::coincident::untied(infos, lists) {
+            None => Ok(()),
+            Some(pair) => {
+                let (a, b) = (&infos[pair.first], &infos[pair.second]);
+                Err(MatricesError::Coincident {
+                    file: self.dofs.display().to_string(),
+                    first: pair.first + 1,
+                    first_label: a.label.clone(),
+                    second: pair.second + 1,
+                    second_label: b.label.clone(),
+                    direction: a.direction,
+                    position: a.position,
+                })
+            }
+        }
     }
 
     fn same_size(&self, field: &str, matrix: &LowerEntries, n: usize) -> Result<(), MatricesError> {

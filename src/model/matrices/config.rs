@@ -8,6 +8,7 @@
 //! mass = "M.mtx"               # M without the parameters' terms
 //! dofs = "dofs.csv"            # dof,label,x,y,z,direction
 //! rigid_body_modes = 2         # optional: checked against the model
+//! sensor_tolerance = 0.005     # optional, m: sensors by x,y,z within it of a DOF
 //!
 //! [[parameter]]
 //! name = "k1"
@@ -40,6 +41,7 @@ pub(crate) struct RawMatrices {
     mass: String,
     dofs: String,
     rigid_body_modes: Option<i64>,
+    sensor_tolerance: Option<f64>,
     #[serde(default)]
     parameter: Vec<RawParameter>,
 }
@@ -68,6 +70,9 @@ pub struct MatricesFile {
     pub dofs: PathBuf,
     /// The declared number of rigid-body modes, if any.
     pub rigid_body_modes: Option<usize>,
+    /// How far a sensor given by coordinates may lie from its nearest DOF, m (default: see
+    /// [`crate::structure::nearest`]).
+    pub sensor_tolerance: Option<f64>,
     /// The parameters, in file order.
     pub parameters: Vec<ParameterFile>,
 }
@@ -115,6 +120,10 @@ impl RawMatrices {
         let rigid_body_modes = self
             .rigid_body_modes
             .map(|r| check.int_range("rigid_body_modes", r, 0, i64::from(u32::MAX)))
+            .transpose()?;
+        let sensor_tolerance = self
+            .sensor_tolerance
+            .map(|t| check.positive("sensor_tolerance", t, "m"))
             .transpose()?;
         if self.parameter.is_empty() {
             return Err(check.invalid(
@@ -186,6 +195,7 @@ impl RawMatrices {
             mass: resolve(&self.mass, "mass".into())?,
             dofs: resolve(&self.dofs, "dofs".into())?,
             rigid_body_modes,
+            sensor_tolerance,
             parameters,
         })
     }

@@ -90,6 +90,12 @@ fn placement(xyz: [&str; 3], direction: &str) -> Result<([f64; 3], Direction), S
     }
     let Some(direction) = Direction::parse(direction) else {
         let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
+        if direction.is_empty() {
+            return Err(format!(
+                "direction is empty: every DOF needs one, of {}",
+                names.join(", ")
+            ));
+        }
         return Err(format!(
             "direction = `{direction}` is invalid: it must be one of {}",
             names.join(", ")
@@ -203,10 +209,16 @@ pub fn read(reader: impl Read, file: &Path, size: usize) -> Result<Vec<DofInfo>,
 
 /// Writes the table of `dofs` (in index order), positions in shortest round-trip form.
 pub fn write(out: &mut dyn Write, dofs: &[DofInfo]) -> io::Result<()> {
+    write_iter(out, dofs.iter().cloned())
+}
+
+/// [`write`] from an iterator of the DOFs in index order (a large table written as it is
+/// made).
+pub fn write_iter(out: &mut dyn Write, dofs: impl Iterator<Item = DofInfo>) -> io::Result<()> {
     let mut w = ::csv::Writer::from_writer(out);
     let to_io = |e: ::csv::Error| io::Error::other(e.to_string());
     w.write_record(HEADER).map_err(to_io)?;
-    for (i, d) in dofs.iter().enumerate() {
+    for (i, d) in dofs.enumerate() {
         let [x, y, z] = d.position.map(|v| v.to_string());
         w.write_record([
             (i + 1).to_string(),
@@ -283,6 +295,14 @@ mod tests {
             (
                 format!("{h}1,,0,0,0,w\n"),
                 "dofs.csv:2: label is empty: every DOF needs a label",
+            ),
+            (
+                format!("{h}1,a,0,0,0,\n"),
+                "dofs.csv:2: direction is empty: every DOF needs one, of w, theta, x, y, z, rx, ry, rz",
+            ),
+            (
+                format!("{h}1,a,0,0,0\n"),
+                "dofs.csv:2: 5 fields: a row has 6 (dof,label,x,y,z,direction)",
             ),
         ];
         for (text, message) in cases {

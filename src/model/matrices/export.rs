@@ -86,6 +86,9 @@ pub fn export(structure: &Structure, source: &str) -> Result<Export, ExportError
          rigid_body_modes = {}\n",
         structure.rigid
     );
+    if let Some(t) = structure.dofs.sensor_tolerance_set() {
+        toml.push_str(&format!("sensor_tolerance = {t:e}\n"));
+    }
     let mut reordered = false;
     for p in &structure.parameters {
         if !UNITS.contains(&p.unit) {
@@ -270,6 +273,10 @@ pub fn identical(a: &Structure, b: &Structure) -> Result<(), String> {
     };
     if dof(a) != dof(b) {
         return Err("the DOF table differs".into());
+    }
+    let tolerance = |s: &Structure| s.dofs.sensor_tolerance_set().map(f64::to_bits);
+    if tolerance(a) != tolerance(b) {
+        return Err("the sensor tolerance differs".into());
     }
     if a.rigid != b.rigid {
         return Err(format!(

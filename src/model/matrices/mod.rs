@@ -7,6 +7,7 @@
 //! - [`config`]: the model TOML (`kind = "matrices"`), paths relative to it;
 //! - [`dof_table`]: the DOF table CSV `dof,label,x,y,z,direction`;
 //! - [`build`]: the files read, checked and assembled into a [`Structure`];
+//! - [`coincident`]: DOFs at the same position and direction must be tied;
 //! - [`mod@export`]: any structure written as such a model (`jointid export`).
 //!
 //! The structure is the one every command takes: identify, simulate, study and diagnose do
@@ -15,6 +16,7 @@
 //! chain do not apply to it.
 
 pub mod build;
+pub mod coincident;
 pub mod config;
 pub mod dof_table;
 pub mod export;
@@ -50,6 +52,27 @@ pub enum MatricesError {
     Dofs {
         /// What is wrong in it.
         problem: DofTableError,
+    },
+    /// Two DOFs at the same position and direction that nothing couples.
+    #[error(
+        "dofs: {file}: dof {first} (`{first_label}`) and dof {second} (`{second_label}`) are both direction {direction} at ({}, {}, {}) m, and no entry of K or of a dK/dp couples them: coincident nodes that nothing ties are unmerged nodes (a crack in the mesh); merge them, tie them (a spring between them), or correct their positions",
+        position[0], position[1], position[2]
+    )]
+    Coincident {
+        /// The DOF table.
+        file: String,
+        /// The first DOF, 1-based.
+        first: usize,
+        /// Its label.
+        first_label: String,
+        /// The second DOF, 1-based.
+        second: usize,
+        /// Its label.
+        second_label: String,
+        /// Their direction.
+        direction: crate::structure::Direction,
+        /// Their position.
+        position: [f64; 3],
     },
     /// A matrix of another size than K.
     #[error(
@@ -113,7 +136,7 @@ pub enum MatricesError {
         tolerance: f64,
     },
     /// The declared rigid-body count is not the model's.
-    #[error("rigid_body_modes = {declared} is invalid: the model has {counted} (eigenvalues below the rigid-body tolerance, {tolerance_hz:.3e} Hz), and its {declared} lowest eigenvalues are not all below 1e-2 times the next; its lowest frequencies are {} Hz", fmt_list(.lowest_hz))]
+    #[error("rigid_body_modes = {declared} is invalid: the model has {counted} (eigenvalues below the rigid-body tolerance, {tolerance_hz:.3e} Hz), and its {declared} lowest eigenvalues are not all below 1e-2 times the next; its lowest frequencies are {} Hz: declare the count the model has, or find why it differs (more: a part or a DOF that nothing ties to the rest; fewer: a support or a spring to the ground)", fmt_list(.lowest_hz))]
     Rigid {
         /// Declared.
         declared: usize,

@@ -27,7 +27,7 @@
 
 mod write;
 
-pub use write::write;
+pub use write::{write, write_entries};
 
 use std::collections::HashMap;
 use std::io::{self, BufRead};

@@ -12,15 +12,30 @@ pub fn write(
     lower: &[(usize, usize, f64)],
     comments: &[String],
 ) -> io::Result<()> {
+    write_entries(out, size, lower.len(), lower.iter().copied(), comments)
+}
+
+/// [`write`] from an iterator of `count` entries (a large matrix written as it is read from
+/// its store, never copied).
+pub fn write_entries(
+    out: &mut dyn Write,
+    size: usize,
+    count: usize,
+    lower: impl Iterator<Item = (usize, usize, f64)>,
+    comments: &[String],
+) -> io::Result<()> {
     writeln!(out, "%%MatrixMarket matrix coordinate real symmetric")?;
     for c in comments {
         writeln!(out, "% {c}")?;
     }
-    writeln!(out, "{size} {size} {}", lower.len())?;
-    for &(i, j, v) in lower {
+    writeln!(out, "{size} {size} {count}")?;
+    let mut written = 0;
+    for (i, j, v) in lower {
         debug_assert!(i >= j && i < size);
         writeln!(out, "{} {} {v:e}", i + 1, j + 1)?;
+        written += 1;
     }
+    debug_assert_eq!(written, count);
     Ok(())
 }
 
