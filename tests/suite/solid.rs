@@ -436,6 +436,7 @@ fn a_large_lap_assembles_with_its_rigid_motions_and_mass() {
         .replace("width = 0.02", "width = 0.025")
         .replace("length = 0.16", "length = 0.3")
         .replace("length = 0.12", "length = 0.3")
+        .replace("x = 0.14\ny = 0.01", "x = 0.28\ny = 0.0125")
         .replace("size = 0.01", "size = 0.00125")
         .replace("layers = 1", "layers = 6");
     let config = SolidConfig::from_toml(&text, Path::new("large.toml")).unwrap();
