@@ -136,11 +136,8 @@ pub fn diagnose(
     };
     let first = candidate::fit_all(&library, &first_stage, None);
     let estimate = if stated.measured_std {
-        let physical = first.iter().filter_map(|(c, outcome)| {
-            let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
-            Some((c.name(), fit.model.as_ref()?))
-        });
-        noise::from_data(physical, &first_base, measured, &stated)
+        let largest = yardstick::largest(&first, &first_base);
+        noise::from_data(largest.name, largest.fitted, measured, &stated)
     } else {
         yardstick::choose(&first, &first_stage)
     };

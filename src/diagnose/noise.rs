@@ -88,32 +88,20 @@ pub struct NoiseEstimate {
     pub frequency_sigmas: Option<Vec<f64>>,
 }
 
-/// The model with the smallest chi^2 among `models` when below `base`'s, else `base`.
-fn largest<'a>(
-    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
-    base: &'a Fitted,
-) -> (&'a str, &'a Fitted) {
-    models
-        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
-        .filter(|(_, f)| f.chi2 < base.chi2)
-        .unwrap_or(("joint only", base))
-}
-
 /// The noise of data that carry their own standard errors: they are the working noise (known,
 /// so the tests are chi^2 tests: infinite degrees of freedom), and the residuals of the
-/// largest physical model (the smallest chi^2 below the joint-only fit's), fitted under them,
-/// give the check:
+/// largest physical model `fitted` (named `name`; module `diagnose::yardstick`), fitted under
+/// them, give the check:
 /// `shape_factor` and `frequency_factor` are the RMS of the weighted shape and frequency
 /// residuals, corrected for the unknowns spent on them (1 when the data's errors are right
 /// and the model fits). The working noise's `shape` and `frequency` are the RMS relative
 /// standard errors, for the summaries that need one number.
-pub fn from_data<'a>(
-    models: impl Iterator<Item = (&'a str, &'a Fitted)>,
-    base: &'a Fitted,
+pub fn from_data(
+    name: &str,
+    fitted: &Fitted,
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> NoiseEstimate {
-    let (name, fitted) = largest(models, base);
     let (sigma_f, sigma) = sigmas(measured, calibration);
     let res = residuals(fitted, measured);
     let mut shape_chi2 = 0.0;

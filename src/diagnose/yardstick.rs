@@ -25,64 +25,71 @@
 
 use super::candidate::{Stage, Tried};
 use super::decide::FIT_ALPHA;
-use super::fit::{self, Calibration, Noise, Residuals, SHAPE_FLOOR, residuals};
+use super::fit::{self, Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use super::noise::{LARGEST_FACTOR, NoiseEstimate, estimate};
 use super::whiteness;
 
 /// The name of the joint-only fit among the models.
 const JOINT_ONLY: &str = "joint only";
 
-/// What the choice needs of a fitted model: its residuals and its unknowns besides the
-/// shape scales.
+/// What a refitted model leaves: its residuals and its unknowns besides the shape scales.
 struct Leaves {
     residuals: Residuals,
     unknowns: usize,
 }
 
-/// The noise that judges the candidates (see the module docs): the estimate of the largest
-/// model (the smallest chi^2, below the joint-only fit's, among the candidates of `first`
-/// fitted on the stage `first_stage` under the stated noise, that have a model of their own
-/// and a physical size; else the joint-only fit) when it is adequate; else the stated noise,
-/// that estimate kept as the check.
-pub fn choose(first: &[Tried], first_stage: &Stage) -> NoiseEstimate {
-    let base = first_stage.base;
-    let stated = first_stage.calibration.noise;
-    let largest = first
+/// The largest physical model of a stage: the candidate with the smallest chi^2 among those
+/// of `first` that have a model of their own and a physical size, when below the joint-only
+/// fit `base`'s; else `base`. Its residual scale is the smallest any model reaches.
+#[derive(Debug, Clone, Copy)]
+pub struct Largest<'a> {
+    /// Its index in `first`; None for the joint-only fit.
+    pub index: Option<usize>,
+    /// Its name (`joint only` for the joint-only fit).
+    pub name: &'static str,
+    /// The fitted model.
+    pub fitted: &'a Fitted,
+}
+
+/// The largest physical model of `first` and `base` ([`Largest`]).
+pub fn largest<'a>(first: &'a [Tried], base: &'a Fitted) -> Largest<'a> {
+    first
         .iter()
         .enumerate()
-        .filter_map(|(i, (_, outcome))| {
-            let fit = outcome
-                .as_ref()
-                .ok()
-                .filter(|f| f.excluded.is_none() && f.model.is_some())?;
-            (fit.chi2 < base.chi2).then_some((i, fit))
+        .filter_map(|(i, (candidate, outcome))| {
+            let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
+            let fitted = fit.model.as_ref().filter(|m| m.chi2 < base.chi2)?;
+            Some(Largest {
+                index: Some(i),
+                name: candidate.name(),
+                fitted,
+            })
         })
-        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2));
-    let (i, leaves) = match largest {
-        Some((i, fit)) => (
-            Some(i),
-            Leaves {
-                residuals: fit.residuals.clone(),
-                unknowns: fit.unknowns,
-            },
-        ),
-        None => (
-            None,
-            Leaves {
-                residuals: residuals(base, first_stage.measured),
-                unknowns: base.estimates.len(),
-            },
-        ),
-    };
+        .min_by(|a, b| a.fitted.chi2.total_cmp(&b.fitted.chi2))
+        .unwrap_or(Largest {
+            index: None,
+            name: JOINT_ONLY,
+            fitted: base,
+        })
+}
+
+/// The noise that judges the candidates (see the module docs): the estimate of the
+/// [`largest`] model of `first` (fitted on the stage `first_stage`, under the stated noise)
+/// when it is adequate; else the stated noise, that estimate kept as the check.
+pub fn choose(first: &[Tried], first_stage: &Stage) -> NoiseEstimate {
+    let stated = first_stage.calibration.noise;
+    let largest = largest(first, first_stage.base);
     let e = estimate(
-        &leaves.residuals,
+        &residuals(largest.fitted, first_stage.measured),
         first_stage.measured,
-        leaves.unknowns,
+        largest.fitted.estimates.len(),
         stated,
         SHAPE_FLOOR,
-        i.map_or(JOINT_ONLY, |i| first[i].0.name()),
+        largest.name,
     );
-    if refitted(first, first_stage, i, &e).is_some_and(|l| adequate(&e, &l, first_stage)) {
+    if refitted(first, first_stage, largest.index, &e)
+        .is_some_and(|l| adequate(&e, &l, first_stage))
+    {
         e
     } else {
         stated_yardstick(e, stated)

@@ -40,7 +40,7 @@ use serde::Deserialize;
 use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
 use serde::de::{MapAccess, SeqAccess, Visitor};
 
-use super::measured_noise::{MeasuredNoise, ModeNoise};
+use super::measured_noise::MeasuredNoise;
 use crate::identify::Weighting;
 use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
 use crate::random::NoiseKind;
@@ -545,29 +545,38 @@ fn check_measured_levels(
     check: &FieldCheck,
 ) -> Result<(), InputError> {
     for g in grids {
-        for (field, levels, of) in [
-            (
-                "shape_noise",
-                &g.shape_noise,
-                (|m: &ModeNoise| m.shape) as fn(&ModeNoise) -> f64,
-            ),
-            ("frequency_noise", &g.frequency_noise, |m: &ModeNoise| {
-                m.frequency
-            }),
-        ] {
-            for (i, &factor) in levels.iter().enumerate() {
-                if let Some(m) = measured.modes.iter().find(|m| factor * of(m) >= 1.0) {
-                    return Err(check.invalid(
-                        format!("{}.{field}[{i}]", g.path),
-                        Number(factor),
-                        format!(
-                            "times mode {}'s measured relative error {} it must stay below 1 (100%)",
-                            m.mode,
-                            Number(of(m))
-                        ),
-                    ));
-                }
-            }
+        let shape = measured.modes.iter().map(|m| (m.mode, m.shape));
+        let frequency = measured.modes.iter().map(|m| (m.mode, m.frequency));
+        factors_below_one(
+            &format!("{}.shape_noise", g.path),
+            &g.shape_noise,
+            shape,
+            check,
+        )?;
+        let path = format!("{}.frequency_noise", g.path);
+        factors_below_one(&path, &g.frequency_noise, frequency, check)?;
+    }
+    Ok(())
+}
+
+/// Every factor of the grid field `path` times every mode's relative error (mode, error)
+/// below 1.
+fn factors_below_one(
+    path: &str,
+    factors: &[f64],
+    errors: impl Iterator<Item = (usize, f64)> + Clone,
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    for (i, &factor) in factors.iter().enumerate() {
+        if let Some((mode, error)) = errors.clone().find(|(_, e)| factor * e >= 1.0) {
+            return Err(check.invalid(
+                format!("{path}[{i}]"),
+                Number(factor),
+                format!(
+                    "times mode {mode}'s measured relative error {} it must stay below 1 (100%)",
+                    Number(error)
+                ),
+            ));
         }
     }
     Ok(())
