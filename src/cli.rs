@@ -340,15 +340,25 @@ pub struct IdentifyArgs {
     /// Measured modes (CSV: mode,frequency_hz, then node,dof or x,dof or label, then value).
     #[arg(long)]
     pub measured: PathBuf,
-    /// Basis size n: calculated eigenpairs, rigid-body modes included.
-    #[arg(long)]
-    pub n: usize,
+    /// Basis size n: calculated eigenpairs, rigid-body modes included (not with
+    /// --from-frequency).
+    #[arg(long, required_unless_present = "from_frequency")]
+    pub n: Option<usize>,
     /// Retained sensitivity equations m (q <= m <= n - 2).
-    #[arg(long)]
-    pub m: usize,
+    #[arg(long, required_unless_present = "from_frequency")]
+    pub m: Option<usize>,
     /// Weighting of the retained equations: equal, inverse (16-a), inverse-sqrt (16-b).
-    #[arg(long, value_parser = parse_weighting)]
-    pub weighting: Weighting,
+    #[arg(long, value_parser = parse_weighting, required_unless_present = "from_frequency")]
+    pub weighting: Option<Weighting>,
+    /// Identify every mode from its frequency alone: one parameter per mode, the one named by
+    /// --params (a single name) or the one the mode is most sensitive to, the others held. A
+    /// mode whose shape components cannot carry the paper's system gets this anyway.
+    #[arg(long, conflicts_with_all = ["n", "m", "weighting"])]
+    pub from_frequency: bool,
+    /// Relative standard deviation of the measured frequencies, for the standard deviation of
+    /// a correction from a frequency alone when the measured file carries no frequency_std.
+    #[arg(long)]
+    pub frequency_noise: Option<f64>,
     /// Modes to identify (default: every measured mode), e.g. 1,2,3.
     #[arg(long, value_delimiter = ',')]
     pub modes: Option<Vec<usize>>,

@@ -1,4 +1,5 @@
-//! `jointid identify`: the paper's per-mode corrections for measured data.
+//! `jointid identify`: the paper's per-mode corrections for measured data, and one parameter
+//! per mode from its frequency alone where a mode's shape cannot carry the paper's system.
 
 use std::io::Write;
 
@@ -6,11 +7,13 @@ use anyhow::{Context, bail};
 
 use crate::cli::IdentifyArgs;
 use crate::commands::flagged;
-use jointid::identify::{Identifier, Selection, Settings};
-use jointid::measured::MeasuredModes;
+use jointid::identify::frequency_only::{self, Choice, Fallback, FrequencyError};
+use jointid::identify::{Identifier, IdentifyError, Selection, Settings};
+use jointid::measured::{MeasuredMode, MeasuredModes};
 use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, identify as out, write_atomically};
+use jointid::structure::Parameter;
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();
@@ -18,85 +21,182 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     inputs.push(args.measured.clone());
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
+    if let Some(v) = args.frequency_noise
+        && !(v.is_finite() && v > 0.0 && v < 1.0)
+    {
+        bail!("--frequency-noise {v} is invalid: a relative standard deviation in (0, 1)");
+    }
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let matrices = model.assemble();
-    let settings = Settings::new(args.n, args.m, args.weighting, &model)
-        .map_err(|e| flagged(e, &[("n", "--n")]))?;
-    let modal = ModalSolution::lowest_of(&matrices, args.n)
+    let count = args.n.unwrap_or(model.rigid + 1);
+    let modal = ModalSolution::lowest_of(&matrices, count)
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     check_elastic(&matrices, &modal, model.rigid)
         .with_context(|| format!("{}", args.model.display()))?;
     let all = model.identified();
-    let (params, selection) = match args.params.as_deref() {
-        None => (all, Selection::All),
-        Some([auto]) if auto == "auto" => (all, Selection::Auto),
-        Some(names) => {
-            let mut chosen = Vec::with_capacity(names.len());
-            for name in names {
-                let Some(p) = all.iter().find(|p| &p.name == name) else {
-                    let known: Vec<&str> = all.iter().map(|p| p.name.as_str()).collect();
-                    bail!(
-                        "--params {name} is invalid: the model identifies {} (or give `auto`)",
-                        known.join(", ")
-                    );
-                };
-                if chosen
-                    .iter()
-                    .any(|c: &jointid::structure::Parameter| &c.name == name)
-                {
-                    bail!("--params lists {name} twice");
-                }
-                chosen.push(p.clone());
-            }
-            (chosen, Selection::All)
+    let (params, selection, choice) = chosen(args.params.as_deref(), &all)?;
+    let identifier = match (args.n, args.m, args.weighting) {
+        (Some(n), Some(m), Some(weighting)) => {
+            let settings =
+                Settings::new(n, m, weighting, &model).map_err(|e| flagged(e, &[("n", "--n")]))?;
+            Some(Identifier::new(
+                &modal,
+                params.clone(),
+                model.rigid,
+                settings,
+            )?)
         }
+        _ => None,
     };
-    let identifier = Identifier::new(&modal, params, model.rigid, settings)?;
-    let modes: Vec<usize> = match &args.modes {
-        Some(list) => list.clone(),
-        None => measured.modes().iter().map(|m| m.mode).collect(),
-    };
-    let mut outcomes = Vec::with_capacity(modes.len());
-    for &r in &modes {
-        let Some(mode) = measured.get(r) else {
-            let have: Vec<String> = measured
-                .modes()
-                .iter()
-                .map(|m| m.mode.to_string())
-                .collect();
-            bail!(
-                "--modes asks for mode {r}, which {} does not hold (it has modes {})",
-                args.measured.display(),
-                have.join(",")
-            );
+    let modes = selected(args, &measured)?;
+    let mut rows = Vec::new();
+    let mut outcomes = Vec::new();
+    let mut fallbacks = Vec::new();
+    for mode in modes {
+        let shape = identifier
+            .as_ref()
+            .map(|id| id.identify_selected(mode, id.basis_index(mode.mode)?, selection))
+            .transpose();
+        let why = match shape {
+            Ok(Some(o)) if o.relative.is_ok() => {
+                rows.extend(out::rows(std::slice::from_ref(&o), &params));
+                outcomes.push(o);
+                continue;
+            }
+            Ok(Some(o)) => Fallback::RankDeficient(o),
+            Ok(None) => Fallback::Asked,
+            Err(e @ IdentifyError::Projection { .. }) => {
+                return Err(anyhow::anyhow!(
+                    "{e}: lower --n to the shape components the modes have, or identify each mode's parameter from its frequency alone (--from-frequency)"
+                ))
+                .with_context(|| format!("{}", args.measured.display()));
+            }
+            Err(e) => return Err(e).with_context(|| format!("{}", args.measured.display())),
         };
-        outcomes.push(
-            identifier
-                .identify_selected(mode, identifier.basis_index(mode.mode)?, selection)
-                .with_context(|| format!("{}", args.measured.display()))?,
-        );
+        let f_std = mode
+            .frequency_std
+            .map(|s| s / mode.frequency_hz)
+            .or(args.frequency_noise);
+        let t = mode.mode - 1 + model.rigid;
+        match frequency_only::identify(&model, t, mode.mode, mode.frequency_hz, f_std, choice) {
+            Ok(f) => {
+                rows.extend(out::frequency_rows(&f, mode.frequency_hz, &all));
+                fallbacks.push((f, why));
+            }
+            Err(FrequencyError::Modal(e)) => {
+                return Err(e).with_context(|| format!("{}: modal solution", args.model.display()));
+            }
+            Err(e) => {
+                eprintln!("warning: {e}; its corrections are left empty");
+                match why {
+                    Fallback::RankDeficient(o) => {
+                        rows.extend(out::rows(std::slice::from_ref(&o), &params));
+                        outcomes.push(o);
+                    }
+                    _ => {
+                        let f_model = ModalSolution::lowest_of(&matrices, t + 1)?.frequency_hz(t);
+                        rows.extend(out::unsolved_rows(
+                            mode.mode,
+                            mode.frequency_hz,
+                            f_model,
+                            &all,
+                        ));
+                    }
+                }
+            }
+        }
     }
+    report(args, &measured, &outcomes, &fallbacks, &params, &all, &rows)
+}
+
+/// The notes on stderr, then the rows (CSV to --out, or a table).
+fn report(
+    args: &IdentifyArgs,
+    measured: &MeasuredModes,
+    outcomes: &[jointid::identify::ModeOutcome],
+    fallbacks: &[(frequency_only::FrequencyOutcome, Fallback)],
+    params: &[Parameter],
+    all: &[Parameter],
+    rows: &[out::IdentifyRow],
+) -> anyhow::Result<()> {
     if measured.has_std() {
         eprintln!(
             "noise: the data's own standard errors (frequency_std, value_std) weigh the projections and give the corrections' standard deviations"
         );
     }
-    out::write_notes(
-        &mut std::io::stderr().lock(),
-        &outcomes,
-        identifier.parameters(),
-    )?;
-    let rows = out::rows(&outcomes, identifier.parameters());
+    let mut err = std::io::stderr().lock();
+    out::write_notes(&mut err, outcomes, params)?;
+    out::write_frequency_notes(&mut err, fallbacks, all)?;
     match &args.out {
-        Some(path) => write_atomically(path, |w| out::write_csv(w, &rows))
+        Some(path) => write_atomically(path, |w| out::write_csv(w, rows))
             .with_context(|| format!("{}: cannot write", path.display()))?,
         None => {
             let stdout = std::io::stdout();
             let mut lock = stdout.lock();
-            out::write_text(&mut lock, &rows)?;
+            out::write_text(&mut lock, rows)?;
             lock.flush()?;
         }
     }
     Ok(())
+}
+
+/// The parameters of the paper's system (--params), its selection, and the parameter a mode's
+/// frequency identifies (the one named when --params names one, else the most sensitive).
+fn chosen(
+    names: Option<&[String]>,
+    all: &[Parameter],
+) -> anyhow::Result<(Vec<Parameter>, Selection, Choice)> {
+    let names = match names {
+        None => return Ok((all.to_vec(), Selection::All, Choice::MostSensitive)),
+        Some([auto]) if auto == "auto" => {
+            return Ok((all.to_vec(), Selection::Auto, Choice::MostSensitive));
+        }
+        Some(names) => names,
+    };
+    let mut chosen: Vec<Parameter> = Vec::with_capacity(names.len());
+    for name in names {
+        let Some(p) = all.iter().find(|p| &p.name == name) else {
+            let known: Vec<&str> = all.iter().map(|p| p.name.as_str()).collect();
+            bail!(
+                "--params {name} is invalid: the model identifies {} (or give `auto`)",
+                known.join(", ")
+            );
+        };
+        if chosen.iter().any(|c| &c.name == name) {
+            bail!("--params lists {name} twice");
+        }
+        chosen.push(p.clone());
+    }
+    let choice = match chosen.as_slice() {
+        [one] => Choice::Named(all.iter().position(|p| p.name == one.name).unwrap_or(0)),
+        _ => Choice::MostSensitive,
+    };
+    Ok((chosen, Selection::All, choice))
+}
+
+/// The measured modes --modes asks for (every one by default).
+fn selected<'a>(
+    args: &IdentifyArgs,
+    measured: &'a MeasuredModes,
+) -> anyhow::Result<Vec<&'a MeasuredMode>> {
+    let Some(list) = &args.modes else {
+        return Ok(measured.modes().iter().collect());
+    };
+    list.iter()
+        .map(|&r| {
+            measured.get(r).ok_or_else(|| {
+                let have: Vec<String> = measured
+                    .modes()
+                    .iter()
+                    .map(|m| m.mode.to_string())
+                    .collect();
+                anyhow::anyhow!(
+                    "--modes asks for mode {r}, which {} does not hold (it has modes {})",
+                    args.measured.display(),
+                    have.join(",")
+                )
+            })
+        })
+        .collect()
 }

@@ -15,6 +15,7 @@
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
 //! [`crate::model`], [`crate::measured`], [`crate::extract`].
 
+pub mod frequency_only;
 pub mod identifiability;
 pub mod projection;
 pub mod propagation;

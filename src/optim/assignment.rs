@@ -83,8 +83,7 @@ pub fn assign(weights: &[Vec<Option<f64>>]) -> Vec<Option<usize>> {
         }
     }
     let mut out = vec![None; n];
-    for c in 1..=columns {
-        let r = p[c];
+    for (c, &r) in p.iter().enumerate().take(columns + 1).skip(1) {
         if r != 0 && weights[r - 1].get(c - 1).copied().flatten().is_some() {
             out[r - 1] = Some(c - 1);
         }

@@ -6,7 +6,7 @@ use super::table::{plus_minus, sci, write_table};
 use crate::diagnose::Estimate;
 use crate::diagnose::noise::LARGEST_FACTOR;
 use crate::diagnose::report::Profile;
-use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection};
+use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection, Source};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
 
 fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
@@ -31,13 +31,21 @@ fn corrections(
     let rows: Vec<Vec<String>> = list
         .iter()
         .map(|c| {
+            let empty = match c.source {
+                Source::Held => "held",
+                _ => "rank-deficient",
+            };
+            let from = match c.source {
+                Source::Frequency => " f",
+                _ => "",
+            };
             vec![
                 c.mode.to_string(),
                 format!("{:.2}", c.frequency_hz),
                 c.param.clone(),
                 c.correction
-                    .map(sci)
-                    .unwrap_or_else(|| "rank-deficient".into()),
+                    .map(|v| format!("{}{from}", sci(v)))
+                    .unwrap_or_else(|| empty.into()),
                 c.std.map(sci).unwrap_or_default(),
                 c.relative
                     .map(|z| {
@@ -60,6 +68,12 @@ fn corrections(
         ],
         &rows,
     )?;
+    if list.iter().any(|c| c.source == Source::Frequency) {
+        writeln!(
+            out,
+            "  f: from the mode's frequency alone (its shape components cannot carry the paper's system): the parameter the mode is most sensitive to, the others held"
+        )?;
+    }
     if list.iter().any(|c| c.physical == Some(false)) {
         writeln!(
             out,

@@ -5,7 +5,10 @@
 //! written in the shortest form that reads back to the same f64. A mode whose S_r is rank
 //! deficient has empty `correction`, `corrected` and `relative_correction` and
 //! `condition = inf`; a parameter held on a mode (`--params auto`) has `identified = held`, a
-//! zero correction, and the condition of the parameters the mode identified. When the measured
+//! zero correction, and the condition of the parameters the mode identified. A mode identified
+//! from its frequency alone (module `identify::frequency_only`) has `identified = frequency`
+//! on its one parameter (condition 1, resolution 1: one equation, one unknown) and `held` on
+//! the others (resolution 0). When the measured
 //! modes carry standard errors, two more columns: `correction_std,relative_correction_std`,
 //! their first-order propagation (module `identify::propagation`); the projection is then
 //! weighted by them.
@@ -13,6 +16,7 @@
 use std::io::{self, Write};
 
 use super::table::{sci, write_table};
+use crate::identify::frequency_only::{Fallback, FrequencyOutcome, Source};
 use crate::identify::{MIN_RESOLUTION, ModeOutcome};
 use crate::structure::Parameter;
 
@@ -54,8 +58,8 @@ pub struct IdentifyRow {
     pub condition: f64,
     /// Resolution of the parameter on this mode (1: seen apart from the others, 0: not).
     pub resolution: f64,
-    /// Whether it was identified on this mode (false: held at its value).
-    pub identified: bool,
+    /// How it was determined on this mode (or held at its value).
+    pub source: Source,
     /// Standard deviation of Z_r(i) from the data's own standard errors, when they carry them.
     pub relative_std: Option<f64>,
 }
@@ -86,15 +90,66 @@ pub fn rows(outcomes: &[ModeOutcome], params: &[Parameter]) -> Vec<IdentifyRow> 
                 frequency_model_hz: o.frequency_model_hz,
                 condition: o.condition,
                 resolution: o.resolution[i],
-                identified: o.solved[i],
+                source: if o.solved[i] {
+                    Source::Shape
+                } else {
+                    Source::Held
+                },
                 relative_std: o.std.as_ref().map(|s| s[i]),
             })
         })
         .collect()
 }
 
+/// The rows of a mode identified from its frequency alone: its parameter, the others held.
+pub fn frequency_rows(o: &FrequencyOutcome, f_hz: f64, params: &[Parameter]) -> Vec<IdentifyRow> {
+    params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let own = i == o.param;
+            IdentifyRow {
+                mode: o.mode,
+                param: p.name.clone(),
+                initial: p.value,
+                relative: Some(if own { o.relative } else { 0.0 }),
+                frequency_measured_hz: f_hz,
+                frequency_model_hz: o.frequency_model_hz,
+                condition: 1.0,
+                resolution: if own { 1.0 } else { 0.0 },
+                source: if own { Source::Frequency } else { Source::Held },
+                relative_std: if own { o.std } else { None },
+            }
+        })
+        .collect()
+}
+
 fn opt(x: Option<f64>) -> String {
     x.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// The rows of a mode whose frequency could not give its parameter: corrections empty.
+pub fn unsolved_rows(
+    mode: usize,
+    f_hz: f64,
+    f_model_hz: f64,
+    params: &[Parameter],
+) -> Vec<IdentifyRow> {
+    params
+        .iter()
+        .map(|p| IdentifyRow {
+            mode,
+            param: p.name.clone(),
+            initial: p.value,
+            relative: None,
+            frequency_measured_hz: f_hz,
+            frequency_model_hz: f_model_hz,
+            condition: f64::INFINITY,
+            resolution: 0.0,
+            source: Source::Frequency,
+            relative_std: None,
+        })
+        .collect()
 }
 
 /// Writes the rows as CSV.
@@ -118,7 +173,12 @@ pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
             r.frequency_model_hz.to_string(),
             r.condition.to_string(),
             r.resolution.to_string(),
-            if r.identified { "yes" } else { "held" }.to_string(),
+            match r.source {
+                Source::Shape => "yes",
+                Source::Frequency => "frequency",
+                Source::Held => "held",
+            }
+            .to_string(),
         ];
         if std {
             row.push(opt(r.relative_std.map(|s| s * r.initial)));
@@ -148,17 +208,21 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
     if std {
         header.push("+- (std)");
     }
-    let na = || "rank-deficient".to_string();
     let cells: Vec<Vec<String>> = rows
         .iter()
         .map(|r| {
+            let na = || match r.source {
+                Source::Frequency => "no solution".to_string(),
+                _ => "rank-deficient".to_string(),
+            };
             vec![
                 r.mode.to_string(),
                 r.param.clone(),
                 sci(r.initial),
-                match (r.identified, r.correction()) {
-                    (false, _) => "held".to_string(),
-                    (true, c) => c.map(sci).unwrap_or_else(na),
+                match (r.source, r.correction()) {
+                    (Source::Held, _) => "held".to_string(),
+                    (Source::Frequency, Some(c)) => format!("{} f", sci(c)),
+                    (_, c) => c.map(sci).unwrap_or_else(na),
                 },
                 r.corrected().map(sci).unwrap_or_else(na),
                 r.relative.map(|z| format!("{z:+.4}")).unwrap_or_else(na),
@@ -222,6 +286,37 @@ pub fn write_notes(
             )?,
             (Ok(_), true) => {}
         }
+    }
+    Ok(())
+}
+
+/// Writes, for every mode identified from its frequency alone, which parameter, its
+/// sensitivity and why.
+pub fn write_frequency_notes(
+    out: &mut dyn Write,
+    fallbacks: &[(FrequencyOutcome, Fallback)],
+    params: &[Parameter],
+) -> io::Result<()> {
+    for (f, why) in fallbacks {
+        let why = match why {
+            Fallback::Asked => "--from-frequency".to_string(),
+            Fallback::RankDeficient(o) => format!(
+                "its S_r has rank {} < q",
+                o.relative.as_ref().err().map(|r| r.rank).unwrap_or(0)
+            ),
+        };
+        writeln!(
+            out,
+            "note: mode {}: {} from the frequency alone ({why}), d ln lambda / d ln p = {:.3e}; the other parameters held{}",
+            f.mode,
+            params[f.param].name,
+            f.sensitivity,
+            if f.std.is_none() {
+                "; no standard deviation: give --frequency-noise or frequency_std in the data"
+            } else {
+                ""
+            }
+        )?;
     }
     Ok(())
 }

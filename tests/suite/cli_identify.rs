@@ -276,3 +276,84 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
         "m.toml: beam = 0 beam(s) is invalid: a chain has 1 to 9 [[beam]] tables",
     );
 }
+
+/// Three sensors on a free-free lap beam (the independent 2D specimen of tests/fixtures/lap2d):
+/// the paper's system cannot be formed, each mode's frequency gives one parameter.
+#[test]
+fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
+    let dir = Scratch::new("from-frequency");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/lap2d/bolted");
+    let out = dir.path("freq.csv");
+    let run = identify(
+        &fixture.join("model.toml"),
+        &fixture.join("measured.csv"),
+        &[
+            "--from-frequency",
+            "--frequency-noise",
+            "0.001",
+            "--out",
+            common::s(&out),
+        ],
+    );
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 12, "6 modes x (k1, k2)");
+    for mode in 1..=6 {
+        let of: Vec<&Vec<&str>> = rows.iter().filter(|r| r[0] == mode.to_string()).collect();
+        let how: Vec<&str> = of.iter().map(|r| r[col("identified")]).collect();
+        assert_eq!(
+            how.iter().filter(|h| **h == "frequency").count(),
+            1,
+            "mode {mode}: {how:?}"
+        );
+        assert_eq!(
+            how.iter().filter(|h| **h == "held").count(),
+            1,
+            "mode {mode}: {how:?}"
+        );
+        let own = of
+            .iter()
+            .find(|r| r[col("identified")] == "frequency")
+            .unwrap();
+        let std: f64 = own[col("relative_correction_std")].parse().unwrap();
+        assert!(std > 0.0 && std.is_finite(), "mode {mode}: std {std}");
+    }
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("note: mode 1: k2 from the frequency alone (--from-frequency)"),
+        "{stderr}"
+    );
+    // without --from-frequency the paper's settings are required; a bad noise is refused
+    let missing = identify(
+        &fixture.join("model.toml"),
+        &fixture.join("measured.csv"),
+        &[],
+    );
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("--n <N>"));
+    let bad = identify(
+        &fixture.join("model.toml"),
+        &fixture.join("measured.csv"),
+        &[
+            "--from-frequency",
+            "--frequency-noise",
+            "2",
+            "--out",
+            common::s(&dir.path("no.csv")),
+        ],
+    );
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr)
+            .contains("--frequency-noise 2 is invalid: a relative standard deviation in (0, 1)")
+    );
+    assert!(!dir.path("no.csv").exists());
+}

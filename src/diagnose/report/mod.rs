@@ -10,7 +10,9 @@ mod summary;
 use serde::Serialize;
 
 pub use pattern::{ModeChi2, Region, ResidualPattern};
-pub use per_mode::{Flatness, ModeCorrection, default_settings, flatness, per_mode_corrections};
+pub use per_mode::{
+    Flatness, ModeCorrection, Source, default_settings, flatness, per_mode_corrections,
+};
 pub use summary::{ErrorSummary, ModeError};
 
 use super::fit::{Estimate, Noise};

@@ -1,10 +1,16 @@
 //! The paper's per-mode corrections (eq. (13)) of the joint on a calibrated model, with their
 //! first-order standard deviations, and whether they are constant across the modes (the
-//! paper's question: does the joint's stiffness change with frequency?).
+//! paper's question: does the joint's stiffness change with frequency?). A mode whose shape
+//! components cannot carry eq. (10)-(13) (fewer sensors than the basis, a rank-deficient
+//! S_r) gets the one parameter it is most sensitive to from its frequency alone
+//! ([`crate::identify::frequency_only`]), the others held: the question is then still
+//! answered for any number of sensors.
 
 use serde::Serialize;
 
 use crate::diagnose::fit::{Fitted, Noise};
+pub use crate::identify::frequency_only::Source;
+use crate::identify::frequency_only::{self, Choice};
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings, Weighting};
 use crate::measured::MeasuredModes;
@@ -32,6 +38,8 @@ pub struct ModeCorrection {
     /// that the mode disagrees with the model in more than the joint; it is shown as the
     /// paper's method gives it, marked.
     pub physical: Option<bool>,
+    /// What determined it.
+    pub source: Source,
 }
 
 /// Whether the per-mode corrections of one parameter are consistent with a constant.
@@ -98,11 +106,37 @@ pub fn per_mode_corrections(
                     noise.frequency * noise.frequency,
                 ))
             });
+        let relatives = outcome
+            .as_ref()
+            .and_then(|o| o.relative.as_ref().ok())
+            .cloned();
+        if relatives.is_none()
+            && let Ok(f) = frequency_only::identify(
+                structure,
+                s,
+                m.mode,
+                m.frequency_hz,
+                Some(noise.frequency),
+                Choice::MostSensitive,
+            )
+        {
+            out.extend(params.iter().enumerate().map(|(i, p)| {
+                let own = i == f.param;
+                ModeCorrection {
+                    mode: m.mode,
+                    frequency_hz: m.frequency_hz,
+                    param: p.name.clone(),
+                    relative: own.then_some(f.relative),
+                    correction: own.then_some(f.relative * p.value),
+                    std: f.std.filter(|_| own).map(|sd| sd * p.value),
+                    physical: own.then_some(true),
+                    source: if own { Source::Frequency } else { Source::Held },
+                }
+            }));
+            continue;
+        }
         for (i, p) in params.iter().enumerate() {
-            let relative = outcome
-                .as_ref()
-                .and_then(|o| o.relative.as_ref().ok())
-                .map(|z| z[i]);
+            let relative = relatives.as_ref().map(|z| z[i]);
             out.push(ModeCorrection {
                 mode: m.mode,
                 frequency_hz: m.frequency_hz,
@@ -111,6 +145,7 @@ pub fn per_mode_corrections(
                 correction: relative.map(|z| z * p.value),
                 std: std.as_ref().map(|s| s[i]),
                 physical: relative.map(|z| 1.0 + z > 0.0),
+                source: Source::Shape,
             });
         }
     }
@@ -212,6 +247,7 @@ mod tests {
             correction: Some(value),
             std: Some(std),
             physical: Some(true),
+            source: Source::Shape,
         }
     }
 
