@@ -283,18 +283,21 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
 fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
     let dir = Scratch::new("from-frequency");
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/lap2d/bolted");
+    let from_frequency = |noise: &str, out: &Path| {
+        identify(
+            &fixture.join("model.toml"),
+            &fixture.join("measured.csv"),
+            &[
+                "--from-frequency",
+                "--frequency-noise",
+                noise,
+                "--out",
+                common::s(out),
+            ],
+        )
+    };
     let out = dir.path("freq.csv");
-    let run = identify(
-        &fixture.join("model.toml"),
-        &fixture.join("measured.csv"),
-        &[
-            "--from-frequency",
-            "--frequency-noise",
-            "0.001",
-            "--out",
-            common::s(&out),
-        ],
-    );
+    let run = from_frequency("0.001", &out);
     assert!(
         run.status.success(),
         "{}",
@@ -339,17 +342,7 @@ fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
     );
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("--n <N>"));
-    let bad = identify(
-        &fixture.join("model.toml"),
-        &fixture.join("measured.csv"),
-        &[
-            "--from-frequency",
-            "--frequency-noise",
-            "2",
-            "--out",
-            common::s(&dir.path("no.csv")),
-        ],
-    );
+    let bad = from_frequency("2", &dir.path("no.csv"));
     assert_eq!(bad.status.code(), Some(2));
     assert!(
         String::from_utf8_lossy(&bad.stderr)
