@@ -32,6 +32,7 @@ mod fuzz;
 mod identification;
 mod lap_beam;
 mod large_models;
+mod layered_lap;
 mod matrices;
 mod merge_integrity;
 mod numerics_refused;
