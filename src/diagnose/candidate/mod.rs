@@ -3,7 +3,7 @@
 //! A [`Candidate`] is fitted on a [`Stage`] (the data, the effects' context, a calibration and
 //! the joint-only fit under it) and returns a [`Fit`]: its parameters, its chi^2, the
 //! likelihood-ratio statistic against the joint-only fit, its residuals and, when it has one,
-//! the refitted model that becomes the diagnosis's "after". Three kinds implement it:
+//! the refitted model that becomes the diagnosis's "after". Four kinds implement it:
 //! - [`EffectCandidate`]: any [`Effect`] of the model library, fitted with the joints;
 //! - [`FrequencyDependence`]: the paper's frequency-dependent joint, a score test at the
 //!   calibrated joint;
@@ -20,6 +20,7 @@
 
 mod effect;
 pub mod frequency_dependence;
+mod layered_lap;
 mod scan;
 
 use std::sync::Arc;
@@ -28,6 +29,7 @@ use serde::Serialize;
 
 pub use effect::EffectCandidate;
 pub use frequency_dependence::FrequencyDependence;
+pub use layered_lap::LayeredLap;
 pub use scan::Scan;
 
 use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
@@ -142,6 +144,7 @@ pub fn registry() -> Vec<Arc<dyn Candidate>> {
     library
         .chain([
             Arc::new(FrequencyDependence) as Arc<dyn Candidate>,
+            Arc::new(LayeredLap),
             Arc::new(scan::joint_region()),
             Arc::new(scan::local_stiffness()),
         ])
