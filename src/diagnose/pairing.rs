@@ -10,6 +10,7 @@
 
 use crate::measured::MeasuredModes;
 use crate::modal::ModalSolution;
+use crate::optim::assignment::assign;
 
 /// Smallest MAC accepted for a pair.
 pub const MIN_MAC: f64 = 0.5;
@@ -68,6 +69,8 @@ pub struct Near {
     pub frequency_hz: f64,
     /// Its MAC with the measured mode.
     pub mac: f64,
+    /// The measured mode paired with it, if another took it.
+    pub taken_by: Option<usize>,
 }
 
 /// Why a measured mode has no partner.
@@ -75,7 +78,7 @@ pub struct Near {
 pub enum Unpaired {
     /// No model mode in the window resembles it.
     #[error(
-        "measured mode {mode} ({frequency_hz:.4} Hz) has no credible partner: no model mode within +-{pct}% of its frequency has a MAC >= {MIN_MAC} ({near}); widen the window (--pairing-window), pair it by number (--pair {mode}:t), or leave the mode out",
+        "measured mode {mode} ({frequency_hz:.4} Hz) has no credible partner: no model mode within +-{pct}% of its frequency has a MAC >= {MIN_MAC} and is left free by the other measured modes ({near}); widen the window (--pairing-window), pair it by number (--pair {mode}:t), or leave the mode out",
         pct = 100.0 * window,
         near = describe(nearest)
     )]
@@ -108,8 +111,12 @@ fn describe(nearest: &[Near]) -> String {
     let list: Vec<String> = nearest
         .iter()
         .map(|n| {
+            let taken = n
+                .taken_by
+                .map(|r| format!(", paired with measured mode {r}"))
+                .unwrap_or_default();
             format!(
-                "model mode {} at {:.4} Hz, MAC {:.3}",
+                "model mode {} at {:.4} Hz, MAC {:.3}{taken}",
                 n.mode, n.frequency_hz, n.mac
             )
         })
@@ -117,9 +124,11 @@ fn describe(nearest: &[Near]) -> String {
     format!("nearest: {}", list.join("; "))
 }
 
-/// Pairs every measured mode: the given pairs first, then the rest greedily by decreasing MAC
-/// among the deformable model modes (index >= `rigid`) within the window, each model mode used
-/// once. `modal` holds every model mode the window can reach.
+/// Pairs every measured mode: the given pairs first, then the rest among the deformable model
+/// modes (index >= `rigid`) within the window with a MAC >= [`MIN_MAC`], each model mode used
+/// once: as many pairs as possible, and among those the largest total MAC
+/// ([`crate::optim::assignment`]; a greedy choice by decreasing MAC can take the only partner
+/// of another mode, which three sensors make common). `modal` holds every model mode the window can reach.
 pub fn pair(
     modal: &ModalSolution,
     measured: &MeasuredModes,
@@ -161,24 +170,26 @@ pub fn pair(
         model_index[r] = index;
         used[index] = true;
     }
-    let mut candidates: Vec<(f64, usize, usize)> = Vec::new();
-    for (r, m) in measured.modes().iter().enumerate() {
-        if model_index[r] != usize::MAX {
-            continue;
-        }
-        for t in rigid..modal.len() {
-            let f = modal.frequency_hz(t);
-            if (f - m.frequency_hz).abs() <= rule.window * m.frequency_hz {
-                let value = mac_with(r, t);
-                if value >= MIN_MAC {
-                    candidates.push((value, r, t));
-                }
-            }
-        }
-    }
-    candidates.sort_by(|a, b| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2))));
-    for (_, r, t) in candidates {
-        if model_index[r] == usize::MAX && !used[t] {
+    // the rest: as many pairs as the window and the MAC bar allow, of largest total MAC
+    let weights: Vec<Vec<Option<f64>>> = measured
+        .modes()
+        .iter()
+        .enumerate()
+        .map(|(r, m)| {
+            (0..modal.len())
+                .map(|t| {
+                    let free = t >= rigid && !used[t] && model_index[r] == usize::MAX;
+                    let near = (modal.frequency_hz(t) - m.frequency_hz).abs()
+                        <= rule.window * m.frequency_hz;
+                    (free && near)
+                        .then(|| mac_with(r, t))
+                        .filter(|&value| value >= MIN_MAC)
+                })
+                .collect()
+        })
+        .collect();
+    for (r, t) in assign(&weights).into_iter().enumerate() {
+        if let Some(t) = t {
             model_index[r] = t;
             used[t] = true;
         }
@@ -190,6 +201,10 @@ pub fn pair(
                 mode: t + 1 - rigid,
                 frequency_hz: modal.frequency_hz(t),
                 mac: mac_with(r, t),
+                taken_by: model_index
+                    .iter()
+                    .position(|&i| i == t)
+                    .map(|q| measured.modes()[q].mode),
             })
             .collect();
         nearest.sort_by(|a, b| {
@@ -338,7 +353,7 @@ mod tests {
         .unwrap_err();
         let text = err.to_string();
         assert!(
-            text.starts_with("measured mode 1 (150.0539 Hz) has no credible partner: no model mode within +-50% of its frequency has a MAC >= 0.5 (nearest: model mode 1 at 150.0539 Hz, MAC "),
+            text.starts_with("measured mode 1 (150.0539 Hz) has no credible partner: no model mode within +-50% of its frequency has a MAC >= 0.5 and is left free by the other measured modes (nearest: model mode 1 at 150.0539 Hz, MAC "),
             "{text}"
         );
         let bad = PairingRule {

@@ -6,12 +6,14 @@
 //!   set;
 //! - [`step`]: the damped linear subproblem of one iteration, by QR with Marquardt's column
 //!   scaling in the null space of the active constraints;
+//! - [`assignment`]: pairing rows with columns of largest total weight (the pairing of modes);
 //! - [`lm`]: the one Levenberg-Marquardt solver, behind a problem trait, with typed reasons of
 //!   termination and an observer.
 //!
 //! Layer 1 (foundations; see the crate docs): imports faer, serde and thiserror, nothing of
 //! the crate.
 
+pub mod assignment;
 pub mod bounds;
 pub mod lm;
 pub mod lstsq;
