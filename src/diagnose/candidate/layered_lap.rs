@@ -27,7 +27,7 @@
 use std::sync::Arc;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::fit::{self, Fitted, residuals};
+use crate::diagnose::fit::{self, Fitted};
 use crate::model::chain::assembly::LAYERED_LAP;
 use crate::model::effects::EffectContext;
 use crate::structure::{Direction, Structure};
@@ -169,22 +169,17 @@ impl Candidate for LayeredLap {
         let first_ks = laps.first().map(|pair| pair[1]);
         let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
         let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
-        Ok(Fit {
-            size: (size, size_se),
-            describe: self.describe().to_string(),
-            chi2: fitted.chi2,
-            dof: fitted.dof,
-            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
-            added: 1,
-            unknowns: fitted.estimates.len(),
-            residuals: residuals(&fitted, measured),
-            excluded: axial_pair(&fitted).map(|r| {
-                format!("the fit pairs measured mode {r} with an axial mode of the layers")
-            }),
+        let excluded = axial_pair(&fitted)
+            .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"));
+        let describe = self.describe().to_string();
+        Ok(Fit::of_model(
+            stage,
+            fitted,
             parameters,
-            model: Some(fitted),
-            profile: None,
-            members: Vec::new(),
-        })
+            (size, size_se),
+            describe,
+            1,
+            excluded,
+        ))
     }
 }

@@ -86,6 +86,38 @@ pub struct Fit {
     pub members: Vec<Option<Fitted>>,
 }
 
+impl Fit {
+    /// The fit of a candidate whose refitted model is `fitted` on `stage`: its chi^2, degrees
+    /// of freedom, likelihood-ratio statistic against the joint-only fit and residuals, with
+    /// its own `parameters`, `size` (value, standard error), description, `added` unknowns and
+    /// reason for exclusion; no profile, no members.
+    pub(crate) fn of_model(
+        stage: &Stage,
+        fitted: Fitted,
+        parameters: Vec<Estimate>,
+        size: (f64, f64),
+        describe: String,
+        added: usize,
+        excluded: Option<String>,
+    ) -> Fit {
+        Fit {
+            size,
+            describe,
+            chi2: fitted.chi2,
+            dof: fitted.dof,
+            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
+            added,
+            unknowns: fitted.estimates.len(),
+            residuals: super::fit::residuals(&fitted, stage.measured),
+            excluded,
+            parameters,
+            model: Some(fitted),
+            profile: None,
+            members: Vec::new(),
+        }
+    }
+}
+
 /// Why a candidate could not be fitted.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CandidateError {
