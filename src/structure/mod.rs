@@ -119,6 +119,19 @@ pub struct Structure {
     pub sites: Sites,
     /// The sensors the model declares (what `simulate --measure sensors` reads).
     pub sensors: Vec<Observation>,
+    /// Other models of the same test that the builder knows (a joint modelled otherwise).
+    pub alternatives: Vec<Alternative>,
+}
+
+/// Another model of the same test, made by the builder that made a structure: every DOF of
+/// that structure keeps its index, label and meaning in it (it may add DOFs after them), so
+/// that observations of the one read the other.
+#[derive(Debug, Clone)]
+pub struct Alternative {
+    /// Its name (the diagnosis candidate that fits it: `layered_lap`).
+    pub name: &'static str,
+    /// The structure, its parameters at their nominal values.
+    pub structure: std::sync::Arc<Structure>,
 }
 
 impl Structure {

@@ -46,8 +46,11 @@ pub struct JointSite {
     pub theta: [Option<usize>; 2],
     /// Sections of the two beam ends it joins.
     pub sections: [Section; 2],
-    /// Indices of its k1 and k2 in the structure's parameters.
+    /// Indices of its k1 and k2 (of a layered lap: k_n and k_s) in the structure's
+    /// parameters.
     pub parameters: [usize; 2],
+    /// Whether it is a layered lap (a distributed interface over an overlap).
+    pub lap: bool,
 }
 
 /// A beam element.

@@ -33,6 +33,8 @@ mod fuzz;
 mod identification;
 mod lap_beam;
 mod large_models;
+mod layered_lap;
+mod layered_lap_cli;
 mod matrices;
 mod merge_integrity;
 mod numerics_refused;

@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier, implausible};
-use crate::diagnose::fit::{self, Fitted, residuals};
+use crate::diagnose::fit::{self, Fitted};
 use crate::model::effects::{Effect, EffectContext};
 
 /// An [`Effect`] as a candidate.
@@ -72,19 +72,16 @@ pub(super) fn fit_effect(
         })
         .sum::<f64>()
         .sqrt();
-    Ok(Fit {
-        size: (size, size_se),
-        describe: effect.describe().to_string(),
-        chi2: fitted.chi2,
-        dof: fitted.dof,
-        lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
-        added: parameters.len(),
-        unknowns: fitted.estimates.len(),
-        residuals: residuals(&fitted, measured),
-        excluded: implausible(effect.as_ref(), ctx, &fitted, &theta),
+    let excluded = implausible(effect.as_ref(), ctx, &fitted, &theta);
+    let added = parameters.len();
+    let describe = effect.describe().to_string();
+    Ok(Fit::of_model(
+        stage,
+        fitted,
         parameters,
-        model: Some(fitted),
-        profile: None,
-        members: Vec::new(),
-    })
+        (size, size_se),
+        describe,
+        added,
+        excluded,
+    ))
 }

@@ -3,7 +3,7 @@
 //! A [`Candidate`] is fitted on a [`Stage`] (the data, the effects' context, a calibration and
 //! the joint-only fit under it) and returns a [`Fit`]: its parameters, its chi^2, the
 //! likelihood-ratio statistic against the joint-only fit, its residuals and, when it has one,
-//! the refitted model that becomes the diagnosis's "after". Three kinds implement it:
+//! the refitted model that becomes the diagnosis's "after". Four kinds implement it:
 //! - [`EffectCandidate`]: any [`Effect`] of the model library, fitted with the joints;
 //! - [`FrequencyDependence`]: the paper's frequency-dependent joint, a score test at the
 //!   calibrated joint;
@@ -20,6 +20,7 @@
 
 mod effect;
 pub mod frequency_dependence;
+mod layered_lap;
 mod scan;
 
 use std::sync::Arc;
@@ -28,6 +29,7 @@ use serde::Serialize;
 
 pub use effect::EffectCandidate;
 pub use frequency_dependence::FrequencyDependence;
+pub use layered_lap::LayeredLap;
 pub use scan::Scan;
 
 use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
@@ -82,6 +84,38 @@ pub struct Fit {
     /// A scan's member optima (None where a member failed): the starts of its refits on the
     /// next stage.
     pub members: Vec<Option<Fitted>>,
+}
+
+impl Fit {
+    /// The fit of a candidate whose refitted model is `fitted` on `stage`: its chi^2, degrees
+    /// of freedom, likelihood-ratio statistic against the joint-only fit and residuals, with
+    /// its own `parameters`, `size` (value, standard error), description, `added` unknowns and
+    /// reason for exclusion; no profile, no members.
+    pub(crate) fn of_model(
+        stage: &Stage,
+        fitted: Fitted,
+        parameters: Vec<Estimate>,
+        size: (f64, f64),
+        describe: String,
+        added: usize,
+        excluded: Option<String>,
+    ) -> Fit {
+        Fit {
+            size,
+            describe,
+            chi2: fitted.chi2,
+            dof: fitted.dof,
+            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
+            added,
+            unknowns: fitted.estimates.len(),
+            residuals: super::fit::residuals(&fitted, stage.measured),
+            excluded,
+            parameters,
+            model: Some(fitted),
+            profile: None,
+            members: Vec::new(),
+        }
+    }
 }
 
 /// Why a candidate could not be fitted.
@@ -142,6 +176,7 @@ pub fn registry() -> Vec<Arc<dyn Candidate>> {
     library
         .chain([
             Arc::new(FrequencyDependence) as Arc<dyn Candidate>,
+            Arc::new(LayeredLap),
             Arc::new(scan::joint_region()),
             Arc::new(scan::local_stiffness()),
         ])

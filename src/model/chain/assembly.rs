@@ -12,11 +12,14 @@
 use super::Chain;
 use super::beam::{element_mass, element_stiffness};
 use super::joint::{JointStiffness, parameter_name};
+use super::lap::LAP_UNIT;
+use super::layered::{self, Laps};
 use super::mesh::Mesh;
 use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
 use crate::structure::{
-    Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite,
-    LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite, SymMatrix,
+    Alternative, Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions,
+    JointSite, LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite,
+    SymMatrix,
 };
 
 /// Abscissae closer than this fraction of the chain's length are one position.
@@ -35,6 +38,7 @@ impl Chain {
             node_dofs,
         };
         let hanging = layout.hanging_dofs(&mut infos);
+        let laps = Laps::number(self, &layout.mesh, &layout.node_dofs, tol, &mut infos);
         let n = infos.len();
         let lines = layout.lines();
         let (supports, node_held, held_count) = layout.held_supports();
@@ -45,7 +49,11 @@ impl Chain {
         let mut extra = layout.support_springs(&mut k);
         extra.extend(layout.masses(&hanging, &mut k, &mut m));
         layout.sensor_masses(&mut m);
-        let (mut parameters, joints) = layout.joints();
+        let (mut lap_k, mut lap_m) = (SparseSym::zero(), SparseSym::zero());
+        laps.base(&mut lap_k, &mut lap_m);
+        k.extend_from_slice(lap_k.entries());
+        m.extend_from_slice(lap_m.entries());
+        let (mut parameters, joints) = layout.joints(&laps);
         parameters.extend(extra);
         let elements = layout
             .mesh
@@ -81,7 +89,7 @@ impl Chain {
             parameters,
             dofs,
             sensors,
-            rigid: rigid_body_modes(&self.supports),
+            rigid: rigid_body_modes(&self.supports) + laps.rigid(),
             sites: Sites {
                 beam_mass: self.beam_mass(),
                 beams: self.beams.len(),
@@ -91,9 +99,25 @@ impl Chain {
                 supports,
                 held: held.finish(),
             },
+            alternatives: self.alternatives(),
+        }
+    }
+
+    /// The layered lap in place of every point joint whose overlap the model gives.
+    fn alternatives(&self) -> Vec<Alternative> {
+        if self.joints.iter().any(|j| j.lap.is_some_and(|l| !l.active)) {
+            vec![Alternative {
+                name: LAYERED_LAP,
+                structure: std::sync::Arc::new(self.with_laps().build()),
+            }]
+        } else {
+            Vec::new()
         }
     }
 }
+
+/// The name of the alternative in which the point joints with an overlap are layered laps.
+pub const LAYERED_LAP: &str = "layered_lap";
 
 /// Matrix entries (row, column, value), summed in their order.
 type Entries = Vec<(usize, usize, f64)>;
@@ -361,15 +385,34 @@ impl Layout<'_> {
         }
     }
 
-    /// The joints' k1, k2 (eq. (17)) with dK/dp (eq. (8)), and the joints' sites.
-    fn joints(&self) -> (Vec<Parameter>, Vec<JointSite>) {
+    /// The joints' k1, k2 (eq. (17)), or a layered lap's k_n, k_s, with dK/dp (eq. (8)), and
+    /// the joints' sites.
+    fn joints(&self, laps: &Laps) -> (Vec<Parameter>, Vec<JointSite>) {
         let (chain, mesh, node_dofs) = (self.chain, &self.mesh, &self.node_dofs);
         let mut parameters = Vec::new();
         let mut joints = Vec::new();
         for (j, joint) in chain.joints.iter().enumerate() {
             let (a, b) = (mesh.beam_ends[j].1, mesh.beam_ends[j + 1].0);
             let first = parameters.len();
-            for (kind, role) in JointStiffness::ALL.into_iter().zip(joint.roles) {
+            let interface = laps.interface(j);
+            if let (Some(patterns), Some(lap)) = (&interface, joint.active_lap()) {
+                for (slot, pattern) in patterns.iter().enumerate() {
+                    parameters.push(Parameter {
+                        name: layered::parameter_name(j, chain.joints.len(), slot),
+                        unit: LAP_UNIT,
+                        value: [lap.k_n, lap.k_s][slot],
+                        stiffness: pattern.clone(),
+                        mass: SparseSym::zero(),
+                        role: lap.roles[slot],
+                    });
+                }
+            }
+            let points = if interface.is_some() {
+                &[][..]
+            } else {
+                &JointStiffness::ALL[..]
+            };
+            for (&kind, &role) in points.iter().zip(&joint.roles) {
                 let slot = match kind {
                     JointStiffness::Transversal => 0,
                     JointStiffness::Rotational => 1,
@@ -399,6 +442,7 @@ impl Layout<'_> {
                     chain.beams[j + 1].section_at(0.0),
                 ],
                 parameters: [first, first + 1],
+                lap: interface.is_some(),
             });
         }
         (parameters, joints)

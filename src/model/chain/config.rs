@@ -52,6 +52,7 @@ use serde::Deserialize;
 use super::Chain;
 use super::beam::{Beam, Section, Segment};
 use super::joint::Joint;
+use super::lap::{RawLap, lap};
 use super::setup::{PointMass, Sensor};
 use super::support::{Support, SupportCheck};
 use crate::input::{FieldCheck, InputError, TaggedTable};
@@ -120,10 +121,12 @@ struct RawSegment {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawJoint {
-    k1: f64,
-    k2: f64,
+    kind: Option<String>,
+    k1: Option<f64>,
+    k2: Option<f64>,
     #[serde(default)]
     fixed: Vec<String>,
+    lap: Option<RawLap>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -192,8 +195,9 @@ impl RawChain {
             .joint
             .iter()
             .enumerate()
-            .map(|(i, j)| joint(j, i, &check))
+            .map(|(i, j)| joint(j, i, &beams, &check))
             .collect::<Result<Vec<_>, InputError>>()?;
+        super::layered::check_overlaps(&beams, &joints, &check)?;
         let length: f64 = beams.iter().map(|b| b.length).sum();
         let position = |path: String, x: f64| {
             if x.is_finite() && (0.0..=length).contains(&x) {
@@ -216,6 +220,7 @@ impl RawChain {
             let support = supports_check.support(table, i, &supports)?;
             supports.push(support);
         }
+        super::layered::check_supports(&beams, &joints, &supports, &check)?;
         let masses = self
             .mass
             .iter()
@@ -508,26 +513,79 @@ fn section_terms(check: &FieldCheck, at: &str, s: &Section, h: f64) -> Result<()
     Ok(())
 }
 
-fn joint(j: &RawJoint, i: usize, check: &FieldCheck) -> Result<Joint, InputError> {
+fn joint(j: &RawJoint, i: usize, beams: &[Beam], check: &FieldCheck) -> Result<Joint, InputError> {
+    let active = match j.kind.as_deref() {
+        None | Some("point") => false,
+        Some("lap") => true,
+        Some(other) => {
+            return Err(check.invalid(
+                format!("joint[{i}].kind"),
+                format!("\"{other}\""),
+                "it must be \"point\" (k1, k2: eq. (17), the default) or \"lap\" (the layered lap of [joint.lap])",
+            ));
+        }
+    };
+    let names: [&str; 2] = if active { ["k_n", "k_s"] } else { ["k1", "k2"] };
     let mut roles = [Role::Identified; 2];
     for (k, name) in j.fixed.iter().enumerate() {
-        let slot = match name.as_str() {
-            "k1" => 0,
-            "k2" => 1,
-            other => {
-                return Err(check.invalid(
-                    format!("joint[{i}].fixed[{k}]"),
-                    format!("\"{other}\""),
-                    "a joint's parameters are \"k1\" and \"k2\"",
-                ));
-            }
+        let Some(slot) = names.iter().position(|n| n == name) else {
+            return Err(check.invalid(
+                format!("joint[{i}].fixed[{k}]"),
+                format!("\"{name}\""),
+                format!(
+                    "a joint's parameters are \"{}\" and \"{}\"",
+                    names[0], names[1]
+                ),
+            ));
         };
         roles[slot] = Role::Fixed;
     }
+    let lap = match (&j.lap, active) {
+        (Some(raw), _) => {
+            let lap_roles = if active { roles } else { [Role::Identified; 2] };
+            Some(lap(raw, i, active, lap_roles, beams, check)?)
+        }
+        (None, true) => {
+            return Err(check.invalid(
+                format!("joint[{i}].lap"),
+                "missing",
+                "a joint of kind = \"lap\" needs its [joint.lap] table (length, layers, k_n, k_s)",
+            ));
+        }
+        (None, false) => None,
+    };
+    if active {
+        if let Some((name, value)) = [("k1", j.k1), ("k2", j.k2)]
+            .into_iter()
+            .find_map(|(n, v)| v.map(|v| (n, v)))
+        {
+            return Err(check.invalid(
+                format!("joint[{i}].{name}"),
+                value,
+                "a joint of kind = \"lap\" has k_n, k_s in [joint.lap] in place of k1, k2: leave it out",
+            ));
+        }
+        return Ok(Joint {
+            k1: 0.0,
+            k2: 0.0,
+            roles,
+            lap,
+        });
+    }
+    let given = |name: &str, v: Option<f64>, unit: &str| match v {
+        Some(v) => check.positive(format!("joint[{i}].{name}"), v, unit),
+        None => Err(InputError::Format {
+            file: check.file.to_path_buf(),
+            line: None,
+            path: format!("joint[{i}]"),
+            message: format!("missing field `{name}`"),
+        }),
+    };
     Ok(Joint {
-        k1: check.positive(format!("joint[{i}].k1"), j.k1, "N/m")?,
-        k2: check.positive(format!("joint[{i}].k2"), j.k2, "N m/rad")?,
+        k1: given("k1", j.k1, "N/m")?,
+        k2: given("k2", j.k2, "N m/rad")?,
         roles,
+        lap,
     })
 }
 

@@ -11,17 +11,21 @@
 /// Number of identified parameters per joint (q = 2 per joint in the paper).
 pub const PARAMETERS_PER_JOINT: usize = 2;
 
+use super::lap::Lap;
 use crate::structure::Role;
 
 /// Stiffness parameters of one joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Joint {
-    /// Transversal stiffness k1, N/m.
+    /// Transversal stiffness k1, N/m (unused when the joint is a layered lap).
     pub k1: f64,
-    /// Rotational stiffness k2, N m/rad.
+    /// Rotational stiffness k2, N m/rad (unused when the joint is a layered lap).
     pub k2: f64,
     /// Whether k1, k2 are identified or held fixed.
     pub roles: [Role; 2],
+    /// The joint's overlap, when the model file gives it: the joint itself when it is
+    /// [`Lap::active`], else the layered lap a diagnosis tries in place of k1, k2.
+    pub lap: Option<Lap>,
 }
 
 impl Joint {
@@ -31,7 +35,13 @@ impl Joint {
             k1,
             k2,
             roles: [Role::Identified; 2],
+            lap: None,
         }
+    }
+
+    /// The layered lap this joint is, if it is one.
+    pub fn active_lap(&self) -> Option<&Lap> {
+        self.lap.as_ref().filter(|l| l.active)
     }
 }
 

@@ -98,10 +98,27 @@ impl Mesh {
             beam_ends.push((first, nodes.len() - 1));
             start += length;
         }
+        layer_sections(chain, &nodes, &mut elements);
         Mesh {
             nodes,
             elements,
             beam_ends,
+        }
+    }
+}
+
+/// Over the overlap of a joint that is a layered lap, the elements of the left beam carry the
+/// upper layer's section, those of the right beam the lower layer's.
+fn layer_sections(chain: &Chain, nodes: &[MeshNode], elements: &mut [MeshElement]) {
+    for (j, a, b) in chain.overlaps() {
+        let Some(lap) = chain.joints[j].active_lap() else {
+            continue;
+        };
+        for e in elements.iter_mut() {
+            let mid = 0.5 * (nodes[e.nodes[0]].x + nodes[e.nodes[1]].x);
+            if mid > a && mid < b && (e.beam == j || e.beam == j + 1) {
+                e.section = lap.layers[e.beam - j].section;
+            }
         }
     }
 }

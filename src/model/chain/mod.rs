@@ -5,6 +5,8 @@
 //!
 //! - [`beam`]: element matrices, sections and stepped segments;
 //! - [`joint`]: the joint of eq. (17) and the names of its parameters;
+//! - [`lap`], [`layered`], [`interface`]: a joint's overlap, and the layered lap that replaces
+//!   the point joint over it (two layers, a distributed interface, its element matrices);
 //! - [`support`]: the kinds of support, their table in the model file, the count of
 //!   rigid-body modes;
 //! - [`setup`]: point masses, sensors;
@@ -15,13 +17,17 @@
 pub mod assembly;
 pub mod beam;
 pub mod config;
+pub mod interface;
 pub mod joint;
+pub mod lap;
+pub mod layered;
 pub mod mesh;
 pub mod setup;
 pub mod support;
 
 pub use beam::{Beam, Section, Segment};
 pub use joint::Joint;
+pub use lap::{Lap, Layer};
 pub use mesh::Mesh;
 pub use setup::{PointMass, Sensor};
 pub use support::{Support, SupportKind};
@@ -75,7 +81,8 @@ impl Chain {
         self.beams.iter().map(Beam::mass).sum()
     }
 
-    /// Abscissae where a node must be: supports, masses, sensors, requested nodes.
+    /// Abscissae where a node must be: supports, masses, sensors, requested nodes, the ends
+    /// of the joints' overlaps.
     pub fn feature_positions(&self) -> Vec<f64> {
         self.supports
             .iter()
@@ -83,6 +90,31 @@ impl Chain {
             .chain(self.masses.iter().map(|m| m.x))
             .chain(self.sensors.iter().map(|s| s.x))
             .chain(self.nodes_at.iter().copied())
+            .chain(self.overlaps().into_iter().flat_map(|(_, a, b)| [a, b]))
             .collect()
+    }
+
+    /// Every joint's overlap that the model file gives: (joint, start, end), m.
+    pub fn overlaps(&self) -> Vec<(usize, f64, f64)> {
+        self.joints
+            .iter()
+            .enumerate()
+            .filter_map(|(j, joint)| {
+                let (a, b) = joint.lap?.span(self.beam_start(j + 1));
+                Some((j, a, b))
+            })
+            .collect()
+    }
+
+    /// The same chain with every joint whose overlap is given made its layered lap.
+    pub fn with_laps(&self) -> Chain {
+        let mut chain = self.clone();
+        for joint in &mut chain.joints {
+            if let Some(lap) = &mut joint.lap {
+                lap.active = true;
+                joint.roles = lap.roles;
+            }
+        }
+        chain
     }
 }

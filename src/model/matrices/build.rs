@@ -76,6 +76,7 @@ impl MatricesFile {
             rigid: 0,
             sites: Sites::default(),
             sensors: Vec::new(),
+            alternatives: Vec::new(),
         };
         let assembled = structure.assemble();
         check_mass(&assembled, &structure.dofs)?;

@@ -1,0 +1,185 @@
+//! `layered_lap`: the point joints whose overlap the model file gives (`[joint.lap]`) replaced
+//! by the layered lap over that overlap (`crate::model::chain::layered`): two layers joined by
+//! an interface of normal and shear stiffness k_n, k_s per unit length, fitted in place of the
+//! joint's k1, k2.
+//!
+//! The fit is the calibration's (module `fit`): x = ln(p / p_0) for every joint parameter (the
+//! laps' k_n, k_s and the other joints' k1, k2), the shape scales c_r, Levenberg-Marquardt.
+//! The start p_0 of k_n, k_s is the best, by chi^2 with only the shape scales fitted, of a grid
+//! around their nominal values (the model file's, or else the interface's natural scales:
+//! [`crate::model::chain::Lap::shear_scale`] for k_s, 10^4 times
+//! [`crate::model::chain::Lap::normal_scale`] for k_n, bolted contact being stiff in
+//! compression): k_s at 10^-3 ... 10^3 of its nominal value, k_n at 10^-2, 1, 10^2 of its;
+//! every lap at the same factors. The refit of a later stage starts from the earlier optimum,
+//! on the same start.
+//!
+//! A start, or a fit, that pairs a measured mode with an axial mode of the layers (the slip of
+//! a soft interface brings them down among the bending modes) is refused: a grid point is then
+//! no start, a fit is excluded with that reason.
+//!
+//! The lap is not nested in the point joint: it has as many parameters. Its likelihood-ratio
+//! statistic chi^2(point) - chi^2(lap) is tested as one added parameter, which the overlap's
+//! given geometry stands for (conservative: a model with no more unknowns than the point
+//! joint is asked to explain more).
+//!
+//! Size: k_s of the first lap, N/m per m.
+
+use std::sync::Arc;
+
+use super::{Candidate, CandidateError, Fit, Stage, Tier};
+use crate::diagnose::fit::{self, Fitted};
+use crate::model::chain::assembly::LAYERED_LAP;
+use crate::model::effects::EffectContext;
+use crate::structure::{Direction, Structure};
+
+/// See the module docs.
+#[derive(Debug, Clone, Copy)]
+pub struct LayeredLap;
+
+/// Factors of the grid of starts on the shear scale.
+const SHEAR_FACTORS: [f64; 7] = [1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3];
+/// Factors of the grid of starts on the normal scale.
+const NORMAL_FACTORS: [f64; 3] = [1e-2, 1.0, 1e2];
+
+/// The structure with the layered laps, if the model gives one.
+fn alternative(ctx: &EffectContext) -> Option<&Arc<Structure>> {
+    ctx.structure
+        .alternatives
+        .iter()
+        .find(|a| a.name == LAYERED_LAP)
+        .map(|a| &a.structure)
+}
+
+/// The indices (into the parameters) of every lap's k_n and k_s.
+fn lap_parameters(structure: &Structure) -> Vec<[usize; 2]> {
+    structure
+        .sites
+        .joints
+        .iter()
+        .filter(|j| j.lap)
+        .map(|j| j.parameters)
+        .collect()
+}
+
+/// The context of `structure` with every lap's (k_n, k_s) at `factors` times their nominal
+/// values.
+fn context_at(stage: &Stage, structure: &Structure, factors: [f64; 2]) -> Arc<EffectContext> {
+    let mut s = structure.clone();
+    for pair in lap_parameters(structure) {
+        for (k, &i) in pair.iter().enumerate() {
+            s.parameters[i].value *= factors[k];
+        }
+    }
+    Arc::new(EffectContext {
+        structure: s,
+        sensors: stage.ctx.sensors.clone(),
+        first_elastic_hz: stage.ctx.first_elastic_hz,
+    })
+}
+
+/// The first measured mode (1-based) that `fitted` pairs with an axial mode of the layers
+/// (a model mode whose axial DOFs move more than its transverse ones: transverse sensors
+/// barely see it, and a MAC on a few of them may still resemble a bending mode).
+fn axial_pair(fitted: &Fitted) -> Option<usize> {
+    let structure = &fitted.configured.structure;
+    let y = fitted.modal.vectors();
+    let share = |s: usize, d: Direction| -> f64 {
+        (0..structure.dof_count())
+            .filter(|&i| structure.dofs.get(i).direction == d)
+            .map(|i| y[(i, s)].powi(2))
+            .sum()
+    };
+    fitted
+        .pairing
+        .model_index
+        .iter()
+        .position(|&s| share(s, Direction::X) > share(s, Direction::W))
+        .map(|r| r + 1)
+}
+
+/// The start: the grid point of least chi^2 with only the shape scales fitted, among those
+/// that pair every measured mode with a bending mode.
+fn start(stage: &Stage, structure: &Structure) -> Result<Arc<EffectContext>, CandidateError> {
+    let mut best: Option<(f64, Arc<EffectContext>)> = None;
+    let mut failure = None;
+    for n in NORMAL_FACTORS {
+        for s in SHEAR_FACTORS {
+            let ctx = context_at(stage, structure, [n, s]);
+            let r = fit::as_given(&ctx, stage.measured, stage.calibration);
+            match r {
+                Ok(f) if axial_pair(&f).is_none() && best.as_ref().is_none_or(|b| f.chi2 < b.0) => {
+                    best = Some((f.chi2, ctx))
+                }
+                Ok(_) => {}
+                Err(e) => {
+                    failure.get_or_insert(e);
+                }
+            }
+        }
+    }
+    match (best, failure) {
+        (Some((_, ctx)), _) => Ok(ctx),
+        (None, Some(e)) => Err(e.into()),
+        (None, None) => Err(CandidateError::Undetermined("no start".into())),
+    }
+}
+
+impl Candidate for LayeredLap {
+    fn name(&self) -> &'static str {
+        LAYERED_LAP
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
+    }
+
+    fn describe(&self) -> &'static str {
+        "the point joints whose overlap the model file gives ([joint.lap]) replaced by the layered lap: the two beams as two layers over the overlap, joined by an interface of normal and shear stiffness k_n, k_s per unit length fitted in place of k1, k2; size = k_s of the first lap (N/m per m)"
+    }
+
+    fn applies(&self, ctx: &EffectContext) -> bool {
+        alternative(ctx).is_some()
+    }
+
+    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+        let structure = alternative(stage.ctx).ok_or_else(|| {
+            CandidateError::Undetermined("the model file gives no joint's overlap".into())
+        })?;
+        let (measured, calibration) = (stage.measured, stage.calibration);
+        let fitted: Fitted = match earlier.and_then(|e| e.model.as_ref()) {
+            Some(from) => {
+                let ctx = from.configured.ctx.clone();
+                fit::refit(&ctx, measured, calibration, &[], from)?
+            }
+            None => {
+                let ctx = start(stage, structure)?;
+                fit::fit(&ctx, measured, calibration, &[])?
+            }
+        };
+        let laps = lap_parameters(&fitted.configured.structure);
+        // The estimates are the identified parameters' in model order (a fixed k_n or k_s
+        // has none).
+        let estimate = |i: usize| {
+            let identified = fitted.configured.structure.identified_indices();
+            let at = identified.iter().position(|&p| p == i)?;
+            Some(fitted.estimates[at].clone())
+        };
+        let parameters: Vec<fit::Estimate> =
+            laps.iter().flatten().filter_map(|&i| estimate(i)).collect();
+        let first_ks = laps.first().map(|pair| pair[1]);
+        let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
+        let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
+        let excluded = axial_pair(&fitted)
+            .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"));
+        let describe = self.describe().to_string();
+        Ok(Fit::of_model(
+            stage,
+            fitted,
+            parameters,
+            (size, size_se),
+            describe,
+            1,
+            excluded,
+        ))
+    }
+}
