@@ -116,6 +116,7 @@ fn refitted(first: &[Tried], stage: &Stage, i: Option<usize>, e: &NoiseEstimate)
     let stage = Stage {
         calibration: &calibration,
         base: &base,
+        estimate: Some(e),
         ..*stage
     };
     let fit = candidate.fit(&stage, Some(earlier)).ok()?;
