@@ -3,10 +3,10 @@
 //! the misfit's pattern and what remains of each mode where no model explains the data, the
 //! pairing remarks.
 
+use super::candidate::{Tier, registry};
 use super::decide::{Decision, TREND_SIGMAS};
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
-use super::candidate::{Tier, registry};
 use super::report::{
     ErrorSummary, Remaining, Report, ResidualPattern, Verdict, flatness, per_mode_corrections,
     remains,

@@ -447,7 +447,11 @@ impl<'a> Problem<'a> {
 }
 
 /// +1 or -1: the sign that makes model mode `s` agree with the measured shape.
-pub(crate) fn model_sign(modal: &ModalSolution, s: usize, m: &crate::measured::MeasuredMode) -> f64 {
+pub(crate) fn model_sign(
+    modal: &ModalSolution,
+    s: usize,
+    m: &crate::measured::MeasuredMode,
+) -> f64 {
     let dot: f64 = m
         .points
         .iter()

@@ -127,7 +127,10 @@ fn alphas(r: &Report) -> String {
         .filter(|c| Some(&c.name) == r.selected.as_ref())
         .flat_map(|c| &c.parameters)
         .map(|e| {
-            let name = e.name.rsplit_once(".alpha").map_or("alpha", |(_, tail)| tail);
+            let name = e
+                .name
+                .rsplit_once(".alpha")
+                .map_or("alpha", |(_, tail)| tail);
             let name = match name.strip_prefix('.') {
                 Some(param) => format!("alpha({param})"),
                 None => "alpha".to_string(),

@@ -12,8 +12,8 @@ mod summary;
 use serde::Serialize;
 
 pub use pattern::{ModeChi2, Region, ResidualPattern};
-pub use remains::{Lacking, Misfit, Remaining, remains};
 pub use per_mode::{Flatness, ModeCorrection, default_settings, flatness, per_mode_corrections};
+pub use remains::{Lacking, Misfit, Remaining, remains};
 pub use summary::{ErrorSummary, ModeError};
 
 use super::fit::{Estimate, Noise};

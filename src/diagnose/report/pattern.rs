@@ -62,7 +62,10 @@ impl ResidualPattern {
                     .iter()
                     .zip(shape.by_ref())
                     .map(|(p, &(u, e))| {
-                        (p.x, (e / (noise.shape * (u * u + floor * floor).sqrt())).powi(2))
+                        (
+                            p.x,
+                            (e / (noise.shape * (u * u + floor * floor).sqrt())).powi(2),
+                        )
                     })
                     .collect();
                 ((rf / noise.frequency).powi(2), values)

@@ -82,7 +82,11 @@ pub fn per_mode_corrections(
     };
     let mut out = Vec::new();
     for (r, m) in measured.modes().iter().enumerate() {
-        let own = if shared.is_none() { identifier_of(r) } else { None };
+        let own = if shared.is_none() {
+            identifier_of(r)
+        } else {
+            None
+        };
         let Some(identifier) = shared.as_ref().or(own.as_ref()) else {
             continue;
         };

@@ -152,8 +152,8 @@ pub fn remains(
             .min_by(|&a, &b| views[a].shape[r].total_cmp(&views[b].shape[r]))
             .unwrap_or(0);
         let dof = m.values.len().saturating_sub(1);
-        let shape_remains = dof > 0
-            && chi2_sf(views[closest_s].shape[r], dof as f64) < FIT_ALPHA / n;
+        let shape_remains =
+            dof > 0 && chi2_sf(views[closest_s].shape[r], dof as f64) < FIT_ALPHA / n;
         let v = &views[closest_f];
         let frequency_remains = v.z[r].abs() > z_limit;
         if frequency_remains {

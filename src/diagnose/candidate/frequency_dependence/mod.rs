@@ -101,7 +101,10 @@ impl Candidate for FrequencyDependence {
             ),
             None => "one alpha (one joint parameter)".to_string(),
         };
-        let members = vec![Some(shared.fitted.clone()), per.as_ref().map(|p| p.fitted.clone())];
+        let members = vec![
+            Some(shared.fitted.clone()),
+            per.as_ref().map(|p| p.fitted.clone()),
+        ];
         let chosen = match per {
             Some(p) if per_supported => p,
             _ => shared,

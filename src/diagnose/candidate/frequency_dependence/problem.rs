@@ -136,7 +136,14 @@ impl<'a> Problem<'a> {
             .enumerate()
             .map(|(r, m)| {
                 let s = self.pairing.model_index[r];
-                own::solve(&self.ctx.structure, law, s, self.count, m.frequency_hz, m.mode)
+                own::solve(
+                    &self.ctx.structure,
+                    law,
+                    s,
+                    self.count,
+                    m.frequency_hz,
+                    m.mode,
+                )
             })
             .collect::<Result<_, _>>()?;
         let at = self.joints() + self.alphas;
@@ -242,8 +249,8 @@ impl optim::Problem for Problem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::pairing::{PairingRule, pair};
     use crate::diagnose::fit::Noise;
+    use crate::diagnose::pairing::{PairingRule, pair};
     use crate::modal::ModalSolution;
     use crate::model::fixtures::paper_model;
     use crate::simulate::{Errors, simulate};
