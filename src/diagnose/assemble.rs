@@ -4,7 +4,7 @@
 //! pairing remarks.
 
 use super::candidate::{Tier, registry};
-use super::decide::{Decision, TREND_SIGMAS};
+use super::decide::{Decision, FIT_ALPHA, TREND_SIGMAS};
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
 use super::report::{
@@ -131,7 +131,12 @@ fn what_remains(f: &Findings) -> Vec<Remaining> {
         .scored
         .iter()
         .any(|s| extended.contains(&s.report.name.as_str()));
-    remains(&models, f.measured, &f.estimate, extended_tried)
+    remains(
+        &models,
+        f.measured,
+        (&f.estimate, FIT_ALPHA),
+        extended_tried,
+    )
 }
 
 /// Modes of `fitted` paired with another model mode than their number.

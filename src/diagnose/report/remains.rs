@@ -4,17 +4,17 @@
 //! where it can be said.
 //!
 //! A mode's frequency remains when every model's standardised error z = (f - f_m) /
-//! (sigma_f f_m) has z^2 above the chi-square (1 dof) quantile of [`FIT_ALPHA`] / modes
-//! (Bonferroni over the modes); its shape remains when every model's shape chi^2 of that mode
-//! (as in [`ResidualPattern`], dof = its values - 1 for the fitted scale) has P(chi^2) below
-//! [`FIT_ALPHA`] / modes. The models are the joint-only fit and every candidate with a model
+//! (sigma_f f_m) has z^2 above the chi-square (1 dof) quantile of `level` / modes
+//! (Bonferroni over the modes; the diagnosis passes its lack-of-fit level,
+//! `crate::diagnose::FIT_ALPHA`); its shape remains when every model's shape chi^2 of that
+//! mode (as in [`ResidualPattern`], dof = its values - 1 for the fitted scale) has P(chi^2)
+//! below `level` / modes. The models are the joint-only fit and every candidate with a model
 //! of its own that fitted and is physical.
 
 use serde::Serialize;
 
 use super::pattern::ResidualPattern;
 use super::summary::ErrorSummary;
-use crate::diagnose::decide::FIT_ALPHA;
 use crate::diagnose::fit::{Fitted, Noise, residuals};
 use crate::diagnose::noise::NoiseEstimate;
 use crate::measured::MeasuredModes;
@@ -104,11 +104,12 @@ struct View<'a> {
 }
 
 /// What remains of `measured` with every one of `models` (name, fit), judged under
-/// `estimate`'s working noise; `extended_tried` when the extended library was searched.
+/// `estimate`'s working noise at `level` (module docs); `extended_tried` when the extended
+/// library was searched.
 pub fn remains(
     models: &[(&str, &Fitted)],
     measured: &MeasuredModes,
-    estimate: &NoiseEstimate,
+    (estimate, level): (&NoiseEstimate, f64),
     extended_tried: bool,
 ) -> Vec<Remaining> {
     let modes = measured.modes();
@@ -142,7 +143,7 @@ pub fn remains(
     if views.is_empty() {
         return Vec::new();
     }
-    let z_limit = chi2_isf(FIT_ALPHA / n, 1.0).sqrt();
+    let z_limit = chi2_isf(level / n, 1.0).sqrt();
     let mut out = Vec::new();
     for (r, m) in modes.iter().enumerate() {
         let closest_f = (0..views.len())
@@ -152,8 +153,7 @@ pub fn remains(
             .min_by(|&a, &b| views[a].shape[r].total_cmp(&views[b].shape[r]))
             .unwrap_or(0);
         let dof = m.values.len().saturating_sub(1);
-        let shape_remains =
-            dof > 0 && chi2_sf(views[closest_s].shape[r], dof as f64) < FIT_ALPHA / n;
+        let shape_remains = dof > 0 && chi2_sf(views[closest_s].shape[r], dof as f64) < level / n;
         let v = &views[closest_f];
         let frequency_remains = v.z[r].abs() > z_limit;
         if frequency_remains {
