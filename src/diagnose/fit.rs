@@ -669,6 +669,29 @@ impl optim::Problem for Paired<'_, '_> {
     }
 }
 
+/// (J^T J)^-1 of the n unknowns from the R of a QR of `jac`; infinite variances when J has
+/// a dependent column.
+pub(crate) fn covariance(jac: faer::MatRef<'_, f64>, n: usize) -> Mat<f64> {
+    optim::lstsq::inverse_gram(jac)
+        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }))
+}
+
+/// The identified joint parameters of `structure` with their standard errors, the first
+/// unknowns of `covariance` being x_j = ln(p_j / p_j0).
+pub(crate) fn joint_estimates(structure: &Structure, covariance: &Mat<f64>) -> Vec<Estimate> {
+    structure
+        .identified()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Estimate {
+            name: p.name.clone(),
+            unit: p.unit,
+            value: p.value,
+            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
+        })
+        .collect()
+}
+
 /// The fit's solver (module docs).
 pub(crate) fn solver() -> LevenbergMarquardt {
     LevenbergMarquardt::new(MAX_ITERATIONS)
@@ -687,21 +710,8 @@ fn finish(
     let jac = problem.jacobian(&x, &eval, &pairing);
     let n = x.len();
     // (J^T J)^-1 from the R of a QR of J; infinite variances when J has a dependent column.
-    let covariance = optim::lstsq::inverse_gram(jac.as_ref())
-        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
-    let mut estimates: Vec<Estimate> = eval
-        .configured
-        .structure
-        .identified()
-        .iter()
-        .enumerate()
-        .map(|(i, p)| Estimate {
-            name: p.name.clone(),
-            unit: p.unit,
-            value: p.value,
-            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
-        })
-        .collect();
+    let covariance = covariance(jac.as_ref(), n);
+    let mut estimates = joint_estimates(&eval.configured.structure, &covariance);
     let j = problem.joint_count();
     let scales = problem.scales();
     for (k, p) in eval.configured.effect_parameters().iter().enumerate() {
@@ -729,7 +739,7 @@ fn finish(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::effects::by_name;
     use crate::model::fixtures::paper_model;
@@ -737,10 +747,15 @@ mod tests {
     use crate::structure::Observation;
     use crate::study::NoiseKind;
 
-    /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
-    /// shape scales) against central differences of the residuals, at a point away from zero.
-    #[test]
-    fn residual_jacobian_matches_central_differences() {
+    /// Paper case I (k1 1e7, k2 1e4) with shear 0.5, its first four modes at every other DOF
+    /// with 0.1% / 2% noise (seed 3): the data, the nominal modes, the effects' context and a
+    /// calibration (floor 0.01), for derivative tests.
+    pub(crate) fn fixture() -> (
+        MeasuredModes,
+        ModalSolution,
+        Arc<EffectContext>,
+        Calibration,
+    ) {
         let model = paper_model(1e7, 1e4);
         let dofs: Vec<Observation> = (0..38)
             .step_by(2)
@@ -775,6 +790,14 @@ mod tests {
             shape_floor: 0.01,
             measured_std: false,
         };
+        (measured, nominal, ctx, calibration)
+    }
+
+    /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
+    /// shape scales) against central differences of the residuals, at a point away from zero.
+    #[test]
+    fn residual_jacobian_matches_central_differences() {
+        let (measured, nominal, ctx, calibration) = fixture();
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
         let problem = Problem::new(&ctx, &measured, &calibration, &effects);
         let rule = &calibration.pairing;

@@ -110,6 +110,14 @@ fn after(r: &Report, name: &str) -> (f64, f64) {
     (e.value, e.se)
 }
 
+/// The frequency-dependent joint's candidate report.
+fn candidate(r: &Report) -> &jointid::diagnose::CandidateReport {
+    r.candidates
+        .iter()
+        .find(|c| c.name == "frequency_dependence")
+        .unwrap()
+}
+
 #[test]
 fn a_shared_alpha_is_recovered_exactly_from_noise_free_data() {
     let r = run(&data([0.1, 0.1], None));
@@ -141,11 +149,7 @@ fn one_alpha_per_parameter_is_selected_when_the_alphas_differ() {
         let (v, _) = after(&r, &format!("frequency_dependence.alpha.{name}"));
         assert!((v - a).abs() < 1e-5, "alpha {name} {v}");
     }
-    let fd = r
-        .candidates
-        .iter()
-        .find(|c| c.name == "frequency_dependence")
-        .unwrap();
+    let fd = candidate(&r);
     assert!(
         fd.describe.contains("the data support one per parameter"),
         "{}",
@@ -157,11 +161,7 @@ fn one_alpha_per_parameter_is_selected_when_the_alphas_differ() {
 fn noisy_data_give_the_truth_within_three_standard_errors() {
     let r = run(&data([0.1, 0.1], Some(NOISE)));
     assert_eq!(r.verdict, Verdict::FrequencyDependent);
-    let fd = r
-        .candidates
-        .iter()
-        .find(|c| c.name == "frequency_dependence")
-        .unwrap();
+    let fd = candidate(&r);
     assert!(
         fd.describe.contains("the data support one shared"),
         "{}",

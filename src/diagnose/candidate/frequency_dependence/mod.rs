@@ -28,15 +28,13 @@ mod problem;
 
 pub use problem::ALPHA_MAX;
 
-use faer::Mat;
-
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
 use crate::diagnose::decide::ALPHA;
 use crate::diagnose::fit::{self, Estimate, FitError, Fitted, OwnModel, RANGE_FACTOR};
 use crate::diagnose::report::Verdict;
 use crate::modal::ModalSolution;
 use crate::model::effects::{Configured, EffectContext};
-use crate::optim::{Termination, lstsq};
+use crate::optim::Termination;
 use problem::{Problem, State};
 
 /// Name of the frequency-dependent joint among the candidates.
@@ -216,23 +214,13 @@ fn finish(
     let (joints, alphas) = (problem.joints(), problem.alphas);
     let n = x.len();
     let jac = problem.jacobian(&x, &state);
-    let covariance = lstsq::inverse_gram(jac.as_ref())
-        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
+    let covariance = fit::covariance(jac.as_ref(), n);
     let (q0, _) = problem.law(&x);
     let values: Vec<f64> = q0.iter().map(|q| q.exp()).collect();
     let structure = problem.ctx.structure.with_values(&values);
     let modal = ModalSolution::lowest_of(&structure.assemble(), problem.count())?;
     let params = structure.identified();
-    let mut estimates: Vec<Estimate> = params
-        .iter()
-        .enumerate()
-        .map(|(i, p)| Estimate {
-            name: p.name.clone(),
-            unit: p.unit,
-            value: p.value,
-            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
-        })
-        .collect();
+    let mut estimates = fit::joint_estimates(&structure, &covariance);
     let alpha_estimates: Vec<Estimate> = (0..alphas)
         .map(|a| Estimate {
             name: if alphas == 1 {

@@ -249,46 +249,14 @@ impl optim::Problem for Problem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::fit::Noise;
-    use crate::diagnose::pairing::{PairingRule, pair};
-    use crate::modal::ModalSolution;
-    use crate::model::fixtures::paper_model;
-    use crate::simulate::{Errors, simulate};
-    use crate::structure::Observation;
-    use crate::study::NoiseKind;
+    use crate::diagnose::pairing::pair;
 
     /// The residual Jacobian (the self-consistent frequency's implicit derivative included)
     /// against central differences of the residuals, for both variants, at a point with
     /// alpha away from zero.
     #[test]
     fn residual_jacobian_matches_central_differences() {
-        let model = paper_model(1e7, 1e4);
-        let dofs: Vec<Observation> = (0..38)
-            .step_by(4)
-            .map(|d| Observation::dof(&model.dofs, d))
-            .collect();
-        let errors = Errors {
-            shape: 0.02,
-            frequency: 0.001,
-            kind: NoiseKind::Gaussian,
-            seed: 5,
-        };
-        let measured = simulate(&model, &[], &[1, 2, 3, 4, 5], &dofs, errors).unwrap();
-        let nominal = ModalSolution::solve(&model.assemble()).unwrap();
-        let ctx = Arc::new(EffectContext::new(
-            model.clone(),
-            &dofs,
-            nominal.frequency_hz(2),
-        ));
-        let calibration = Calibration {
-            noise: Noise {
-                frequency: 0.001,
-                shape: 0.02,
-            },
-            pairing: PairingRule::default(),
-            shape_floor: 0.02,
-            measured_std: false,
-        };
+        let (measured, nominal, ctx, calibration) = crate::diagnose::fit::tests::fixture();
         let pairing = pair(&nominal, &measured, 2, &calibration.pairing).unwrap();
         for per_parameter in [false, true] {
             let problem = Problem::new(&ctx, &measured, &calibration, &pairing, per_parameter);
@@ -296,7 +264,7 @@ mod tests {
             if per_parameter {
                 x.push(-0.3);
             }
-            x.extend([1.0, 0.9, 1.1, 1.05, 0.95]);
+            x.extend([1.0, 0.9, 1.1, 1.05]);
             let state = problem.evaluate(&x).unwrap();
             let jac = problem.jacobian(&x, &state);
             for col in 0..x.len() {
