@@ -1,12 +1,15 @@
 //! The last step of a diagnosis: the report assembled from the steps' findings: the verdict
 //! and the models before and after, the paper's per-mode corrections on both, their trend and
-//! the misfit's pattern where no static model explains the data, the pairing remarks.
+//! the misfit's pattern and what remains of each mode where no model explains the data, the
+//! pairing remarks.
 
-use super::decide::{Decision, TREND_SIGMAS};
+use super::candidate::{Tier, registry};
+use super::decide::{Decision, FIT_ALPHA, TREND_SIGMAS};
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
 use super::report::{
-    ErrorSummary, Report, ResidualPattern, Verdict, flatness, per_mode_corrections,
+    ErrorSummary, Remaining, Report, ResidualPattern, Verdict, flatness, per_mode_corrections,
+    remains,
 };
 use super::score::Scored;
 use crate::identify::Settings;
@@ -47,9 +50,7 @@ pub fn assemble(f: Findings) -> Report {
     let decision = &f.decision;
     let best = decision.best.map(|b| &f.scored[b]);
     let after = best.and_then(|s| s.model.as_ref()).unwrap_or(f.base);
-    let selected = best
-        .filter(|_| decision.verdict != Verdict::FrequencyDependent)
-        .map(|s| s.report.name.clone());
+    let selected = best.map(|s| s.report.name.clone());
     let yardstick = if decision.verdict == Verdict::Unexplained && !f.estimate.from_data {
         f.stated
     } else {
@@ -58,7 +59,16 @@ pub fn assemble(f: Findings) -> Report {
     let per_mode_before = per_mode_corrections(f.base, measured, yardstick, f.per_mode);
     let per_mode_after = per_mode_corrections(after, measured, yardstick, f.per_mode);
     let flatness_before = flatness(&per_mode_before);
-    let (mut trend, mut pattern) = (Vec::new(), None);
+    let (mut trend, mut pattern, mut remaining) = (Vec::new(), None, Vec::new());
+    if decision.verdict == Verdict::Unexplained {
+        pattern = Some(ResidualPattern::of(
+            f.base,
+            measured,
+            noise,
+            f.estimate.working_floor,
+        ));
+        remaining = what_remains(&f);
+    }
     if matches!(
         decision.verdict,
         Verdict::Unexplained | Verdict::FrequencyDependent
@@ -70,12 +80,6 @@ pub fn assemble(f: Findings) -> Report {
             .filter(|f| f.slope_per_khz.abs() > TREND_SIGMAS * f.slope_se_per_khz)
             .cloned()
             .collect();
-        pattern = Some(ResidualPattern::of(
-            f.base,
-            measured,
-            noise,
-            f.estimate.working_floor,
-        ));
     }
     Report {
         verdict: decision.verdict,
@@ -86,6 +90,7 @@ pub fn assemble(f: Findings) -> Report {
             .map(|&i| f.scored[i].report.name.clone())
             .collect(),
         pattern,
+        remains: remaining,
         trend,
         criterion: f.criterion,
         noise: f.stated,
@@ -106,6 +111,32 @@ pub fn assemble(f: Findings) -> Report {
         shape_floor: SHAPE_FLOOR,
         hypotheses: f.hypotheses,
     }
+}
+
+/// What remains of every mode with the joint-only fit and with every candidate that has a
+/// physical model of its own.
+fn what_remains(f: &Findings) -> Vec<Remaining> {
+    let models: Vec<(&str, &Fitted)> = std::iter::once(("joint only", f.base))
+        .chain(f.scored.iter().filter_map(|s| {
+            let usable = s.report.error.is_none() && s.report.excluded.is_none();
+            Some((s.report.name.as_str(), s.model.as_ref().filter(|_| usable)?))
+        }))
+        .collect();
+    let extended: Vec<&str> = registry()
+        .iter()
+        .filter(|c| c.tier() == Tier::Extended)
+        .map(|c| c.name())
+        .collect();
+    let extended_tried = f
+        .scored
+        .iter()
+        .any(|s| extended.contains(&s.report.name.as_str()));
+    remains(
+        &models,
+        f.measured,
+        (&f.estimate, FIT_ALPHA),
+        extended_tried,
+    )
 }
 
 /// Modes of `fitted` paired with another model mode than their number.

@@ -12,6 +12,9 @@
 //!   [`AMBIGUITY_MARGIN`] behind it in Akaike's information criterion contends with it
 //!   (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model Selection and Multimodel
 //!   Inference", sec. 2.6) ([`select`]).
+//! - **Static first** ([`static_first`]): where a static candidate within the margin
+//!   explains the data, it is named before the frequency-dependent joint, which does not
+//!   contend with it.
 //! - **Verdict** ([`decide`]): no significant candidate and the joint-only fit explains the
 //!   data: `none`; the selected candidate explains the data: the verdict it names (`effect`,
 //!   or `frequency_dependent` for the frequency-dependent joint) when alone, `ambiguous` when
@@ -90,8 +93,9 @@ pub fn decide(
         best: None,
         contenders: Vec::new(),
     };
-    match select(candidates) {
-        Some((b, close)) if Judgement::of(&candidates[b]).explains(estimate) => {
+    let explains = |i: usize| Judgement::of(&candidates[i]).explains(estimate);
+    match select(candidates).map(|(b, close)| static_first(candidates, names, b, close, explains)) {
+        Some((b, close)) if explains(b) => {
             if close.is_empty() {
                 Decision {
                     verdict: names[b],
@@ -117,16 +121,8 @@ pub fn decide(
 /// and every other of them less than [`AMBIGUITY_MARGIN`] behind it in AIC (indices into
 /// `candidates`; `None` when no candidate is significant).
 pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
-    let mut significant: Vec<usize> = (0..candidates.len())
-        .filter(|&i| {
-            let c = &candidates[i];
-            c.error.is_none() && c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA)
-        })
-        .collect();
-    significant.sort_by(|&a, &b| {
-        let lrt = |i: usize| candidates[i].lrt.unwrap_or(0.0);
-        lrt(b).total_cmp(&lrt(a))
-    });
+    let mut significant = significant(candidates);
+    significant.sort_by(|&a, &b| lrt(&candidates[b]).total_cmp(&lrt(&candidates[a])));
     let (&best, rest) = significant.split_first()?;
     let close = rest
         .iter()
@@ -134,6 +130,56 @@ pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
         .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
         .collect();
     Some((best, close))
+}
+
+/// The significant candidates whose size is plausible (indices into `candidates`).
+fn significant(candidates: &[CandidateReport]) -> Vec<usize> {
+    (0..candidates.len())
+        .filter(|&i| {
+            let c = &candidates[i];
+            c.error.is_none() && c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA)
+        })
+        .collect()
+}
+
+/// The selection `(b, close)` with a static explanation preferred to the frequency-dependent
+/// joint: when the best is the frequency-dependent joint and a static candidate within the
+/// margin explains the data, that one (the first, by likelihood ratio) is the best; and the
+/// frequency-dependent joint never contends with a static best. A joint that looks
+/// frequency-dependent is what the paper's per-mode method reads from any unmodelled static
+/// effect: where the data cannot tell them apart, the static physics is named.
+fn static_first(
+    candidates: &[CandidateReport],
+    names: &[Verdict],
+    b: usize,
+    close: Vec<usize>,
+    explains: impl Fn(usize) -> bool,
+) -> (usize, Vec<usize>) {
+    let dependent = |i: usize| names[i] == Verdict::FrequencyDependent;
+    let best = if dependent(b) {
+        close
+            .iter()
+            .copied()
+            .find(|&i| !dependent(i) && explains(i))
+            .unwrap_or(b)
+    } else {
+        b
+    };
+    if best == b && dependent(b) {
+        return (b, close);
+    }
+    let mut close: Vec<usize> = significant(candidates)
+        .into_iter()
+        .filter(|&i| i != best && !dependent(i))
+        .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
+        .collect();
+    close.sort_by(|&a, &b| lrt(&candidates[b]).total_cmp(&lrt(&candidates[a])));
+    (best, close)
+}
+
+/// A candidate's likelihood-ratio statistic (0 when it has none).
+fn lrt(c: &CandidateReport) -> f64 {
+    c.lrt.unwrap_or(0.0)
 }
 
 /// Akaike's information criterion of a fitted candidate relative to the joint-only fit

@@ -36,7 +36,7 @@ use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
 use crate::optim::{self, Bounds, LevenbergMarquardt, Termination};
-use crate::structure::{Matrices, Parameter};
+use crate::structure::{Matrices, Parameter, Structure};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
 pub const SHAPE_FLOOR: f64 = 0.02;
@@ -136,6 +136,19 @@ pub enum FitError {
         /// Its nominal value.
         nominal: f64,
     },
+    /// A mode of the frequency-dependent joint found no frequency equal to the one its joint
+    /// is evaluated at.
+    #[error(
+        "measured mode {mode}: the frequency at which the joint is evaluated did not settle on the mode's own frequency in {iterations} iterations (last relative change {change:.1e}): the frequency-dependent joint is refused there (the dependence is too strong for one self-consistent mode)"
+    )]
+    NotSelfConsistent {
+        /// The measured mode.
+        mode: usize,
+        /// Iterations done.
+        iterations: usize,
+        /// The last |ln F(u) - u|.
+        change: f64,
+    },
     /// Levenberg-Marquardt did not converge.
     #[error("the fit{with} did not converge in {iterations} iterations (chi^2 {chi2:.4e}): the data may be inconsistent with the model (check mode numbering, units and the stated noise)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
     NotConverged {
@@ -180,8 +193,35 @@ pub struct Fitted {
     pub iterations: usize,
     /// The fitted scale c_r of every measured mode's model shape.
     pub scales: Vec<f64>,
+    /// Per measured mode, the model it is read from when that is not `modal`'s structure
+    /// (the frequency-dependent joint: the joint evaluated at the mode's own frequency);
+    /// empty when every mode is read from `modal`.
+    pub own: Vec<OwnModel>,
     /// The optimum in the fit's own unknowns (a start for a refit).
-    solution: Vec<f64>,
+    pub(crate) solution: Vec<f64>,
+}
+
+/// The model one measured mode is read from when it is not the fit's one model.
+#[derive(Debug, Clone)]
+pub struct OwnModel {
+    /// The structure, its joint evaluated for this mode.
+    pub structure: Structure,
+    /// Its eigensolution.
+    pub modal: ModalSolution,
+}
+
+impl Fitted {
+    /// The eigensolution measured mode `r` is read from.
+    pub fn modal_of(&self, r: usize) -> &ModalSolution {
+        self.own.get(r).map_or(&self.modal, |o| &o.modal)
+    }
+
+    /// The structure measured mode `r` is read from.
+    pub fn structure_of(&self, r: usize) -> &Structure {
+        self.own
+            .get(r)
+            .map_or(&self.configured.structure, |o| &o.structure)
+    }
 }
 
 struct Problem<'a> {
@@ -407,7 +447,11 @@ impl<'a> Problem<'a> {
 }
 
 /// +1 or -1: the sign that makes model mode `s` agree with the measured shape.
-fn model_sign(modal: &ModalSolution, s: usize, m: &crate::measured::MeasuredMode) -> f64 {
+pub(crate) fn model_sign(
+    modal: &ModalSolution,
+    s: usize,
+    m: &crate::measured::MeasuredMode,
+) -> f64 {
     let dot: f64 = m
         .points
         .iter()
@@ -430,16 +474,17 @@ pub struct Residuals {
 
 /// The unweighted residuals of `fitted` on `measured`.
 pub fn residuals(fitted: &Fitted, measured: &MeasuredModes) -> Residuals {
-    let y = fitted.modal.vectors();
     let mut out = Residuals {
         frequency: Vec::new(),
         shape: Vec::new(),
     };
     for (r, m) in measured.modes().iter().enumerate() {
         let s = fitted.pairing.model_index[r];
+        let modal = fitted.modal_of(r);
+        let y = modal.vectors();
         out.frequency
-            .push((fitted.modal.frequency_hz(s) - m.frequency_hz) / m.frequency_hz);
-        let sign = model_sign(&fitted.modal, s, m);
+            .push((modal.frequency_hz(s) - m.frequency_hz) / m.frequency_hz);
+        let sign = model_sign(modal, s, m);
         let peak = m.peak().max(f64::MIN_POSITIVE);
         for (p, &v) in m.points.iter().zip(&m.values) {
             let e = fitted.scales[r] * sign * p.read_column(y, s) - v;
@@ -449,7 +494,7 @@ pub fn residuals(fitted: &Fitted, measured: &MeasuredModes) -> Residuals {
     out
 }
 
-fn chi2(r: &[f64]) -> f64 {
+pub(crate) fn chi2(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
 
@@ -491,75 +536,6 @@ pub fn refit(
         true,
         Some(&from.solution),
     )
-}
-
-/// A joint-only fit linearised at its optimum: the weighted residuals and their derivatives.
-#[derive(Debug, Clone)]
-pub struct Linearisation {
-    /// Weighted residuals, per measured mode its frequency then its shape values.
-    pub residual: Vec<f64>,
-    /// d residual / d unknowns: the joints' x_j = ln(p_j / p_j0), then one shape scale per
-    /// measured mode.
-    pub jacobian: Mat<f64>,
-    /// Number of joint unknowns (the first columns).
-    pub joints: usize,
-    /// The measured mode of every row (index into the measured modes).
-    pub mode_of_row: Vec<usize>,
-    /// Standard deviation of every row, relative for a frequency (sigma_f), per unit peak for
-    /// a shape value: residual times it is the unweighted residual of [`residuals`].
-    pub sigma: Vec<f64>,
-}
-
-impl Linearisation {
-    /// The unweighted residuals (as [`residuals`] gives them) of weighted residuals `weighted`
-    /// in this linearisation's rows.
-    pub fn unweighted(&self, weighted: &[f64], measured: &MeasuredModes) -> Residuals {
-        let mut out = Residuals {
-            frequency: Vec::new(),
-            shape: Vec::new(),
-        };
-        let mut row = 0;
-        for m in measured.modes() {
-            out.frequency.push(weighted[row] * self.sigma[row]);
-            let peak = m.peak().max(f64::MIN_POSITIVE);
-            for (k, v) in m.values.iter().enumerate() {
-                let i = row + 1 + k;
-                out.shape.push((v / peak, weighted[i] * self.sigma[i]));
-            }
-            row += 1 + m.values.len();
-        }
-        out
-    }
-}
-
-/// Linearises the joint-only fit `fitted` (made under `calibration`) at its optimum.
-pub fn linearise(
-    ctx: &Arc<EffectContext>,
-    measured: &MeasuredModes,
-    calibration: &Calibration,
-    fitted: &Fitted,
-) -> Result<Linearisation, FitError> {
-    let problem = Problem::new(ctx, measured, calibration, &[]);
-    let eval = problem.evaluate(&fitted.solution, &fitted.pairing)?;
-    let jacobian = problem.jacobian(&fitted.solution, &eval, &fitted.pairing);
-    let mut mode_of_row = Vec::new();
-    let mut sigma = Vec::new();
-    for (r, m) in measured.modes().iter().enumerate() {
-        let peak = m.peak().max(f64::MIN_POSITIVE);
-        mode_of_row.push(r);
-        sigma.push(problem.sigma_f[r]);
-        for &s in &problem.sigma[r] {
-            mode_of_row.push(r);
-            sigma.push(s / peak);
-        }
-    }
-    Ok(Linearisation {
-        residual: eval.residual,
-        jacobian,
-        joints: problem.joint_count(),
-        mode_of_row,
-        sigma,
-    })
 }
 
 fn run(
@@ -693,8 +669,31 @@ impl optim::Problem for Paired<'_, '_> {
     }
 }
 
+/// (J^T J)^-1 of the n unknowns from the R of a QR of `jac`; infinite variances when J has
+/// a dependent column.
+pub(crate) fn covariance(jac: faer::MatRef<'_, f64>, n: usize) -> Mat<f64> {
+    optim::lstsq::inverse_gram(jac)
+        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }))
+}
+
+/// The identified joint parameters of `structure` with their standard errors, the first
+/// unknowns of `covariance` being x_j = ln(p_j / p_j0).
+pub(crate) fn joint_estimates(structure: &Structure, covariance: &Mat<f64>) -> Vec<Estimate> {
+    structure
+        .identified()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Estimate {
+            name: p.name.clone(),
+            unit: p.unit,
+            value: p.value,
+            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
+        })
+        .collect()
+}
+
 /// The fit's solver (module docs).
-fn solver() -> LevenbergMarquardt {
+pub(crate) fn solver() -> LevenbergMarquardt {
     LevenbergMarquardt::new(MAX_ITERATIONS)
         .and_then(|s| s.with_decrement(DECREMENT_TOLERANCE))
         .expect("the fit's settings are within the solver's ranges")
@@ -711,21 +710,8 @@ fn finish(
     let jac = problem.jacobian(&x, &eval, &pairing);
     let n = x.len();
     // (J^T J)^-1 from the R of a QR of J; infinite variances when J has a dependent column.
-    let covariance = optim::lstsq::inverse_gram(jac.as_ref())
-        .unwrap_or_else(|| Mat::from_fn(n, n, |i, j| if i == j { f64::INFINITY } else { 0.0 }));
-    let mut estimates: Vec<Estimate> = eval
-        .configured
-        .structure
-        .identified()
-        .iter()
-        .enumerate()
-        .map(|(i, p)| Estimate {
-            name: p.name.clone(),
-            unit: p.unit,
-            value: p.value,
-            se: p.value * covariance[(i, i)].max(0.0).sqrt(),
-        })
-        .collect();
+    let covariance = covariance(jac.as_ref(), n);
+    let mut estimates = joint_estimates(&eval.configured.structure, &covariance);
     let j = problem.joint_count();
     let scales = problem.scales();
     for (k, p) in eval.configured.effect_parameters().iter().enumerate() {
@@ -743,6 +729,7 @@ fn finish(
         solution: x,
         configured: eval.configured,
         modal: eval.modal,
+        own: Vec::new(),
         pairing,
         chi2,
         dof,
@@ -752,7 +739,7 @@ fn finish(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::model::effects::by_name;
     use crate::model::fixtures::paper_model;
@@ -760,10 +747,15 @@ mod tests {
     use crate::structure::Observation;
     use crate::study::NoiseKind;
 
-    /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
-    /// shape scales) against central differences of the residuals, at a point away from zero.
-    #[test]
-    fn residual_jacobian_matches_central_differences() {
+    /// Paper case I (k1 1e7, k2 1e4) with shear 0.5, its first four modes at every other DOF
+    /// with 0.1% / 2% noise (seed 3): the data, the nominal modes, the effects' context and a
+    /// calibration (floor 0.01), for derivative tests.
+    pub(crate) fn fixture() -> (
+        MeasuredModes,
+        ModalSolution,
+        Arc<EffectContext>,
+        Calibration,
+    ) {
         let model = paper_model(1e7, 1e4);
         let dofs: Vec<Observation> = (0..38)
             .step_by(2)
@@ -798,6 +790,14 @@ mod tests {
             shape_floor: 0.01,
             measured_std: false,
         };
+        (measured, nominal, ctx, calibration)
+    }
+
+    /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the
+    /// shape scales) against central differences of the residuals, at a point away from zero.
+    #[test]
+    fn residual_jacobian_matches_central_differences() {
+        let (measured, nominal, ctx, calibration) = fixture();
         let effects = ["joint_mass", "shear", "joint_coupling"].map(|n| by_name(n).unwrap());
         let problem = Problem::new(&ctx, &measured, &calibration, &effects);
         let rule = &calibration.pairing;

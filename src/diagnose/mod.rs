@@ -133,6 +133,7 @@ pub fn diagnose(
         measured,
         calibration: &stated,
         base: &first_base,
+        estimate: None,
     };
     let first = candidate::fit_all(&library, &first_stage, None);
     let estimate = if stated.measured_std {
@@ -152,6 +153,7 @@ pub fn diagnose(
     let stage = Stage {
         calibration: &working,
         base: &calibrated.base,
+        estimate: Some(&estimate),
         ..first_stage
     };
     let fits = candidate::fit_all(&library, &stage, Some(&first));

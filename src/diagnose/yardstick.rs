@@ -27,6 +27,7 @@ use super::candidate::{Stage, Tried};
 use super::decide::FIT_ALPHA;
 use super::fit::{self, Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use super::noise::{LARGEST_FACTOR, NoiseEstimate, estimate};
+use super::report::Verdict;
 use super::whiteness;
 
 /// The name of the joint-only fit among the models.
@@ -39,8 +40,12 @@ struct Leaves {
 }
 
 /// The largest physical model of a stage: the candidate with the smallest chi^2 among those
-/// of `first` that have a model of their own and a physical size, when below the joint-only
-/// fit `base`'s; else `base`. Its residual scale is the smallest any model reaches.
+/// of `first` that have a static model of their own and a physical size, when below the
+/// joint-only fit `base`'s; else `base`. Its residual scale is the smallest any model reaches.
+/// The frequency-dependent joint is not one: its exponents act on every mode's frequency and
+/// fit a smooth trend of the frequencies with the mode whatever its cause, so that its
+/// residual scale would pass a static misfit as noise; it is judged under the yardstick of
+/// the static models.
 #[derive(Debug, Clone, Copy)]
 pub struct Largest<'a> {
     /// Its index in `first`; None for the joint-only fit.
@@ -56,6 +61,7 @@ pub fn largest<'a>(first: &'a [Tried], base: &'a Fitted) -> Largest<'a> {
     first
         .iter()
         .enumerate()
+        .filter(|(_, (candidate, _))| candidate.verdict() != Verdict::FrequencyDependent)
         .filter_map(|(i, (candidate, outcome))| {
             let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
             let fitted = fit.model.as_ref().filter(|m| m.chi2 < base.chi2)?;
@@ -116,6 +122,7 @@ fn refitted(first: &[Tried], stage: &Stage, i: Option<usize>, e: &NoiseEstimate)
     let stage = Stage {
         calibration: &calibration,
         base: &base,
+        estimate: Some(e),
         ..*stage
     };
     let fit = candidate.fit(&stage, Some(earlier)).ok()?;

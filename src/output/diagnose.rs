@@ -6,7 +6,9 @@ use super::table::{plus_minus, sci, write_table};
 use crate::diagnose::Estimate;
 use crate::diagnose::noise::LARGEST_FACTOR;
 use crate::diagnose::report::Profile;
-use crate::diagnose::report::{ErrorSummary, Flatness, ModeCorrection, Source};
+use crate::diagnose::report::{
+    ErrorSummary, Flatness, Lacking, Misfit, ModeCorrection, Remaining, Source,
+};
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
 
 fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
@@ -115,10 +117,44 @@ pub fn verdict_text(r: &Report, long: bool) -> String {
             "ambiguous: {contenders} explain the data about equally well (AIC within {AMBIGUITY_MARGIN} of the best); 'after' is the best, {selected}"
         ),
         (Verdict::FrequencyDependent, false) => "frequency-dependent".into(),
-        (Verdict::FrequencyDependent, true) => "frequency-dependent: a joint whose stiffness scales with frequency explains the data and no static candidate comes close (the paper's frequency-dependent joint; candidate frequency_dependence)".into(),
+        (Verdict::FrequencyDependent, true) => format!(
+            "frequency-dependent: {}; a joint whose stiffness scales as (f / f_ref)^alpha, each mode at its own frequency, explains the data and no static candidate comes close (the paper's frequency-dependent joint; candidate {selected})",
+            alphas(r)
+        ),
         (Verdict::Unexplained, false) => "unexplained".into(),
         (Verdict::Unexplained, true) => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".into(),
     }
+}
+
+/// What the library offers or lacks for a local or distributed change.
+fn extended(tried: bool) -> &'static str {
+    if tried {
+        " (of another kind than the library's local stiffness and joint region: a mass with its stiffness, a changed section, a layered lap)"
+    } else {
+        " (the extended library's local_stiffness and joint_region search such changes: --extended)"
+    }
+}
+
+/// The selected candidate's alphas, `alpha = 0.45 +- 0.02` or one per parameter.
+fn alphas(r: &Report) -> String {
+    let list: Vec<String> = r
+        .candidates
+        .iter()
+        .filter(|c| Some(&c.name) == r.selected.as_ref())
+        .flat_map(|c| &c.parameters)
+        .map(|e| {
+            let name = e
+                .name
+                .rsplit_once(".alpha")
+                .map_or("alpha", |(_, tail)| tail);
+            let name = match name.strip_prefix('.') {
+                Some(param) => format!("alpha({param})"),
+                None => "alpha".to_string(),
+            };
+            format!("{name} = {}", plus_minus(e.value, e.se))
+        })
+        .collect();
+    list.join(", ")
 }
 
 /// One line of a scan's chi^2 along its coordinate.
@@ -235,8 +271,62 @@ fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             "  largest shape residuals along the beams (share of the shape chi^2): {}",
             regions.join("; ")
         )?;
+        write_remains(out, &r.remains)?;
     }
     Ok(())
+}
+
+/// What remains of each mode with every model, one line each.
+fn write_remains(out: &mut dyn Write, remains: &[Remaining]) -> io::Result<()> {
+    if remains.is_empty() {
+        return writeln!(
+            out,
+            "  no single mode stays beyond the noise with every model: the misfit is spread over the modes"
+        );
+    }
+    writeln!(out, "  what remains with every model (the closest named):")?;
+    for m in remains {
+        writeln!(out, "    {}", remaining_text(m))?;
+    }
+    Ok(())
+}
+
+/// One mode's remaining misfit in words: `mode 2 shape: MAC <= 0.9500 with every model ...`.
+pub fn remaining_text(m: &Remaining) -> String {
+    let what = match &m.misfit {
+        Misfit::Frequency { error_pct, sigmas } => format!(
+            "mode {} frequency: {error_pct:+.2}% ({:.1} sigma) with the closest model ({}), at least that with every other",
+            m.mode,
+            sigmas.abs(),
+            m.closest
+        ),
+        Misfit::Shape { mac, chi2, dof } => format!(
+            "mode {} shape: MAC <= {mac:.4} with every model (shape chi^2 {chi2:.1}/{dof} with the closest, {})",
+            m.mode, m.closest
+        ),
+    };
+    let lacking = match &m.lacking {
+        None => return what,
+        Some(Lacking::LocalChange {
+            x,
+            share,
+            extended_tried,
+        }) => format!(
+            "{:.0}% of it at the sensor at x = {x:.4} m: a local change of the structure there{}, or that sensor's own error (position, direction, calibration)",
+            100.0 * share,
+            extended(*extended_tried)
+        ),
+        Some(Lacking::Distributed { extended_tried }) => format!(
+            "with its frequency, spread along the mode: a change of stiffness or mass along the structure that no candidate places{}",
+            extended(*extended_tried)
+        ),
+        Some(Lacking::ShapeMixing { extended_tried }) => format!(
+            "spread along the mode while its frequency fits: a change of stiffness or mass along the structure that the joint's calibration offsets in frequency{}; or motion the planar bending model lacks (torsion or the other bending plane mixing in, a close mode); or sensors placed or directed otherwise than the model says",
+            extended(*extended_tried)
+        ),
+        Some(Lacking::FrequencyOnly) => "its shape fits: a change the sensors do not resolve, a joint that depends on the vibration amplitude (`jointid amplitude` fits one across excitation levels), or a frequency dependence other than a power law".to_string(),
+    };
+    format!("{what}; {lacking}")
 }
 
 /// The stated noise and the estimate, and the pairing remarks.

@@ -28,6 +28,7 @@ mod diagnose_unesp;
 mod extract;
 mod extract_uncertainty;
 mod extract_unesp;
+mod frequency_joint;
 mod frequency_only;
 mod fuzz;
 mod identification;

@@ -5,8 +5,8 @@
 //! likelihood-ratio statistic against the joint-only fit, its residuals and, when it has one,
 //! the refitted model that becomes the diagnosis's "after". Four kinds implement it:
 //! - [`EffectCandidate`]: any [`Effect`] of the model library, fitted with the joints;
-//! - [`FrequencyDependence`]: the paper's frequency-dependent joint, a score test at the
-//!   calibrated joint;
+//! - [`FrequencyDependence`]: the paper's frequency-dependent joint, every mode solved with
+//!   the joint at its own frequency;
 //! - [`Scan`]: a family of effects indexed by a coordinate (a position along the beams, the
 //!   length of a joint region), each member fitted, the best kept, with the profile of chi^2
 //!   along the coordinate.
@@ -33,6 +33,7 @@ pub use layered_lap::LayeredLap;
 pub use scan::Scan;
 
 use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
+use super::noise::NoiseEstimate;
 use super::report::Verdict;
 use crate::measured::MeasuredModes;
 pub use crate::model::effects::Tier;
@@ -50,6 +51,20 @@ pub struct Stage<'a> {
     pub calibration: &'a Calibration,
     /// The joint-only fit under that calibration: the model every candidate extends.
     pub base: &'a Fitted,
+    /// The noise estimate whose working noise the calibration holds, when it does (None:
+    /// the stated noise, taken as known).
+    pub estimate: Option<&'a NoiseEstimate>,
+}
+
+impl Stage<'_> {
+    /// P-value of a likelihood-ratio statistic `lrt` of `k` more unknowns on this stage: F
+    /// under an estimated noise scale, chi-square under a known one (the selection's test).
+    pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
+        match self.estimate {
+            Some(e) => e.lrt_p_value(lrt, k),
+            None => crate::stats::chi2_sf(lrt, k.max(1) as f64),
+        }
+    }
 }
 
 /// A candidate fitted on a stage.

@@ -1,10 +1,12 @@
 //! What a diagnosis reports (the last step of the pipeline, `super::assemble`, fills it):
 //! error summaries of a model against the data (module `summary`), the
 //! paper's per-mode joint corrections with their uncertainties (module `per_mode`), where a
-//! misfit sits (module `pattern`), every candidate, the verdict. Plain data, serialisable.
+//! misfit sits (module `pattern`), what no model explains (module `remains`), every
+//! candidate, the verdict. Plain data, serialisable.
 
 mod pattern;
 mod per_mode;
+mod remains;
 mod summary;
 
 use serde::Serialize;
@@ -13,6 +15,7 @@ pub use pattern::{ModeChi2, Region, ResidualPattern};
 pub use per_mode::{
     Flatness, ModeCorrection, Source, default_settings, flatness, per_mode_corrections,
 };
+pub use remains::{Lacking, Misfit, Remaining, remains};
 pub use summary::{ErrorSummary, ModeError};
 
 use super::fit::{Estimate, Noise};
@@ -33,9 +36,10 @@ pub enum Verdict {
     /// The residual stays above the noise with every candidate: an effect outside the library
     /// ([`Report::pattern`] says where the residual sits).
     Unexplained,
-    /// The joint whose parameters scale as (f / f_ref)^alpha is the best explanation, and no
-    /// static candidate comes close: the paper's frequency-dependent joint (the candidate
-    /// `frequency_dependence`; [`Report::trend`] shows the per-mode corrections).
+    /// The joint whose parameters scale as (f / f_ref)^alpha, each mode at its own frequency,
+    /// explains the data, and no static candidate comes close: the paper's
+    /// frequency-dependent joint (the candidate `frequency_dependence`, whose fit is `after`;
+    /// [`Report::trend`] shows the per-mode corrections of the invariant joint).
     #[serde(rename = "frequency_dependent")]
     FrequencyDependent,
 }
@@ -112,14 +116,18 @@ impl CandidateReport {
 pub struct Report {
     /// none, effect, ambiguous, unexplained or frequency-dependent.
     pub verdict: Verdict,
-    /// The selected candidate, when the verdict is `effect` (when `ambiguous`: the best of
-    /// the contenders, whose fit is `after`).
+    /// The selected candidate, when the verdict is `effect` or `frequency_dependent` (when
+    /// `ambiguous`: the best of the contenders, whose fit is `after`).
     pub selected: Option<String>,
     /// When `ambiguous`: every candidate within the margin of the best, best first.
     pub contenders: Vec<String>,
-    /// When `unexplained` or `frequency-dependent`: where the misfit of the joint-only fit
-    /// sits, under the working noise.
+    /// When `unexplained`: where the misfit of the joint-only fit sits, under the working
+    /// noise.
     pub pattern: Option<ResidualPattern>,
+    /// When `unexplained`: what remains of each mode with every model, and what the library
+    /// lacks for it (absent from the JSON when empty).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub remains: Vec<Remaining>,
     /// When `unexplained` or `frequency-dependent`: the per-mode corrections (before) that
     /// trend with frequency.
     pub trend: Vec<Flatness>,

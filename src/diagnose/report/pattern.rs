@@ -41,27 +41,87 @@ pub struct ResidualPattern {
 }
 
 impl ResidualPattern {
+    /// Per measured mode (in measured order): the frequency's chi^2 and every shape value's
+    /// (abscissa, z^2) of `fitted` under `noise` with shape floor `floor` (the residuals
+    /// weighted as in the fit, module `fit`).
+    fn contributions(
+        fitted: &Fitted,
+        measured: &MeasuredModes,
+        noise: Noise,
+        floor: f64,
+    ) -> Vec<(f64, Vec<(f64, f64)>)> {
+        let residuals = residuals(fitted, measured);
+        let mut shape = residuals.shape.iter();
+        measured
+            .modes()
+            .iter()
+            .zip(&residuals.frequency)
+            .map(|(m, rf)| {
+                let values = m
+                    .points
+                    .iter()
+                    .zip(shape.by_ref())
+                    .map(|(p, &(u, e))| {
+                        (
+                            p.x,
+                            (e / (noise.shape * (u * u + floor * floor).sqrt())).powi(2),
+                        )
+                    })
+                    .collect();
+                ((rf / noise.frequency).powi(2), values)
+            })
+            .collect()
+    }
+
+    /// Every mode's chi^2 in `fitted`, in measured order ([`Self::of`]'s terms).
+    pub fn by_mode(
+        fitted: &Fitted,
+        measured: &MeasuredModes,
+        noise: Noise,
+        floor: f64,
+    ) -> Vec<ModeChi2> {
+        Self::contributions(fitted, measured, noise, floor)
+            .into_iter()
+            .zip(measured.modes())
+            .map(|((frequency, values), m)| ModeChi2 {
+                mode: m.mode,
+                frequency,
+                shape: values.iter().map(|(_, z)| z).sum(),
+            })
+            .collect()
+    }
+
+    /// The (abscissa, z^2) of every shape value of measured mode `r` in `fitted`.
+    pub fn of_mode(
+        fitted: &Fitted,
+        measured: &MeasuredModes,
+        r: usize,
+        noise: Noise,
+        floor: f64,
+    ) -> Vec<(f64, f64)> {
+        Self::contributions(fitted, measured, noise, floor)
+            .swap_remove(r)
+            .1
+    }
+
     /// The pattern of `fitted` on `measured` under `noise` with shape floor `floor` (the
     /// residuals weighted as in the fit, module `fit`).
     pub fn of(fitted: &Fitted, measured: &MeasuredModes, noise: Noise, floor: f64) -> Self {
-        let residuals = residuals(fitted, measured);
-        let mut shape = residuals.shape.iter();
+        let contributions = Self::contributions(fitted, measured, noise, floor);
         let mut modes = Vec::new();
         let mut at_x: Vec<(f64, f64)> = Vec::new();
-        for (m, rf) in measured.modes().iter().zip(&residuals.frequency) {
+        for (m, (frequency, values)) in measured.modes().iter().zip(contributions) {
             let mut shape_chi2 = 0.0;
-            for p in &m.points {
-                let Some(&(u, e)) = shape.next() else { break };
-                let z2 = (e / (noise.shape * (u * u + floor * floor).sqrt())).powi(2);
+            for (x, z2) in values {
                 shape_chi2 += z2;
-                match at_x.iter_mut().find(|(x, _)| (x - p.x).abs() <= 1e-9) {
+                match at_x.iter_mut().find(|(y, _)| (y - x).abs() <= 1e-9) {
                     Some(slot) => slot.1 += z2,
-                    None => at_x.push((p.x, z2)),
+                    None => at_x.push((x, z2)),
                 }
             }
             modes.push(ModeChi2 {
                 mode: m.mode,
-                frequency: (rf / noise.frequency).powi(2),
+                frequency,
                 shape: shape_chi2,
             });
         }

@@ -66,22 +66,40 @@ pub struct Flatness {
     pub line_p_value: f64,
 }
 
-/// The per-mode corrections of every joint parameter on the calibrated `fitted` model.
+/// The per-mode corrections of every joint parameter on the calibrated `fitted` model. A
+/// mode read from a model of its own ([`Fitted::own`]: the joint at the mode's frequency) is
+/// corrected on that model, relative to the joint's value there.
 pub fn per_mode_corrections(
     fitted: &Fitted,
     measured: &MeasuredModes,
     noise: Noise,
     settings: Settings,
 ) -> Vec<ModeCorrection> {
-    let structure = &fitted.configured.structure;
-    let params = structure.identified();
-    let values: Vec<f64> = params.iter().map(|p| p.value).collect();
-    let Ok(identifier) = Identifier::new(&fitted.modal, params.clone(), structure.rigid, settings)
-    else {
-        return Vec::new();
+    let identifier_of = |r: usize| {
+        let structure = fitted.structure_of(r);
+        let params = structure.identified();
+        Identifier::new(fitted.modal_of(r), params, structure.rigid, settings).ok()
+    };
+    let shared = if fitted.own.is_empty() {
+        match identifier_of(0) {
+            Some(i) => Some(i),
+            None => return Vec::new(),
+        }
+    } else {
+        None
     };
     let mut out = Vec::new();
     for (r, m) in measured.modes().iter().enumerate() {
+        let own = if shared.is_none() {
+            identifier_of(r)
+        } else {
+            None
+        };
+        let Some(identifier) = shared.as_ref().or(own.as_ref()) else {
+            continue;
+        };
+        let params = fitted.structure_of(r).identified();
+        let values: Vec<f64> = params.iter().map(|p| p.value).collect();
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
         // A mode paired beyond the basis (fewer sensors than the mode's index) has no
@@ -112,7 +130,7 @@ pub fn per_mode_corrections(
             .cloned();
         if relatives.is_none()
             && let Ok(f) = frequency_only::identify(
-                structure,
+                fitted.structure_of(r),
                 s,
                 m.mode,
                 m.frequency_hz,

@@ -59,13 +59,14 @@ impl ErrorSummary {
     /// The summary of a fitted (or as-given) model; its goodness of fit under the scale of
     /// `noise`.
     pub fn of(fitted: &Fitted, measured: &MeasuredModes, noise: &NoiseEstimate) -> Self {
-        let y = fitted.modal.vectors();
         let modes: Vec<ModeError> = measured
             .modes()
             .iter()
             .enumerate()
             .map(|(r, m)| {
                 let s = fitted.pairing.model_index[r];
+                let modal = fitted.modal_of(r);
+                let y = modal.vectors();
                 let model: Vec<f64> = m.points.iter().map(|p| p.read_column(y, s)).collect();
                 let sign = if model.iter().zip(&m.values).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
                     -1.0
@@ -78,7 +79,7 @@ impl ErrorSummary {
                     .zip(&m.values)
                     .map(|(a, b)| (fitted.scales[r] * sign * a - b).powi(2))
                     .sum();
-                let f = fitted.modal.frequency_hz(s);
+                let f = modal.frequency_hz(s);
                 ModeError {
                     mode: m.mode,
                     model_mode: s + 1 - fitted.configured.structure.rigid,

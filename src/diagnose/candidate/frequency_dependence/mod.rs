@@ -1,0 +1,274 @@
+//! The paper's question as a fitted model: does the joint's stiffness change with the
+//! frequency of the mode?
+//!
+//! Every identified joint parameter follows
+//!
+//! ```text
+//!   p_j(f) = p_j0 (f / f_ref)^alpha_j,   f_ref the geometric mean of the measured frequencies,
+//! ```
+//!
+//! and measured mode r is the pair its calibrated-joint pairing names of the structure with
+//! the joint at p(f_r), f_r that pair's own frequency: a self-consistent solution per mode
+//! (module `own`: Newton's iteration on ln f; a mode that does not settle refuses the fit
+//! with the reason). The weighted nonlinear least squares over (p_j0, alpha, the shape
+//! scales) is the calibration's (same residuals, weights and solver,
+//! [`crate::diagnose::fit`]), with analytic derivatives through the self-consistent
+//! frequency (module `problem`); alpha = 0 is the invariant joint, its start.
+//!
+//! Two variants: one alpha shared by every joint parameter, and one per parameter (when the
+//! joint has more than one). The per-parameter one is kept when its likelihood-ratio
+//! statistic over the shared one is significant at [`crate::diagnose::ALPHA`] by the
+//! diagnosis's own test (F under an estimated noise scale, chi-square under a known one); the
+//! candidate's description says which the data support. Its fitted model (the joint at
+//! f_ref, each mode read from its own solution: [`Fitted::own`]) is the diagnosis's "after"
+//! when it is selected.
+
+mod own;
+mod problem;
+
+pub use problem::ALPHA_MAX;
+
+use super::{Candidate, CandidateError, Fit, Stage, Tier};
+use crate::diagnose::decide::ALPHA;
+use crate::diagnose::fit::{self, Estimate, FitError, Fitted, OwnModel, RANGE_FACTOR};
+use crate::diagnose::report::Verdict;
+use crate::modal::ModalSolution;
+use crate::model::effects::{Configured, EffectContext};
+use crate::optim::Termination;
+use problem::{Problem, State};
+
+/// Name of the frequency-dependent joint among the candidates.
+pub const NAME: &str = "frequency_dependence";
+
+/// The frequency-dependent joint as a candidate (see the module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct FrequencyDependence;
+
+impl Candidate for FrequencyDependence {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn tier(&self) -> Tier {
+        Tier::Default
+    }
+
+    fn describe(&self) -> &'static str {
+        "every joint parameter p scales as p0 (f / f_ref)^alpha, f_ref the geometric mean of the measured frequencies, each mode solved with the joint at its own frequency; alpha shared, or one per parameter when the data support it; size = alpha (the mean of the alphas)"
+    }
+
+    fn applies(&self, ctx: &EffectContext) -> bool {
+        !ctx.structure.identified().is_empty()
+    }
+
+    fn verdict(&self) -> Verdict {
+        Verdict::FrequencyDependent
+    }
+
+    /// Both variants fitted (from their optima on the earlier stage when given), the one the
+    /// data support kept.
+    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+        let start = |i: usize| {
+            earlier
+                .and_then(|e| e.members.get(i))
+                .and_then(Option::as_ref)
+                .map(|f| f.solution.clone())
+        };
+        let joints = stage.base.estimates.len();
+        let shared = fit_variant(stage, false, start(0))?;
+        let per = (joints > 1)
+            .then(|| {
+                let from = start(1).unwrap_or_else(|| spread(&shared.fitted.solution, joints));
+                fit_variant(stage, true, Some(from))
+            })
+            .and_then(Result::ok);
+        let comparison = per.as_ref().map(|p| {
+            let lrt = (shared.fitted.chi2 - p.fitted.chi2).max(0.0);
+            (lrt, stage.lrt_p_value(lrt, joints - 1))
+        });
+        let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
+        let words = match comparison {
+            Some((lrt, p)) => format!(
+                "one alpha per parameter against one shared: LR {lrt:.1} on {} dof, p = {p:.2e}: the data support {}",
+                joints - 1,
+                if per_supported {
+                    "one per parameter"
+                } else {
+                    "one shared"
+                }
+            ),
+            None => "one alpha (one joint parameter)".to_string(),
+        };
+        let members = vec![
+            Some(shared.fitted.clone()),
+            per.as_ref().map(|p| p.fitted.clone()),
+        ];
+        let chosen = match per {
+            Some(p) if per_supported => p,
+            _ => shared,
+        };
+        let fitted = chosen.fitted;
+        Ok(Fit {
+            describe: format!(
+                "every joint parameter p scales as p0 (f / {:.4e} Hz)^alpha, each mode solved with the joint at its own frequency; {words}",
+                chosen.reference_hz
+            ),
+            size: chosen.size,
+            chi2: fitted.chi2,
+            dof: fitted.dof,
+            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
+            added: chosen.alphas.len(),
+            unknowns: joints + chosen.alphas.len(),
+            residuals: fit::residuals(&fitted, stage.measured),
+            parameters: chosen.alphas,
+            model: Some(fitted),
+            excluded: None,
+            profile: None,
+            members,
+        })
+    }
+}
+
+/// One variant fitted.
+struct Variant {
+    fitted: Fitted,
+    /// The alphas, with standard errors.
+    alphas: Vec<Estimate>,
+    /// The mean of the alphas and its standard error.
+    size: (f64, f64),
+    /// f_ref, Hz.
+    reference_hz: f64,
+}
+
+/// The shared variant's optimum `x` with its alpha given to each of `joints` parameters.
+fn spread(x: &[f64], joints: usize) -> Vec<f64> {
+    let alpha = x[joints];
+    [&x[..joints], &vec![alpha; joints], &x[joints + 1..]].concat()
+}
+
+/// The variant (`per_parameter` or shared alpha) fitted on `stage` from `from`, or from the
+/// stage's calibrated joint with alpha = 0.
+fn fit_variant(
+    stage: &Stage,
+    per_parameter: bool,
+    from: Option<Vec<f64>>,
+) -> Result<Variant, FitError> {
+    let (ctx, measured, base) = (stage.ctx, stage.measured, stage.base);
+    let pairing = &base.pairing;
+    let problem = Problem::new(ctx, measured, stage.calibration, pairing, per_parameter);
+    let unknowns = problem.unknowns();
+    let data: usize = measured.modes().iter().map(|m| 1 + m.points.len()).sum();
+    if data <= unknowns {
+        return Err(FitError::TooFewData {
+            data,
+            parameters: unknowns,
+        });
+    }
+    let joints = problem.joints();
+    let x = from.filter(|x| x.len() == unknowns).unwrap_or_else(|| {
+        let mut x = base.solution[..joints].to_vec();
+        x.extend(std::iter::repeat_n(0.0, problem.alphas));
+        x.extend(&base.scales);
+        x
+    });
+    let solution = fit::solver().minimise(&problem, x)?;
+    if solution.termination == Termination::MaxIterations {
+        return Err(FitError::NotConverged {
+            effect: NAME.into(),
+            iterations: solution.iterations,
+            chi2: solution.cost,
+        });
+    }
+    in_range(&problem, &solution.state)?;
+    finish(&problem, solution.x, solution.state, solution.iterations)
+}
+
+/// Refuses a fit that takes a joint parameter, at any mode's frequency, beyond
+/// [`RANGE_FACTOR`] of its nominal value.
+fn in_range(problem: &Problem, state: &State) -> Result<(), FitError> {
+    let nominal = problem.ctx.structure.identified();
+    for sv in &state.modes {
+        for (p, p0) in sv.structure.identified().iter().zip(&nominal) {
+            if !(p.value / p0.value).ln().abs().le(&RANGE_FACTOR.ln()) {
+                return Err(FitError::OutOfRange {
+                    effect: NAME.into(),
+                    name: p.name.clone(),
+                    value: p.value,
+                    unit: p.unit,
+                    nominal: p0.value,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The fitted model at the optimum x: the joint at f_ref as its structure, every mode's own
+/// solution, the estimates with standard errors from (J^T J)^-1.
+fn finish(
+    problem: &Problem,
+    x: Vec<f64>,
+    state: State,
+    iterations: usize,
+) -> Result<Variant, FitError> {
+    let (joints, alphas) = (problem.joints(), problem.alphas);
+    let n = x.len();
+    let jac = problem.jacobian(&x, &state);
+    let covariance = fit::covariance(jac.as_ref(), n);
+    let (q0, _) = problem.law(&x);
+    let values: Vec<f64> = q0.iter().map(|q| q.exp()).collect();
+    let structure = problem.ctx.structure.with_values(&values);
+    let modal = ModalSolution::lowest_of(&structure.assemble(), problem.count())?;
+    let params = structure.identified();
+    let mut estimates = fit::joint_estimates(&structure, &covariance);
+    let alpha_estimates: Vec<Estimate> = (0..alphas)
+        .map(|a| Estimate {
+            name: if alphas == 1 {
+                format!("{NAME}.alpha")
+            } else {
+                format!("{NAME}.alpha.{}", params[a].name)
+            },
+            unit: "1",
+            value: x[joints + a],
+            se: covariance[(joints + a, joints + a)].max(0.0).sqrt(),
+        })
+        .collect();
+    estimates.extend(alpha_estimates.iter().cloned());
+    let mean = x[joints..joints + alphas].iter().sum::<f64>() / alphas as f64;
+    let variance: f64 = (joints..joints + alphas)
+        .flat_map(|a| (joints..joints + alphas).map(move |b| (a, b)))
+        .map(|(a, b)| covariance[(a, b)])
+        .sum::<f64>()
+        / (alphas * alphas) as f64;
+    let data = state.residual.len();
+    let own = state
+        .modes
+        .into_iter()
+        .map(|sv| OwnModel {
+            structure: sv.structure,
+            modal: sv.modal,
+        })
+        .collect();
+    let fitted = Fitted {
+        configured: Configured {
+            ctx: problem.ctx.clone(),
+            structure,
+            effects: Vec::new(),
+        },
+        modal,
+        own,
+        pairing: problem.pairing.clone(),
+        chi2: fit::chi2(&state.residual),
+        dof: data - n,
+        estimates,
+        iterations,
+        scales: x[joints + alphas..].to_vec(),
+        solution: x,
+    };
+    Ok(Variant {
+        fitted,
+        alphas: alpha_estimates,
+        size: (mean, variance.max(0.0).sqrt()),
+        reference_hz: problem.log_ref.exp(),
+    })
+}
