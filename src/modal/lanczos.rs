@@ -74,7 +74,8 @@ use faer::linalg::matmul::matmul;
 use faer::sparse::{SparseColMatRef, Triplet};
 use faer::{Accum, Mat, MatRef, Par, Side};
 
-use super::refine::refine;
+use super::refine::{FLOOR_FACTOR, Refined, refine};
+use super::residual::{self, Residual};
 use super::sparse_llt::{Ordering, SparseLlt};
 use super::{ModalError, fix_sign, sparse_mul};
 
@@ -133,6 +134,9 @@ pub struct LowestModes {
     pub vectors: Mat<f64>,
     /// Backward error eta of every pair (module docs).
     pub backward_errors: Vec<f64>,
+    /// Relative residual ||K y - lambda M y|| / ||K y|| of every pair and its rounding floor
+    /// ([`super::residual`]).
+    pub residuals: Vec<Residual>,
     /// The shift sigma that was factorised.
     pub shift: f64,
     /// Thick restarts used.
@@ -167,26 +171,25 @@ pub fn lowest_modes(
         krylov.expand();
         let (theta, s) = krylov.ritz();
         let beta = krylov.beta;
-        let converged = (0..count)
-            .filter(|&i| (beta * s[(size - 1, i)]).abs() <= tol * theta[i])
-            .count();
+        let shift_invert: Vec<f64> = (0..count)
+            .map(|i| (beta * s[(size - 1, i)]).abs() / theta[i])
+            .collect();
+        let converged = shift_invert.iter().filter(|&&r| r <= tol).count();
         if converged == count || krylov.full() {
             // Rayleigh-Ritz with accurately computed K y (see [`super::refine`]) on the
             // wanted Ritz vectors and a few more, which absorb the next pairs' components.
+            // The Krylov space has converged: a restart would hand the refinement the same
+            // vectors, so what it cannot accept is an error.
             let extra = (count + REFINE_EXTRA).min(size);
             let start = krylov.basis(&s, extra);
-            let refined = refine(k, m, &mut krylov.llt, shift, start, tol, REFINE_SWEEPS)
+            let refined = refine(k, m, &krylov.llt, shift, start, count, tol, REFINE_SWEEPS)
                 .ok_or(ModalError::NoConvergence)?;
-            let pairs = ritz_pairs(
-                k,
-                m,
-                shift,
-                &refined.values[..count],
-                refined.vectors.subcols(0, count).to_owned(),
-                norms,
-            );
-            let accepted = pairs.backward_errors.iter().filter(|&&e| e <= tol).count();
-            if accepted == count {
+            let pairs = ritz_pairs(k, m, shift, &refined, count, norms);
+            let unconverged: Vec<(usize, f64)> = (0..count)
+                .filter(|&j| pairs.backward_errors[j] > acceptance(tol, &pairs, j))
+                .map(|j| (j + 1, pairs.backward_errors[j]))
+                .collect();
+            if unconverged.is_empty() {
                 return Ok(LowestModes {
                     restarts: restart,
                     operator_applications: krylov.applications,
@@ -194,24 +197,44 @@ pub fn lowest_modes(
                     ..pairs
                 });
             }
-            if krylov.full() {
-                return Err(ModalError::NotConverged {
-                    converged: accepted,
-                    requested: count,
-                    restarts: restart,
-                });
-            }
+            return Err(ModalError::NotConverged {
+                converged: count - unconverged.len(),
+                requested: count,
+                restarts: restart,
+                stage: "backward error after refinement",
+                unconverged,
+                tolerance: tol,
+            });
         }
         if restart == settings.max_restarts {
             return Err(ModalError::NotConverged {
                 converged,
                 requested: count,
                 restarts: restart,
+                stage: "shift-invert residual",
+                unconverged: (0..count)
+                    .filter(|&j| shift_invert[j] > tol)
+                    .map(|j| (j + 1, shift_invert[j]))
+                    .collect(),
+                tolerance: tol,
             });
         }
         krylov.restart(&theta, &s, keep);
     }
     unreachable!("the loop returns on its last pass")
+}
+
+/// The largest backward error pair `j` may have: the tolerance, or [`FLOOR_FACTOR`] times what
+/// the rounding of its vector alone leaves (module docs of [`super::residual`]) when that is
+/// larger.
+fn acceptance(tol: f64, pairs: &LowestModes, j: usize) -> f64 {
+    let r = pairs.residuals[j];
+    let floor = if r.relative > 0.0 {
+        pairs.backward_errors[j] * r.floor / r.relative
+    } else {
+        0.0
+    };
+    tol.max(FLOOR_FACTOR * floor)
 }
 
 fn check_problem(
@@ -285,7 +308,7 @@ fn lower_triplets(
 }
 
 fn ordering() -> Ordering {
-    Ordering::Amd
+    Ordering::Fewest
 }
 
 /// The default shift of [`LanczosSettings::shift`].
@@ -562,20 +585,23 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The refined pairs (values ascending, vectors M-normalised) with signs fixed and their
-/// backward errors.
+/// The `count` lowest refined pairs (values ascending, vectors M-normalised) with signs
+/// fixed, their backward errors and residuals.
 fn ritz_pairs(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
     shift: f64,
-    values: &[f64],
-    mut vectors: Mat<f64>,
+    refined: &Refined,
+    count: usize,
     (norm_k, norm_m): (f64, f64),
 ) -> LowestModes {
-    let (n, count) = (vectors.nrows(), vectors.ncols());
-    let values = values[..count].to_vec();
+    let n = refined.vectors.nrows();
+    let values = refined.values[..count].to_vec();
+    let mut vectors = refined.vectors.subcols(0, count).to_owned();
+    let (ky_accurate, my_refined) = &refined.products;
     let (mut ky, mut my) = (vec![0.0; n], vec![0.0; n]);
     let mut backward_errors = Vec::with_capacity(count);
+    let mut residuals = Vec::with_capacity(count);
     for (j, &lambda) in values.iter().enumerate() {
         fix_sign(&mut vectors, j);
         let y = vectors.col_as_slice(j);
@@ -589,11 +615,16 @@ fn ritz_pairs(
             .sqrt();
         let norm_y = dot(y, y).sqrt();
         backward_errors.push(r / ((norm_k + lambda.abs() * norm_m) * norm_y));
+        // The residual is that of the refined (unsigned) vector: the sign does not change it.
+        let (kc, mc) = (ky_accurate.col_as_slice(j), my_refined.col_as_slice(j));
+        let rc: Vec<f64> = kc.iter().zip(mc).map(|(a, b)| a - lambda * b).collect();
+        residuals.push(residual::of_products(k, refined.vectors.col_as_slice(j), kc, &rc));
     }
     LowestModes {
         values,
         vectors,
         backward_errors,
+        residuals,
         shift,
         restarts: 0,
         operator_applications: 0,

@@ -29,22 +29,58 @@
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
+use rayon::prelude::*;
+
+use super::residual;
 use super::sparse_llt::SparseLlt;
 use super::sparse_mul;
 
-/// Corrections of M-norm below this (for M-normalised vectors) are left out: their content is
-/// the rounding of the vector, whose Rayleigh quotient is of the element scale.
+/// Corrections of M-norm below this (for M-normalised vectors) are left out, unless the
+/// pair's residual asks for them (see [`refine`]): their content may be the rounding of the
+/// vector, whose Rayleigh quotient is of the element scale.
 pub const NOISE_FLOOR: f64 = 1e-7;
+
+/// A wanted pair is corrected while its relative residual exceeds this many times its rounding
+/// floor ([`super::residual`]).
+pub const FLOOR_FACTOR: f64 = 10.0;
 
 /// `y = A x` for a symmetric matrix stored with both triangles, every entry accumulated in
 /// twice the working precision and rounded once.
 pub fn accurate_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("fma") {
+        // SAFETY: the processor has FMA (checked just above).
+        unsafe { accurate_mul_fma(a, x, y) };
+        return;
+    }
+    accurate_mul_with::<false>(a, x, y);
+}
+
+/// [`accurate_mul`] with the error of each product from one fused multiply-add: the same
+/// error term as Dekker's product (it is exactly representable), in 2 operations for 17.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+unsafe fn accurate_mul_fma(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
+    accurate_mul_with::<true>(a, x, y);
+}
+
+#[inline(always)]
+fn accurate_mul_with<const FMA: bool>(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: &[f64],
+    y: &mut [f64],
+) {
     for (j, yj) in y.iter_mut().enumerate() {
         // Column j of a symmetric matrix is its row j.
         let rows = a.symbolic().row_idx_of_col_raw(j);
         let (mut s, mut c) = (0.0_f64, 0.0_f64);
         for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            let (p, e) = two_product(v, x[i]);
+            let (p, e) = if FMA {
+                let p = v * x[i];
+                (p, v.mul_add(x[i], -p))
+            } else {
+                two_product(v, x[i])
+            };
             let (t, f) = two_sum(s, p);
             s = t;
             c += e + f;
@@ -70,6 +106,24 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
     let (ah, al) = split(a);
     let (bh, bl) = split(b);
     (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+}
+
+/// A K Q (accurate products) or M Q (plain), the columns on rayon's threads.
+fn mul_columns(a: SparseColMatRef<'_, usize, f64>, q: &Mat<f64>, accurate: bool) -> Mat<f64> {
+    let n = q.nrows();
+    let columns: Vec<Vec<f64>> = (0..q.ncols())
+        .into_par_iter()
+        .map(|j| {
+            let mut out = vec![0.0; n];
+            if accurate {
+                accurate_mul(a, q.col_as_slice(j), &mut out);
+            } else {
+                sparse_mul(a, q.col_as_slice(j), &mut out);
+            }
+            out
+        })
+        .collect();
+    Mat::from_fn(n, q.ncols(), |i, j| columns[j][i])
 }
 
 /// Eigenpairs of the small dense pencil (a, b), b symmetric positive definite: values
@@ -100,86 +154,117 @@ pub struct Refined {
     pub values: Vec<f64>,
     /// Ritz vectors, M-orthonormal.
     pub vectors: Mat<f64>,
+    /// K Y (accurate products) and M Y of the vectors.
+    pub products: (Mat<f64>, Mat<f64>),
     /// Correction sweeps done (0: the first Rayleigh-Ritz with accurate products sufficed).
     pub sweeps: usize,
 }
 
-/// Refines the M-orthonormal columns of `y` (lowest first wanted) by block corrections with
-/// the factor of K - sigma M, at most `max_sweeps` sweeps; stops when the Ritz values move
-/// by less than `tol * (|lambda| + |sigma|)`.
+/// Refines the M-orthonormal columns of `y` (the `wanted` lowest first) by block corrections
+/// with the factor of K - sigma M, at most `max_sweeps` sweeps. A correction enters while
+/// its M-norm is above [`NOISE_FLOOR`], or, for a wanted pair, while the pair's relative
+/// residual ||K y - lambda M y|| / ||K y|| stands above [`FLOOR_FACTOR`] times its rounding
+/// floor ([`super::residual`]) and fell at least twofold in the last sweep. Stops when no
+/// correction enters, or when the Ritz values move by less than `tol * (|lambda| + |sigma|)`
+/// and no correction entered for its residual.
+#[allow(clippy::too_many_arguments)]
 pub fn refine(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
-    llt: &mut SparseLlt,
+    llt: &SparseLlt,
     shift: f64,
     y: Mat<f64>,
+    wanted: usize,
     tol: f64,
     max_sweeps: usize,
 ) -> Option<Refined> {
-    let (n, p) = (y.nrows(), y.ncols());
-    let mul_all = |a: SparseColMatRef<'_, usize, f64>, q: &Mat<f64>| {
-        let mut out = Mat::<f64>::zeros(n, q.ncols());
-        for j in 0..q.ncols() {
-            accurate_mul(a, q.col_as_slice(j), out.col_as_slice_mut(j));
-        }
-        out
-    };
-    // M is well conditioned: its products need no extra precision.
-    let plain = |q: &Mat<f64>| {
-        let mut out = Mat::<f64>::zeros(n, q.ncols());
-        for j in 0..q.ncols() {
-            sparse_mul(m, q.col_as_slice(j), out.col_as_slice_mut(j));
-        }
-        out
-    };
-    let (mut ky, mut my) = (mul_all(k, &y), plain(&y));
+    let p = y.ncols();
+    let (mut ky, mut my) = (mul_columns(k, &y, true), mul_columns(m, &y, false));
     let (values, x) = dense_pencil(&(y.transpose() * &ky), &(y.transpose() * &my))?;
     let mut y = &y * &x;
     ky = &ky * &x;
     my = &my * &x;
     let mut values = values;
+    let mut last_residual = vec![f64::INFINITY; wanted.min(p)];
+    let done = |values, vectors, products, sweeps| {
+        Some(Refined {
+            values,
+            vectors,
+            products,
+            sweeps,
+        })
+    };
     for sweep in 1..=max_sweeps {
-        // Corrections.
-        let mut d = Mat::<f64>::zeros(n, p);
+        let mut d = Mat::<f64>::zeros(y.nrows(), p);
         for (j, &lambda) in values.iter().enumerate() {
             let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
-            let col = d.col_as_slice_mut(j);
-            for ((c, a), b) in col.iter_mut().zip(kc).zip(mc) {
+            for ((c, a), b) in d.col_as_slice_mut(j).iter_mut().zip(kc).zip(mc) {
                 *c = a - lambda * b;
             }
-            llt.solve_in_place(col);
         }
+        // Residual criterion of the wanted pairs, from R before the solve overwrites it.
+        let residuals: Vec<residual::Residual> = (0..last_residual.len())
+            .into_par_iter()
+            .map(|j| residual::of_products(k, y.col_as_slice(j), ky.col_as_slice(j), d.col_as_slice(j)))
+            .collect();
+        let above_floor: Vec<bool> = residuals
+            .iter()
+            .zip(&last_residual)
+            .map(|(r, &last)| r.relative > FLOOR_FACTOR * r.floor && r.relative < 0.5 * last)
+            .collect();
+        for (last, r) in last_residual.iter_mut().zip(&residuals) {
+            *last = r.relative;
+        }
+        llt.solve_columns_in_place(d.as_mut());
         for _ in 0..2 {
             let c = my.transpose() * &d;
             d -= &y * &c;
         }
-        let md = plain(&d);
-        let keep: Vec<usize> = (0..p)
-            .filter(|&j| {
-                let norm2: f64 = d
-                    .col_as_slice(j)
-                    .iter()
-                    .zip(md.col_as_slice(j))
-                    .map(|(a, b)| a * b)
-                    .sum();
-                norm2.sqrt() > NOISE_FLOOR
-            })
-            .collect();
+        let md = mul_columns(m, &d, false);
+        let mut for_residual = false;
+        let mut keep = Vec::new();
+        for j in 0..p {
+            let norm = residual::m_norm(d.col_as_slice(j), md.col_as_slice(j));
+            let residual = above_floor.get(j).copied().unwrap_or(false);
+            if norm > NOISE_FLOOR {
+                keep.push((j, 1.0));
+            } else if residual && norm > 0.0 {
+                // Scaled to unit M-norm: the Gram matrix of Rayleigh-Ritz stays well scaled.
+                keep.push((j, 1.0 / norm));
+                for_residual = true;
+            }
+        }
         if keep.is_empty() {
-            return Some(Refined {
-                values,
-                vectors: y,
-                sweeps: sweep - 1,
-            });
+            return done(values, y, (ky, my), sweep - 1);
         }
-        let mut dk = Mat::<f64>::zeros(n, keep.len());
-        for (j, &c) in keep.iter().enumerate() {
-            dk.col_as_slice_mut(j).copy_from_slice(d.col_as_slice(c));
-        }
-        let q = concat(&y, &dk);
-        let kq = concat(&ky, &mul_all(k, &dk));
-        let mq = concat(&my, &plain(&dk));
-        let (new_values, x) = dense_pencil(&(q.transpose() * &kq), &(q.transpose() * &mq))?;
+        let block = |keep: &[(usize, f64)]| {
+            let mut dk = Mat::<f64>::zeros(y.nrows(), keep.len());
+            for (j, &(c, scale)) in keep.iter().enumerate() {
+                for (a, b) in dk.col_as_slice_mut(j).iter_mut().zip(d.col_as_slice(c)) {
+                    *a = scale * b;
+                }
+            }
+            let q = concat(&y, &dk);
+            let kq = concat(&ky, &mul_columns(k, &dk, true));
+            let mq = concat(&my, &mul_columns(m, &dk, false));
+            let pencil = dense_pencil(&(q.transpose() * &kq), &(q.transpose() * &mq));
+            pencil.map(|(values, x)| (values, x, q, kq, mq))
+        };
+        let rayleigh_ritz = match block(&keep) {
+            Some(done) => Some(done),
+            // Corrections at the rounding level that made the Gram matrix singular: without
+            // them.
+            None if for_residual => {
+                for_residual = false;
+                keep.retain(|&(_, scale)| scale == 1.0);
+                if keep.is_empty() {
+                    return done(values, y, (ky, my), sweep - 1);
+                }
+                block(&keep)
+            }
+            None => None,
+        };
+        let (new_values, x, q, kq, mq) = rayleigh_ritz?;
         let x = x.subcols(0, p).to_owned();
         let moved = (0..p)
             .map(|j| (new_values[j] - values[j]).abs() / (values[j].abs() + shift.abs()))
@@ -188,19 +273,11 @@ pub fn refine(
         ky = &kq * &x;
         my = &mq * &x;
         values = new_values[..p].to_vec();
-        if moved <= tol {
-            return Some(Refined {
-                values,
-                vectors: y,
-                sweeps: sweep,
-            });
+        if moved <= tol && !for_residual {
+            return done(values, y, (ky, my), sweep);
         }
     }
-    Some(Refined {
-        values,
-        vectors: y,
-        sweeps: max_sweeps,
-    })
+    done(values, y, (ky, my), max_sweeps)
 }
 
 fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
