@@ -75,7 +75,11 @@ fn export(kind: &str, what: &str, dir: &Path) {
         format!("rigid {rigid}\nshift {shift:e}\ndofs {}\n", mats.size()),
     )
     .expect("write case.txt");
-    println!("N = {}, nnz(K) = {}, rigid-body modes {rigid}", mats.size(), mats.k.nnz());
+    println!(
+        "N = {}, nnz(K) = {}, rigid-body modes {rigid}",
+        mats.size(),
+        mats.k.nnz()
+    );
 }
 
 fn solve(dir: &Path, count: usize) {
@@ -85,7 +89,10 @@ fn solve(dir: &Path, count: usize) {
         .find_map(|l| l.strip_prefix("rigid "))
         .and_then(|v| v.parse().ok())
         .expect("rigid in case.txt");
-    let (k, m) = (read_matrix(&dir.join("k.mtx")), read_matrix(&dir.join("m.mtx")));
+    let (k, m) = (
+        read_matrix(&dir.join("k.mtx")),
+        read_matrix(&dir.join("m.mtx")),
+    );
     let t = Instant::now();
     let modes = lowest_modes(
         k.as_faer(),
@@ -95,7 +102,12 @@ fn solve(dir: &Path, count: usize) {
     )
     .expect("solve");
     let seconds = t.elapsed().as_secs_f64();
-    let res = residuals(k.as_faer(), m.as_faer(), &modes.values, modes.vectors.as_ref());
+    let res = residuals(
+        k.as_faer(),
+        m.as_faer(),
+        &modes.values,
+        modes.vectors.as_ref(),
+    );
     println!("time_s {seconds:.4}");
     println!(
         "threads {} restarts {} operator_applications {} refinement_sweeps {}",
@@ -103,6 +115,11 @@ fn solve(dir: &Path, count: usize) {
         modes.restarts,
         modes.operator_applications,
         modes.refinement_sweeps
+    );
+    let t = modes.timings;
+    println!(
+        "phases_s factorisation {:.4} solves {:.4} orthogonalisation {:.4} refinement {:.4} total {:.4}",
+        t.factorisation, t.solves, t.orthogonalisation, t.refinement, t.total
     );
     for j in rigid..rigid + count {
         println!(
@@ -122,6 +139,8 @@ fn main() {
     match arg(1) {
         "export" => export(arg(2), arg(3), Path::new(arg(4))),
         "solve" => solve(Path::new(arg(2)), arg(3).parse().expect("COUNT")),
-        _ => panic!("usage: eigen_bench export chain ELEMENTS DIR | export model MODEL.toml DIR | solve DIR COUNT"),
+        _ => panic!(
+            "usage: eigen_bench export chain ELEMENTS DIR | export model MODEL.toml DIR | solve DIR COUNT"
+        ),
     }
 }

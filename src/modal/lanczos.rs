@@ -70,12 +70,14 @@
 //! round-off); an exactly repeated elastic eigenvalue of a symmetric structure may need a
 //! larger `basis_size`.
 
+use std::time::{Duration, Instant};
+
 use faer::linalg::matmul::matmul;
 use faer::sparse::{SparseColMatRef, Triplet};
 use faer::{Accum, Mat, MatRef, Par, Side};
 
 use super::refine::{FLOOR_FACTOR, Refined, refine};
-use super::residual::{self, Residual};
+use super::residual::Residual;
 use super::sparse_llt::{Ordering, SparseLlt};
 use super::{ModalError, fix_sign, sparse_mul};
 
@@ -145,6 +147,23 @@ pub struct LowestModes {
     pub operator_applications: usize,
     /// Refinement sweeps ([`super::refine`]).
     pub refinement_sweeps: usize,
+    /// Where the time went.
+    pub timings: Timings,
+}
+
+/// Wall time of the solver's phases, seconds (a report: nothing depends on it).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// The factorisations of M (its check) and of K - sigma M.
+    pub factorisation: f64,
+    /// The applications of OP: M v and the triangular solves.
+    pub solves: f64,
+    /// The M-orthogonalisation of the Krylov basis.
+    pub orthogonalisation: f64,
+    /// The refinement ([`super::refine`]) and the residuals.
+    pub refinement: f64,
+    /// Everything.
+    pub total: f64,
 }
 
 /// The `count` lowest eigenpairs of K y = lambda M y (module docs).
@@ -154,6 +173,7 @@ pub fn lowest_modes(
     count: usize,
     settings: &LanczosSettings,
 ) -> Result<LowestModes, ModalError> {
+    let started = Instant::now();
     let n = check_problem(k, m, count)?;
     let size = check_settings(settings, count, n)?;
     if lower_triplets(m, 1.0)
@@ -163,6 +183,7 @@ pub fn lowest_modes(
         return Err(ModalError::MassNotPositiveDefinite);
     }
     let (shift, llt) = factor_shifted(k, m, settings.shift)?;
+    let factorisation = started.elapsed().as_secs_f64();
     let norms = (norm_1(k), norm_1(m));
     let mut krylov = Krylov::new(n, size, m, llt);
     let keep = (count + (size - count) / 2).clamp(count, size - 1);
@@ -180,11 +201,12 @@ pub fn lowest_modes(
             // wanted Ritz vectors and a few more, which absorb the next pairs' components.
             // The Krylov space has converged: a restart would hand the refinement the same
             // vectors, so what it cannot accept is an error.
+            let refining = Instant::now();
             let extra = (count + REFINE_EXTRA).min(size);
             let start = krylov.basis(&s, extra);
             let refined = refine(k, m, &krylov.llt, shift, start, count, tol, REFINE_SWEEPS)
                 .ok_or(ModalError::NoConvergence)?;
-            let pairs = ritz_pairs(k, m, shift, &refined, count, norms);
+            let pairs = ritz_pairs(shift, &refined, count, norms);
             let unconverged: Vec<(usize, f64)> = (0..count)
                 .filter(|&j| pairs.backward_errors[j] > acceptance(tol, &pairs, j))
                 .map(|j| (j + 1, pairs.backward_errors[j]))
@@ -194,6 +216,13 @@ pub fn lowest_modes(
                     restarts: restart,
                     operator_applications: krylov.applications,
                     refinement_sweeps: refined.sweeps,
+                    timings: Timings {
+                        factorisation,
+                        solves: krylov.solves.as_secs_f64(),
+                        orthogonalisation: krylov.orthogonalisation.as_secs_f64(),
+                        refinement: refining.elapsed().as_secs_f64(),
+                        total: started.elapsed().as_secs_f64(),
+                    },
                     ..pairs
                 });
             }
@@ -393,6 +422,8 @@ struct Krylov<'a> {
     /// Coupling of the last basis vector to the residual direction.
     beta: f64,
     applications: usize,
+    solves: Duration,
+    orthogonalisation: Duration,
     seed: u64,
 }
 
@@ -408,6 +439,8 @@ impl<'a> Krylov<'a> {
             filled: 0,
             beta: 0.0,
             applications: 0,
+            solves: Duration::ZERO,
+            orthogonalisation: Duration::ZERO,
             seed: 0x9e37_79b9_7f4a_7c15,
         };
         // Start: OP applied to a pseudo-random vector, which removes the components of the
@@ -426,9 +459,11 @@ impl<'a> Krylov<'a> {
 
     /// OP v_j = (K - sigma M)^-1 (M v_j).
     fn apply(&mut self, j: usize) -> Vec<f64> {
+        let started = Instant::now();
         let mut w = self.z.col_as_slice(j).to_vec();
         self.llt.solve_in_place(&mut w);
         self.applications += 1;
+        self.solves += started.elapsed();
         w
     }
 
@@ -449,6 +484,7 @@ impl<'a> Krylov<'a> {
     /// M-orthogonalises `w` against v_0 .. v_{j-1} (twice), stores it normalised as v_j and
     /// returns the coefficients and the norm before normalisation.
     fn orthonormalise_into(&mut self, w: &mut [f64], j: usize) -> (Vec<f64>, f64) {
+        let started = Instant::now();
         let n = w.len();
         let mut coefficients = vec![0.0; j];
         let mut mw = vec![0.0; n];
@@ -478,6 +514,7 @@ impl<'a> Krylov<'a> {
         }
         self.v.col_as_slice_mut(j).copy_from_slice(w);
         self.z.col_as_slice_mut(j).copy_from_slice(&mw);
+        self.orthogonalisation += started.elapsed();
         (coefficients, norm)
     }
 
@@ -586,39 +623,31 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The `count` lowest refined pairs (values ascending, vectors M-normalised) with signs
-/// fixed, their backward errors and residuals.
+/// fixed, their backward errors and residuals (from the refinement's accurate products).
 fn ritz_pairs(
-    k: SparseColMatRef<'_, usize, f64>,
-    m: SparseColMatRef<'_, usize, f64>,
     shift: f64,
     refined: &Refined,
     count: usize,
     (norm_k, norm_m): (f64, f64),
 ) -> LowestModes {
-    let n = refined.vectors.nrows();
     let values = refined.values[..count].to_vec();
     let mut vectors = refined.vectors.subcols(0, count).to_owned();
-    let (ky_accurate, my_refined) = &refined.products;
-    let (mut ky, mut my) = (vec![0.0; n], vec![0.0; n]);
+    let residuals: Vec<Residual> = (0..count).map(|j| refined.residual(j)).collect();
     let mut backward_errors = Vec::with_capacity(count);
-    let mut residuals = Vec::with_capacity(count);
     for (j, &lambda) in values.iter().enumerate() {
         fix_sign(&mut vectors, j);
         let y = vectors.col_as_slice(j);
-        sparse_mul(k, y, &mut ky);
-        sparse_mul(m, y, &mut my);
+        let (ky, my) = (
+            refined.products.0.col_as_slice(j),
+            refined.products.1.col_as_slice(j),
+        );
         let r = ky
             .iter()
-            .zip(&my)
+            .zip(my)
             .map(|(a, b)| (a - lambda * b).powi(2))
             .sum::<f64>()
             .sqrt();
-        let norm_y = dot(y, y).sqrt();
-        backward_errors.push(r / ((norm_k + lambda.abs() * norm_m) * norm_y));
-        // The residual is that of the refined (unsigned) vector: the sign does not change it.
-        let (kc, mc) = (ky_accurate.col_as_slice(j), my_refined.col_as_slice(j));
-        let rc: Vec<f64> = kc.iter().zip(mc).map(|(a, b)| a - lambda * b).collect();
-        residuals.push(residual::of_products(k, refined.vectors.col_as_slice(j), kc, &rc));
+        backward_errors.push(r / ((norm_k + lambda.abs() * norm_m) * dot(y, y).sqrt()));
     }
     LowestModes {
         values,
@@ -629,6 +658,7 @@ fn ritz_pairs(
         restarts: 0,
         operator_applications: 0,
         refinement_sweeps: 0,
+        timings: Timings::default(),
     }
 }
 

@@ -31,7 +31,7 @@ use faer::{Mat, Side};
 
 use rayon::prelude::*;
 
-use super::residual;
+use super::residual::{self, Residual};
 use super::sparse_llt::SparseLlt;
 use super::sparse_mul;
 
@@ -40,6 +40,11 @@ use super::sparse_mul;
 /// vector, whose Rayleigh quotient is of the element scale.
 pub const NOISE_FLOOR: f64 = 1e-7;
 
+/// Above this rounding floor the residual of a pair says nothing (a rigid-body mode, K y = 0
+/// to round-off; a low mode of a finely meshed beam, whose K has a condition number past
+/// 1 / eps): it is not corrected for its residual.
+pub const RESOLVABLE: f64 = 1e-6;
+
 /// A wanted pair is corrected while its relative residual exceeds this many times its rounding
 /// floor ([`super::residual`]).
 pub const FLOOR_FACTOR: f64 = 10.0;
@@ -47,46 +52,74 @@ pub const FLOOR_FACTOR: f64 = 10.0;
 /// `y = A x` for a symmetric matrix stored with both triangles, every entry accumulated in
 /// twice the working precision and rounded once.
 pub fn accurate_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
+    accurate_block::<1>(a, [x], y);
+}
+
+/// [`accurate_mul`], returning also || |A| |x| ||_2 (the scale of the rounding of A x).
+pub fn accurate_mul_bounded(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) -> f64 {
+    accurate_block::<1>(a, [x], y)[0].sqrt()
+}
+
+/// [`accurate_mul`] of W vectors at once (one pass over A for all of them; the same
+/// operations per vector, so the same results), into `y` (N x W, column-major); returns
+/// || |A| |x_r| ||^2 of every vector.
+fn accurate_block<const W: usize>(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: [&[f64]; W],
+    y: &mut [f64],
+) -> [f64; W] {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("fma") {
         // SAFETY: the processor has FMA (checked just above).
-        unsafe { accurate_mul_fma(a, x, y) };
-        return;
+        return unsafe { accurate_block_fma::<W>(a, x, y) };
     }
-    accurate_mul_with::<false>(a, x, y);
+    accurate_block_with::<false, W>(a, x, y)
 }
 
-/// [`accurate_mul`] with the error of each product from one fused multiply-add: the same
+/// [`accurate_block`] with the error of each product from one fused multiply-add: the same
 /// error term as Dekker's product (it is exactly representable), in 2 operations for 17.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "fma")]
-unsafe fn accurate_mul_fma(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    accurate_mul_with::<true>(a, x, y);
+unsafe fn accurate_block_fma<const W: usize>(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: [&[f64]; W],
+    y: &mut [f64],
+) -> [f64; W] {
+    accurate_block_with::<true, W>(a, x, y)
 }
 
 #[inline(always)]
-fn accurate_mul_with<const FMA: bool>(
+fn accurate_block_with<const FMA: bool, const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
-    x: &[f64],
+    x: [&[f64]; W],
     y: &mut [f64],
-) {
-    for (j, yj) in y.iter_mut().enumerate() {
+) -> [f64; W] {
+    let n = a.ncols();
+    let mut squares = [0.0; W];
+    for j in 0..n {
         // Column j of a symmetric matrix is its row j.
         let rows = a.symbolic().row_idx_of_col_raw(j);
-        let (mut s, mut c) = (0.0_f64, 0.0_f64);
+        let (mut s, mut c, mut bound) = ([0.0_f64; W], [0.0_f64; W], [0.0_f64; W]);
         for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            let (p, e) = if FMA {
-                let p = v * x[i];
-                (p, v.mul_add(x[i], -p))
-            } else {
-                two_product(v, x[i])
-            };
-            let (t, f) = two_sum(s, p);
-            s = t;
-            c += e + f;
+            for r in 0..W {
+                let (p, e) = if FMA {
+                    let p = v * x[r][i];
+                    (p, v.mul_add(x[r][i], -p))
+                } else {
+                    two_product(v, x[r][i])
+                };
+                let (t, f) = two_sum(s[r], p);
+                s[r] = t;
+                c[r] += e + f;
+                bound[r] += p.abs();
+            }
         }
-        *yj = s + c;
+        for r in 0..W {
+            y[r * n + j] = s[r] + c[r];
+            squares[r] += bound[r] * bound[r];
+        }
     }
+    squares
 }
 
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
@@ -108,22 +141,44 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
     (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
 }
 
-/// A K Q (accurate products) or M Q (plain), the columns on rayon's threads.
-fn mul_columns(a: SparseColMatRef<'_, usize, f64>, q: &Mat<f64>, accurate: bool) -> Mat<f64> {
-    let n = q.nrows();
-    let columns: Vec<Vec<f64>> = (0..q.ncols())
+/// A Q, the products accurate ([`accurate_mul`], four columns a pass, with || |A| |q_j| ||
+/// of every column) or plain (no bounds), the columns on rayon's threads.
+fn mul_columns(
+    a: SparseColMatRef<'_, usize, f64>,
+    q: &Mat<f64>,
+    accurate: bool,
+) -> (Mat<f64>, Vec<f64>) {
+    const W: usize = 4;
+    let (n, p) = (q.nrows(), q.ncols());
+    let col = |j: usize| q.col_as_slice(j);
+    let blocks: Vec<(Vec<f64>, Vec<f64>)> = (0..p.div_ceil(W))
         .into_par_iter()
-        .map(|j| {
-            let mut out = vec![0.0; n];
-            if accurate {
-                accurate_mul(a, q.col_as_slice(j), &mut out);
-            } else {
-                sparse_mul(a, q.col_as_slice(j), &mut out);
+        .map(|b| {
+            let (first, width) = (b * W, W.min(p - b * W));
+            let mut out = vec![0.0; n * width];
+            let mut bounds = Vec::new();
+            match (accurate, width) {
+                (true, W) => {
+                    let squares =
+                        accurate_block::<W>(a, std::array::from_fn(|r| col(first + r)), &mut out);
+                    bounds.extend(squares.iter().map(|s| s.sqrt()));
+                }
+                (true, _) => {
+                    for (r, y) in out.chunks_mut(n).enumerate() {
+                        bounds.push(accurate_block::<1>(a, [col(first + r)], y)[0].sqrt());
+                    }
+                }
+                (false, _) => {
+                    for (r, y) in out.chunks_mut(n).enumerate() {
+                        sparse_mul(a, col(first + r), y);
+                    }
+                }
             }
-            out
+            (out, bounds)
         })
         .collect();
-    Mat::from_fn(n, q.ncols(), |i, j| columns[j][i])
+    let product = Mat::from_fn(n, p, |i, j| blocks[j / W].0[(j % W) * n + i]);
+    (product, blocks.into_iter().flat_map(|b| b.1).collect())
 }
 
 /// Eigenpairs of the small dense pencil (a, b), b symmetric positive definite: values
@@ -156,17 +211,61 @@ pub struct Refined {
     pub vectors: Mat<f64>,
     /// K Y (accurate products) and M Y of the vectors.
     pub products: (Mat<f64>, Mat<f64>),
+    /// An upper bound of || |K| |y| || for every vector (the rounding floor's scale,
+    /// [`super::residual`]).
+    pub bounds: Vec<f64>,
     /// Correction sweeps done (0: the first Rayleigh-Ritz with accurate products sufficed).
     pub sweeps: usize,
+}
+
+impl Refined {
+    /// The residual of pair `j` (module docs of [`super::residual`]).
+    pub fn residual(&self, j: usize) -> Residual {
+        let (ky, my) = (
+            self.products.0.col_as_slice(j),
+            self.products.1.col_as_slice(j),
+        );
+        let r: Vec<f64> = ky
+            .iter()
+            .zip(my)
+            .map(|(a, b)| a - self.values[j] * b)
+            .collect();
+        residual::of_products(ky, &r, self.bounds[j])
+    }
+
+    /// Rayleigh-Ritz of (K, M) on the columns of Q, given K Q and M Q and the bounds of
+    /// its columns: the lowest `p` pairs.
+    fn of_basis(
+        q: &Mat<f64>,
+        kq: &Mat<f64>,
+        mq: &Mat<f64>,
+        bounds: &[f64],
+        p: usize,
+    ) -> Option<Self> {
+        let (values, x) = dense_pencil(&(q.transpose() * kq), &(q.transpose() * mq))?;
+        let x = x.subcols(0, p).to_owned();
+        // |K| |Q x| <= sum_i |x_i| |K| |q_i|, column by column.
+        let bounds = (0..p)
+            .map(|j| (0..x.nrows()).map(|i| x[(i, j)].abs() * bounds[i]).sum())
+            .collect();
+        Some(Refined {
+            values: values[..p].to_vec(),
+            vectors: q * &x,
+            products: (kq * &x, mq * &x),
+            bounds,
+            sweeps: 0,
+        })
+    }
 }
 
 /// Refines the M-orthonormal columns of `y` (the `wanted` lowest first) by block corrections
 /// with the factor of K - sigma M, at most `max_sweeps` sweeps. A correction enters while
 /// its M-norm is above [`NOISE_FLOOR`], or, for a wanted pair, while the pair's relative
 /// residual ||K y - lambda M y|| / ||K y|| stands above [`FLOOR_FACTOR`] times its rounding
-/// floor ([`super::residual`]) and fell at least twofold in the last sweep. Stops when no
-/// correction enters, or when the Ritz values move by less than `tol * (|lambda| + |sigma|)`
-/// and no correction entered for its residual.
+/// floor ([`super::residual`]), that floor is at most [`RESOLVABLE`], and the residual fell
+/// at least twofold in the last sweep. Stops when no correction enters, or when the Ritz
+/// values move by less than `tol * (|lambda| + |sigma|)` and no correction entered for its
+/// residual.
 #[allow(clippy::too_many_arguments)]
 pub fn refine(
     k: SparseColMatRef<'_, usize, f64>,
@@ -179,105 +278,124 @@ pub fn refine(
     max_sweeps: usize,
 ) -> Option<Refined> {
     let p = y.ncols();
-    let (mut ky, mut my) = (mul_columns(k, &y, true), mul_columns(m, &y, false));
-    let (values, x) = dense_pencil(&(y.transpose() * &ky), &(y.transpose() * &my))?;
-    let mut y = &y * &x;
-    ky = &ky * &x;
-    my = &my * &x;
-    let mut values = values;
+    let (ky, bounds) = mul_columns(k, &y, true);
+    let (my, _) = mul_columns(m, &y, false);
+    let mut block = Refined::of_basis(&y, &ky, &my, &bounds, p)?;
     let mut last_residual = vec![f64::INFINITY; wanted.min(p)];
-    let done = |values, vectors, products, sweeps| {
-        Some(Refined {
-            values,
-            vectors,
-            products,
-            sweeps,
-        })
-    };
     for sweep in 1..=max_sweeps {
-        let mut d = Mat::<f64>::zeros(y.nrows(), p);
-        for (j, &lambda) in values.iter().enumerate() {
-            let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
-            for ((c, a), b) in d.col_as_slice_mut(j).iter_mut().zip(kc).zip(mc) {
-                *c = a - lambda * b;
-            }
-        }
-        // Residual criterion of the wanted pairs, from R before the solve overwrites it.
-        let residuals: Vec<residual::Residual> = (0..last_residual.len())
-            .into_par_iter()
-            .map(|j| residual::of_products(k, y.col_as_slice(j), ky.col_as_slice(j), d.col_as_slice(j)))
+        let residuals: Vec<Residual> = (0..last_residual.len())
+            .map(|j| block.residual(j))
             .collect();
         let above_floor: Vec<bool> = residuals
             .iter()
             .zip(&last_residual)
-            .map(|(r, &last)| r.relative > FLOOR_FACTOR * r.floor && r.relative < 0.5 * last)
+            .map(|(r, &last)| {
+                r.floor <= RESOLVABLE
+                    && r.relative > FLOOR_FACTOR * r.floor
+                    && r.relative < 0.5 * last
+            })
             .collect();
         for (last, r) in last_residual.iter_mut().zip(&residuals) {
             *last = r.relative;
         }
-        llt.solve_columns_in_place(d.as_mut());
-        for _ in 0..2 {
-            let c = my.transpose() * &d;
-            d -= &y * &c;
-        }
-        let md = mul_columns(m, &d, false);
-        let mut for_residual = false;
-        let mut keep = Vec::new();
-        for j in 0..p {
-            let norm = residual::m_norm(d.col_as_slice(j), md.col_as_slice(j));
-            let residual = above_floor.get(j).copied().unwrap_or(false);
-            if norm > NOISE_FLOOR {
-                keep.push((j, 1.0));
-            } else if residual && norm > 0.0 {
-                // Scaled to unit M-norm: the Gram matrix of Rayleigh-Ritz stays well scaled.
-                keep.push((j, 1.0 / norm));
-                for_residual = true;
-            }
-        }
+        let (d, md) = corrections(&block, m, llt);
+        let (mut keep, mut for_residual) = chosen(&d, &md, &above_floor);
         if keep.is_empty() {
-            return done(values, y, (ky, my), sweep - 1);
+            block.sweeps = sweep - 1;
+            return Some(block);
         }
-        let block = |keep: &[(usize, f64)]| {
-            let mut dk = Mat::<f64>::zeros(y.nrows(), keep.len());
-            for (j, &(c, scale)) in keep.iter().enumerate() {
-                for (a, b) in dk.col_as_slice_mut(j).iter_mut().zip(d.col_as_slice(c)) {
-                    *a = scale * b;
-                }
-            }
-            let q = concat(&y, &dk);
-            let kq = concat(&ky, &mul_columns(k, &dk, true));
-            let mq = concat(&my, &mul_columns(m, &dk, false));
-            let pencil = dense_pencil(&(q.transpose() * &kq), &(q.transpose() * &mq));
-            pencil.map(|(values, x)| (values, x, q, kq, mq))
-        };
-        let rayleigh_ritz = match block(&keep) {
-            Some(done) => Some(done),
+        let mut next = extended(&block, k, (&d, &md), &keep);
+        if next.is_none() && for_residual {
             // Corrections at the rounding level that made the Gram matrix singular: without
             // them.
-            None if for_residual => {
-                for_residual = false;
-                keep.retain(|&(_, scale)| scale == 1.0);
-                if keep.is_empty() {
-                    return done(values, y, (ky, my), sweep - 1);
-                }
-                block(&keep)
+            for_residual = false;
+            keep.retain(|&(_, scale)| scale == 1.0);
+            if keep.is_empty() {
+                block.sweeps = sweep - 1;
+                return Some(block);
             }
-            None => None,
-        };
-        let (new_values, x, q, kq, mq) = rayleigh_ritz?;
-        let x = x.subcols(0, p).to_owned();
+            next = extended(&block, k, (&d, &md), &keep);
+        }
+        let next = next?;
         let moved = (0..p)
-            .map(|j| (new_values[j] - values[j]).abs() / (values[j].abs() + shift.abs()))
+            .map(|j| {
+                (next.values[j] - block.values[j]).abs() / (block.values[j].abs() + shift.abs())
+            })
             .fold(0.0, f64::max);
-        y = &q * &x;
-        ky = &kq * &x;
-        my = &mq * &x;
-        values = new_values[..p].to_vec();
+        block = next;
+        block.sweeps = sweep;
         if moved <= tol && !for_residual {
-            return done(values, y, (ky, my), sweep);
+            return Some(block);
         }
     }
-    done(values, y, (ky, my), max_sweeps)
+    Some(block)
+}
+
+/// D = (K - sigma M)^-1 (K Y - M Y Lambda), M-orthogonalised against Y (twice), and M D.
+fn corrections(
+    block: &Refined,
+    m: SparseColMatRef<'_, usize, f64>,
+    llt: &SparseLlt,
+) -> (Mat<f64>, Mat<f64>) {
+    let (y, (ky, my)) = (&block.vectors, &block.products);
+    let mut d = Mat::<f64>::zeros(y.nrows(), y.ncols());
+    for (j, &lambda) in block.values.iter().enumerate() {
+        let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
+        for ((c, a), b) in d.col_as_slice_mut(j).iter_mut().zip(kc).zip(mc) {
+            *c = a - lambda * b;
+        }
+    }
+    llt.solve_columns_in_place(d.as_mut());
+    for _ in 0..2 {
+        let c = my.transpose() * &d;
+        d -= y * &c;
+    }
+    let (md, _) = mul_columns(m, &d, false);
+    (d, md)
+}
+
+/// The corrections that enter (column, scale), and whether any enters for its residual
+/// alone (scaled to unit M-norm: the Gram matrix of Rayleigh-Ritz stays well scaled).
+fn chosen(d: &Mat<f64>, md: &Mat<f64>, above_floor: &[bool]) -> (Vec<(usize, f64)>, bool) {
+    let mut for_residual = false;
+    let mut keep = Vec::new();
+    for j in 0..d.ncols() {
+        let norm = residual::m_norm(d.col_as_slice(j), md.col_as_slice(j));
+        if norm > NOISE_FLOOR {
+            keep.push((j, 1.0));
+        } else if above_floor.get(j).copied().unwrap_or(false) && norm > 0.0 {
+            keep.push((j, 1.0 / norm));
+            for_residual = true;
+        }
+    }
+    (keep, for_residual)
+}
+
+/// Rayleigh-Ritz on [Y, D] with the chosen columns of D, scaled.
+fn extended(
+    block: &Refined,
+    k: SparseColMatRef<'_, usize, f64>,
+    (d, md): (&Mat<f64>, &Mat<f64>),
+    keep: &[(usize, f64)],
+) -> Option<Refined> {
+    let n = d.nrows();
+    let scaled = |a: &Mat<f64>| {
+        let mut out = Mat::<f64>::zeros(n, keep.len());
+        for (j, &(c, scale)) in keep.iter().enumerate() {
+            for (o, v) in out.col_as_slice_mut(j).iter_mut().zip(a.col_as_slice(c)) {
+                *o = scale * v;
+            }
+        }
+        out
+    };
+    let dk = scaled(d);
+    let (kd, bounds_d) = mul_columns(k, &dk, true);
+    let q = concat(&block.vectors, &dk);
+    let kq = concat(&block.products.0, &kd);
+    // M D is known: its columns scaled like D's (exactly so for a scale of 1).
+    let mq = concat(&block.products.1, &scaled(md));
+    let bounds: Vec<f64> = block.bounds.iter().chain(&bounds_d).copied().collect();
+    Refined::of_basis(&q, &kq, &mq, &bounds, block.vectors.ncols())
 }
 
 fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {

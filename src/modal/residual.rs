@@ -16,11 +16,11 @@
 //!
 //! Layer 2 (eigensolution), like [`super`]: may import the layers below.
 
-use faer::sparse::SparseColMatRef;
 use faer::MatRef;
+use faer::sparse::SparseColMatRef;
 use rayon::prelude::*;
 
-use super::refine::accurate_mul;
+use super::refine::accurate_mul_bounded;
 use super::sparse_mul;
 
 /// The residual of one pair (module docs).
@@ -57,23 +57,15 @@ fn one(
 ) -> Residual {
     let n = y.len();
     let (mut ky, mut my) = (vec![0.0; n], vec![0.0; n]);
-    accurate_mul(k, y, &mut ky);
+    let bound = accurate_mul_bounded(k, y, &mut ky);
     sparse_mul(m, y, &mut my);
     let r: Vec<f64> = ky.iter().zip(&my).map(|(a, b)| a - lambda * b).collect();
-    of_products(k, y, &ky, &r)
+    of_products(&ky, &r, bound)
 }
 
-/// The residual of y given K y (accurate) and r = K y - lambda M y.
-pub fn of_products(k: SparseColMatRef<'_, usize, f64>, y: &[f64], ky: &[f64], r: &[f64]) -> Residual {
+/// The residual given K y (accurate), r = K y - lambda M y and `bound` >= || |K| |y| ||.
+pub fn of_products(ky: &[f64], r: &[f64], bound: f64) -> Residual {
     let ky_norm = norm(ky);
-    let abs_k_y = |j: usize| {
-        let rows = k.symbolic().row_idx_of_col_raw(j);
-        rows.iter()
-            .zip(k.val_of_col(j))
-            .map(|(&i, v)| (v * y[i]).abs())
-            .sum::<f64>()
-    };
-    let bound = (0..y.len()).map(abs_k_y).map(|a| a * a).sum::<f64>().sqrt();
     Residual {
         relative: norm(r) / ky_norm,
         floor: f64::EPSILON * bound / ky_norm,
@@ -82,7 +74,12 @@ pub fn of_products(k: SparseColMatRef<'_, usize, f64>, y: &[f64], ky: &[f64], r:
 
 /// The M-norm sqrt(v^T M v) of `v` given `mv` = M v (0 for a round-off negative square).
 pub fn m_norm(v: &[f64], mv: &[f64]) -> f64 {
-    v.iter().zip(mv).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt()
+    v.iter()
+        .zip(mv)
+        .map(|(a, b)| a * b)
+        .sum::<f64>()
+        .max(0.0)
+        .sqrt()
 }
 
 /// The Euclidean norm.
