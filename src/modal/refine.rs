@@ -434,4 +434,45 @@ mod tests {
         assert_eq!(plain[0], 0.0);
         assert_eq!(accurate, [1.0, 1e16 + 1.0, 1.0 - 1e16]);
     }
+
+    /// Four vectors in one pass, one at a time, with and without FMA: bitwise the same
+    /// products (the error term of a product is exact either way), and the bound
+    /// || |A| |x| || by hand.
+    #[test]
+    fn block_and_fma_products_equal_the_single_ones() {
+        let a = SymMatrix::from_entries(
+            3,
+            &[
+                (0, 0, 4.0),
+                (0, 1, -1e16),
+                (1, 0, -1e16),
+                (1, 1, 3.0),
+                (1, 2, 0.1),
+                (2, 1, 0.1),
+                (2, 2, 1.0 / 3.0),
+            ],
+        );
+        let xs: Vec<[f64; 3]> = vec![
+            [1.0, 1e-16, 0.3],
+            [0.1, 0.2, 0.7],
+            [-1.0, 1.0, 1e-8],
+            [1.0 / 3.0, 2.0 / 3.0, 1.0],
+        ];
+        let mut block = vec![0.0; 12];
+        accurate_block::<4>(a.as_faer(), std::array::from_fn(|r| &xs[r][..]), &mut block);
+        for (r, x) in xs.iter().enumerate() {
+            let (mut one, mut generic) = ([0.0; 3], [0.0; 3]);
+            let bound = accurate_mul_bounded(a.as_faer(), x, &mut one);
+            accurate_block_with::<false, 1>(a.as_faer(), [&x[..]], &mut generic);
+            assert_eq!(one, generic, "vector {r}");
+            assert_eq!(&block[3 * r..3 * r + 3], &one[..], "vector {r}");
+            let by_hand = [
+                4.0 * x[0].abs() + 1e16 * x[1].abs(),
+                1e16 * x[0].abs() + 3.0 * x[1].abs() + 0.1 * x[2].abs(),
+                0.1 * x[1].abs() + x[2].abs() / 3.0,
+            ];
+            let norm = by_hand.iter().map(|v| v * v).sum::<f64>().sqrt();
+            assert!((bound - norm).abs() <= 1e-15 * norm, "vector {r}");
+        }
+    }
 }
