@@ -121,14 +121,14 @@ fn solve(dir: &Path, count: usize) {
         "phases_s factorisation {:.4} solves {:.4} orthogonalisation {:.4} refinement {:.4} total {:.4}",
         t.factorisation, t.solves, t.orthogonalisation, t.refinement, t.total
     );
-    for j in rigid..rigid + count {
+    let pairs = modes.values.iter().zip(&res).zip(&modes.backward_errors);
+    for (j, ((&lambda, r), eta)) in pairs.enumerate().skip(rigid) {
         println!(
-            "mode {} hz {:.9} relative_residual {:.2e} floor {:.2e} backward_error {:.1e}",
+            "mode {} hz {:.9} relative_residual {:.2e} floor {:.2e} backward_error {eta:.1e}",
             j - rigid + 1,
-            jointid::modal::lambda_to_hz(modes.values[j]),
-            res[j].relative,
-            res[j].floor,
-            modes.backward_errors[j]
+            jointid::modal::lambda_to_hz(lambda),
+            r.relative,
+            r.floor,
         );
     }
 }

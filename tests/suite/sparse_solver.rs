@@ -79,15 +79,19 @@ fn lowest_pairs_of_a_solid_match_the_dense_solution_with_residuals_at_their_floo
         &sparse.values,
         sparse.vectors.as_ref(),
     );
-    for i in RIGID..count {
-        let (own, other) = (sparse.residuals[i], again[i]);
+    let pairs = sparse
+        .residuals
+        .iter()
+        .zip(&again)
+        .zip(&sparse.backward_errors);
+    for (i, ((&own, &other), &eta)) in pairs.enumerate().skip(RIGID) {
         assert!(own.relative <= 1e-8, "pair {i}: {own:?}");
         assert!(other.relative <= 1e-8, "pair {i}: {other:?}");
         assert!(
             other.floor > 0.0 && other.relative <= 10.0 * other.floor,
             "pair {i}: {other:?}"
         );
-        assert!(sparse.backward_errors[i] <= 1e-14, "pair {i}");
+        assert!(eta <= 1e-14, "pair {i}: {eta:e}");
     }
     // M-normalised vectors.
     let y = &sparse.vectors;
