@@ -13,7 +13,9 @@
 //! SIAM J. Matrix Anal. Appl. 22 (2000)):
 //!
 //! 1. Shift. sigma < 0, so that K - sigma M is positive definite and is factorised by sparse
-//!    Cholesky (faer, approximate-minimum-degree ordering). The default rule:
+//!    Cholesky (faer's supernodal or simplicial factor, under the ordering of the two,
+//!    approximate minimum degree or the DOF order, whose factor has fewer entries:
+//!    [`super::sparse_llt`]). The default rule:
 //!    `sigma = -1e-4 * mean_i(K_ii / M_ii) / N^2`, a unit-free fraction of the stiffness/mass
 //!    scale of the mesh (see [`LanczosSettings::shift`] for its reasons and limits); if the factorisation meets a
 //!    non-positive pivot (round-off on a near-singular K), |sigma| is multiplied by 100 and the
@@ -41,7 +43,19 @@
 //!
 //!    (Higham & Higham, "Structured backward error and condition of generalized eigenvalue
 //!    problems", SIAM J. Matrix Anal. Appl. 20 (1998); ||.||_1 is the largest column sum, an
-//!    upper bound of ||.||_2 for a symmetric matrix).
+//!    upper bound of ||.||_2 for a symmetric matrix), or, when the rounding of the vector
+//!    alone leaves more, at most [`FLOOR_FACTOR`] times that (an unreachable tolerance is
+//!    not asked for). The refinement corrects each wanted pair until its relative residual
+//!    ||K y - lambda M y|| / ||K y|| stands at its rounding floor ([`super::residual`]), which
+//!    it reports: on the 3D lap of 2.4e4 DOFs, 1e-4 from the Lanczos vectors, 1e-9 after
+//!    three sweeps.
+//! 5. Stop. Once the Krylov space has converged, a restart would hand the refinement the
+//!    same vectors: a pair the refinement cannot accept is an error at once
+//!    ([`ModalError::NotConverged`], naming how many pairs converged and each other pair
+//!    with its backward error), as is a Krylov space still short of the tolerance after
+//!    `max_restarts` restarts (each other pair with its shift-invert residual). Before, a
+//!    model of 2.3e5 DOFs restarted without end, each restart's refinement accepting 7 of 12
+//!    pairs.
 //!
 //! What limits the accuracy. A small backward error does not make a low eigenvalue accurate:
 //! the condition number of a beam's K grows like (L / h)^4, and round-off of the size
@@ -63,6 +77,10 @@
 //! Memory is linear in N: the basis V and M V (N x (basis_size + 1) each), the Cholesky factor
 //! of the banded or sparse K - sigma M, the refinement's blocks (N x (count + REFINE_EXTRA),
 //! a few of them) and N x count for the result.
+//!
+//! Threads: the refinement's block solves and products with K and M run on rayon's pool
+//! (`RAYON_NUM_THREADS`); the Lanczos recurrence itself is sequential. [`LowestModes::timings`]
+//! says where the time went.
 //!
 //! A limit shared with every single-vector Krylov method: an eigenvalue of exact multiplicity
 //! m > 1 shows its further copies only through round-off, after some delay. The rigid-body

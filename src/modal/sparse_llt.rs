@@ -1,6 +1,13 @@
 //! The sparse Cholesky factor of the shifted matrix K - sigma M that the shift-invert
 //! eigensolver applies as (K - sigma M)^-1, on faer's low-level sparse Cholesky (symbolic
 //! analysis once, numeric factorisation, solves with a workspace kept between calls).
+//! faer picks a supernodal factor (dense blocks, matrix products) or a simplicial one by the
+//! flop count of the symbolic analysis; the ordering is minimum degree or the DOF order,
+//! whichever fills less ([`Ordering::Fewest`]): on a banded matrix the DOF order is the band
+//! (the "banded path": no fill outside it). Measured on the lap of 23,958 DOFs
+//! (`bench/lap-solid.toml`): 3.65e6 factor entries in the DOF order, 4.17e6 by minimum
+//! degree; the factorisation takes 0.04-0.07 s, 3-8% of the solve. Several right-hand sides
+//! are solved as blocks on rayon's threads ([`SparseLlt::solve_columns_in_place`]).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;

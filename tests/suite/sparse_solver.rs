@@ -16,16 +16,11 @@ use jointid::model::solid::triplets::Lower;
 use jointid::model::solid::{Solid, SolidConfig};
 use jointid::structure::SymMatrix;
 
-/// A lap of two steel bars (0.16 and 0.12 m, 20 mm wide) in 10 mm bricks, one through each
-/// bar, with a bolt patch: 540 DOFs, free-free (six rigid-body modes).
-const LAP: &str = "width = 0.02\noverlap = 0.04\n\
-    [material]\nyoungs_modulus = 2.1e11\npoisson_ratio = 0.3\ndensity = 7850.0\n\
-    [[bar]]\nlength = 0.16\nthickness = 0.01\n[[bar]]\nlength = 0.12\nthickness = 0.008\n\
-    [interface]\nnormal = 1e13\nshear_x = 2e12\nshear_y = 3e12\n\
-    [[interface.bolt]]\nx = 0.14\ny = 0.01\nradius = 0.006\nfactor = 8.0\n\
-    [mesh]\nsize = 0.01\nlayers = 1\n";
+use crate::solid::LAP;
 
-/// K (with the interface springs at their values) and M of the lap, both triangles.
+/// K (with the interface springs at their values) and M of the small lap of the solid tests
+/// (two steel bars of 0.16 and 0.12 m in 10 mm bricks, a bolt patch: 540 DOFs, free-free),
+/// both triangles.
 fn lap() -> (SymMatrix, SymMatrix) {
     let config = SolidConfig::from_toml(LAP, Path::new("lap.toml")).unwrap();
     let solid = Solid::generate(&config).unwrap();
