@@ -20,6 +20,7 @@
 //! Layer 2 (eigensolution; see the crate docs): may import the layers below: [`crate::stats`],
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
+pub mod accurate;
 pub mod elastic;
 pub mod lanczos;
 pub mod nelson;

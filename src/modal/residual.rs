@@ -5,7 +5,7 @@
 //!   floor    = eps || |K| |y| ||_2 / ||K y||_2
 //! ```
 //!
-//! K y is accumulated in twice the working precision ([`super::refine::accurate_mul`]), so
+//! K y is accumulated in twice the working precision ([`super::accurate`]), so
 //! that the residual is that of the stored K and the stored vector, not of the arithmetic.
 //! `floor` is what the rounding of y alone to double precision leaves in the residual (a
 //! perturbation of eps |y| per entry moves K y by up to eps |K| |y|): no vector stored in
@@ -20,7 +20,7 @@ use faer::MatRef;
 use faer::sparse::SparseColMatRef;
 use rayon::prelude::*;
 
-use super::refine::accurate_mul_bounded;
+use super::accurate::accurate_mul_bounded;
 use super::sparse_mul;
 
 /// The residual of one pair (module docs).
