@@ -1,24 +1,68 @@
 #!/usr/bin/env bash
-# Lowest 20 modes of a 1e5-DOF banded beam model (a clamped-free cantilever of 50 000
-# elements), jointid's shift-invert Lanczos beside scipy's eigsh(sigma=0) on the same matrices,
-# exported by examples/eigen_bench.rs; scipy on 1 and on 2 BLAS threads (jointid's solver is
-# sequential). Usage: bash bench/eigen_vs_scipy.sh [ELEMENTS] [REPEAT]
+# jointid's sparse eigensolver beside scipy's eigsh on the same matrices, at equal threads:
+# the lowest 20 modes of a clamped-free steel cantilever of 5 000 and 50 000 elements
+# (N = 1e4 and 1e5, banded) and the lowest 12 elastic modes of the free-free 3D lap of
+# bench/lap-solid.toml (N = 23,958, six rigid-body modes). K and M are exported as Matrix
+# Market by examples/eigen_bench.rs; every timed run is its own process (jointid's
+# `eigen_bench solve`, scipy's bench/eigen_vs_scipy.py in three variants: eigsh's SuperLU,
+# SuperLU with minimum degree, LAPACK's banded Cholesky), runs interleaved, REPEAT of each
+# at 1 and at 2 threads (RAYON_NUM_THREADS; OMP/OPENBLAS/MKL_NUM_THREADS). Prints the table of
+# bench/eigen_table.py: medians of the solve times (the reading of the files excluded), their
+# ratio, peak resident memory (/usr/bin/time, the whole process) and the largest relative
+# residual ||K y - lambda M y|| / ||K y|| over the modes (jointid's with its rounding floor,
+# eps || |K| |y| || / ||K y||: see src/modal/residual.rs).
+# Usage: bash bench/eigen_vs_scipy.sh [REPEAT] [CASES]   (CASES: any of chain1e4 chain1e5 solid)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-elements=${1:-50000}
-repeat=${2:-5}
-count=20
+repeat=${1:-5}
+cases=${2:-"chain1e4 chain1e5 solid"}
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-cargo build --release --example eigen_bench
-ours=$(./target/release/examples/eigen_bench "$elements" "$count" "$repeat" "$dir")
-echo "$ours" | grep -v '^frequencies_hz'
+cargo build --release --locked --example eigen_bench --bin jointid >&2
+bench=./target/release/examples/eigen_bench
 python=$(bash scripts/python-env.sh)
-# jointid's solver runs on one thread: scipy on one BLAS/OpenMP thread is the like-for-like
-# comparison; two threads (both cores here) for reference.
-for threads in 1 2; do
-    echo "scipy with $threads BLAS/OpenMP thread(s):"
-    OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads MKL_NUM_THREADS=$threads \
-        "$python" bench/eigen_vs_scipy.py "$dir" "$count" "$repeat" \
-        $(echo "$ours" | grep '^frequencies_hz' | cut -d' ' -f2-)
+for case in $cases; do
+    mkdir -p "$dir/$case"
+    case $case in
+        chain1e4) $bench export chain 5000 "$dir/$case" >&2 ;;
+        chain1e5) $bench export chain 50000 "$dir/$case" >&2 ;;
+        solid)
+            ./target/release/jointid solid bench/lap-solid.toml --out "$dir/solid-model" >&2
+            $bench export model "$dir/solid-model/model.toml" "$dir/$case" >&2 ;;
+        *) echo "unknown case $case" >&2; exit 2 ;;
+    esac
 done
+log="$dir/runs.txt"
+run() { # case threads solver command...
+    local case=$1 threads=$2 solver=$3
+    shift 3
+    local out
+    out=$(RAYON_NUM_THREADS=$threads OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads \
+        MKL_NUM_THREADS=$threads /usr/bin/time -f "rss_kb %M" "$@" 2>&1) || {
+        echo "$case $threads $solver failed: $out" >&2
+        return
+    }
+    echo "$out" | awk -v c="$case" -v t="$threads" -v s="$solver" '
+        /^time_s/ {time = $2} /^rss_kb/ {rss = $2} /^skipped/ {skip = 1}
+        /^mode/ {for (i = 1; i < NF; i++) {
+                     if ($i == "relative_residual" && $(i + 1) > worst) worst = $(i + 1)
+                     if ($i == "floor" && $(i + 1) > floor) floor = $(i + 1)}
+                 if ($2 == 1) f1 = $4}
+        END {if (!skip) printf "%s %s %s %s %s %s %s %s\n", c, t, s, time, rss, worst + 0, f1, floor + 0}' >> "$log"
+}
+for r in $(seq "$repeat"); do
+    for case in $cases; do
+        count=20
+        [ "$case" = solid ] && count=12
+        for threads in 1 2; do
+            echo "run $r/$repeat: $case, $threads thread(s)" >&2
+            run "$case" "$threads" jointid $bench solve "$dir/$case" $count
+            for variant in superlu mmd banded; do
+                run "$case" "$threads" "scipy-$variant" "$python" bench/eigen_vs_scipy.py \
+                    "$dir/$case" $count $variant
+            done
+        done
+    done
+done
+echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
+"$python" bench/eigen_table.py "$log"

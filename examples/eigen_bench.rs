@@ -1,23 +1,35 @@
-//! Benchmark of the sparse eigensolver (README, "Large models"; run by
-//! `bench/eigen_vs_scipy.sh`): the lowest `count` modes of a clamped-free steel cantilever
-//! (the paper's section, 1 m) of `elements` Euler-Bernoulli elements, N = 2 elements DOFs,
-//! banded. Writes K and M as Matrix Market files (coordinate, real, symmetric: the lower
-//! triangle, 1-based) into `dir` for the scipy peer, then times
-//! `ModalSolution::lowest` `repeat` times and prints the median, the peak resident memory
-//! of the process and the frequencies beside the analytic ones.
+//! Benchmark of the sparse eigensolver beside scipy (docs/benchmarks.md, "Large models"; run
+//! by `bench/eigen_vs_scipy.sh`). Two steps, so that every timed run is its own process
+//! (interleaved with scipy's, peak memory by `/usr/bin/time -v`):
 //!
-//! `cargo run --release --example eigen_bench -- ELEMENTS COUNT REPEAT DIR`
+//! - `export chain ELEMENTS DIR`: a clamped-free steel cantilever (the paper's section, 1 m)
+//!   of ELEMENTS Euler-Bernoulli elements (N = 2 ELEMENTS DOFs, banded, no rigid-body mode);
+//! - `export model MODEL.toml DIR`: an external model (such as `jointid solid` writes) at its
+//!   parameter values;
+//!
+//!   write K and M as Matrix Market files (coordinate, real, symmetric: the lower triangle,
+//!   1-based) into DIR, with `case.txt` (the rigid-body count and the solver's default shift,
+//!   which scipy is given too);
+//! - `solve DIR COUNT`: reads them back and times the lowest `rigid + COUNT` pairs by
+//!   `ModalSolution::lowest` (threads: `RAYON_NUM_THREADS`), then prints the time, the
+//!   frequencies and, per elastic mode, the relative residual ||K y - lambda M y|| / ||K y||
+//!   with its rounding floor and the backward error (`jointid::modal::residual`).
+//!
+//! `cargo run --release --example eigen_bench -- export chain 50000 /tmp/b`
 
 use std::io::Write;
+use std::path::Path;
 use std::time::Instant;
 
-use jointid::modal::ModalSolution;
+use jointid::modal::lanczos::{LanczosSettings, default_shift, lowest_modes};
+use jointid::modal::residual::residuals;
 use jointid::model::chain::{Chain, Support, SupportKind};
 use jointid::model::fixtures::steel_bar;
-use jointid::structure::SymMatrix;
+use jointid::model::matrix_market;
+use jointid::structure::{Matrices, SymMatrix};
 
 /// The Matrix Market writer the benchmark needs (not the project's reader/writer).
-fn write_matrix_market(a: &SymMatrix, path: &str) -> std::io::Result<()> {
+fn write_matrix_market(a: &SymMatrix, path: &Path) -> std::io::Result<()> {
     let lower: Vec<(usize, usize, f64)> = a.entries().into_iter().filter(|e| e.0 >= e.1).collect();
     let mut out = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(out, "%%MatrixMarket matrix coordinate real symmetric")?;
@@ -29,54 +41,106 @@ fn write_matrix_market(a: &SymMatrix, path: &str) -> std::io::Result<()> {
     out.flush()
 }
 
-fn peak_rss_mb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1).map(str::to_string))
-        })
-        .and_then(|kb| kb.parse::<f64>().ok())
-        .map_or(f64::NAN, |kb| kb / 1024.0)
+fn read_matrix(path: &Path) -> SymMatrix {
+    let lower = matrix_market::from_path(path).expect("a matrix written by `export`");
+    SymMatrix::from_entries(lower.size, &lower.both_triangles())
+}
+
+fn export(kind: &str, what: &str, dir: &Path) {
+    let (mats, rigid): (Matrices, usize) = match kind {
+        "chain" => {
+            let elements: usize = what.parse().expect("ELEMENTS");
+            let mut chain = Chain::free(vec![steel_bar(1.0, elements)], vec![]);
+            chain.supports.push(Support {
+                x: 0.0,
+                kind: SupportKind::Clamped,
+                identify: [false, false],
+            });
+            (chain.build().assemble(), 0)
+        }
+        "model" => {
+            let path = Path::new(what);
+            let text = std::fs::read_to_string(path).expect("the model file");
+            let structure =
+                jointid::model::matrices::from_toml(&text, path).expect("a valid external model");
+            (structure.assemble(), structure.rigid)
+        }
+        _ => panic!("export chain ELEMENTS DIR | export model MODEL.toml DIR"),
+    };
+    write_matrix_market(&mats.k, &dir.join("k.mtx")).expect("write k.mtx");
+    write_matrix_market(&mats.m, &dir.join("m.mtx")).expect("write m.mtx");
+    let shift = default_shift(mats.k.as_faer(), mats.m.as_faer());
+    std::fs::write(
+        dir.join("case.txt"),
+        format!("rigid {rigid}\nshift {shift:e}\ndofs {}\n", mats.size()),
+    )
+    .expect("write case.txt");
+    println!(
+        "N = {}, nnz(K) = {}, rigid-body modes {rigid}",
+        mats.size(),
+        mats.k.nnz()
+    );
+}
+
+fn solve(dir: &Path, count: usize) {
+    let case = std::fs::read_to_string(dir.join("case.txt")).expect("case.txt");
+    let rigid: usize = case
+        .lines()
+        .find_map(|l| l.strip_prefix("rigid "))
+        .and_then(|v| v.parse().ok())
+        .expect("rigid in case.txt");
+    let (k, m) = (
+        read_matrix(&dir.join("k.mtx")),
+        read_matrix(&dir.join("m.mtx")),
+    );
+    let t = Instant::now();
+    let modes = lowest_modes(
+        k.as_faer(),
+        m.as_faer(),
+        rigid + count,
+        &LanczosSettings::default(),
+    )
+    .expect("solve");
+    let seconds = t.elapsed().as_secs_f64();
+    let res = residuals(
+        k.as_faer(),
+        m.as_faer(),
+        &modes.values,
+        modes.vectors.as_ref(),
+    );
+    println!("time_s {seconds:.4}");
+    println!(
+        "threads {} restarts {} operator_applications {} refinement_sweeps {}",
+        rayon::current_num_threads(),
+        modes.restarts,
+        modes.operator_applications,
+        modes.refinement_sweeps
+    );
+    let t = modes.timings;
+    println!(
+        "phases_s factorisation {:.4} solves {:.4} orthogonalisation {:.4} refinement {:.4} total {:.4}",
+        t.factorisation, t.solves, t.orthogonalisation, t.refinement, t.total
+    );
+    let pairs = modes.values.iter().zip(&res).zip(&modes.backward_errors);
+    for (j, ((&lambda, r), eta)) in pairs.enumerate().skip(rigid) {
+        println!(
+            "mode {} hz {:.9} relative_residual {:.2e} floor {:.2e} backward_error {eta:.1e}",
+            j - rigid + 1,
+            jointid::modal::lambda_to_hz(lambda),
+            r.relative,
+            r.floor,
+        );
+    }
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let elements: usize = args[1].parse().expect("ELEMENTS");
-    let count: usize = args[2].parse().expect("COUNT");
-    let repeat: usize = args[3].parse().expect("REPEAT");
-    let dir = &args[4];
-    let length = 1.0;
-    let mut chain = Chain::free(vec![steel_bar(length, elements)], vec![]);
-    chain.supports.push(Support {
-        x: 0.0,
-        kind: SupportKind::Clamped,
-        identify: [false, false],
-    });
-    let mats = chain.build().assemble();
-    write_matrix_market(&mats.k, &format!("{dir}/k.mtx")).expect("write k.mtx");
-    write_matrix_market(&mats.m, &format!("{dir}/m.mtx")).expect("write m.mtx");
-    let before = peak_rss_mb();
-    let mut times = Vec::new();
-    let mut sol = None;
-    for _ in 0..repeat {
-        let t = Instant::now();
-        sol =
-            Some(ModalSolution::lowest(mats.k.as_faer(), mats.m.as_faer(), count).expect("solve"));
-        times.push(t.elapsed().as_secs_f64());
+    let arg = |i: usize| args.get(i).map(String::as_str).unwrap_or("");
+    match arg(1) {
+        "export" => export(arg(2), arg(3), Path::new(arg(4))),
+        "solve" => solve(Path::new(arg(2)), arg(3).parse().expect("COUNT")),
+        _ => panic!(
+            "usage: eigen_bench export chain ELEMENTS DIR | export model MODEL.toml DIR | solve DIR COUNT"
+        ),
     }
-    times.sort_by(f64::total_cmp);
-    let sol = sol.expect("at least one run");
-    println!("N = {}, nnz(K) = {}", mats.size(), mats.k.nnz());
-    println!(
-        "jointid: median {:.3} s of {repeat}, peak RSS {:.0} MB ({:.0} MB before the solves)",
-        times[times.len() / 2],
-        peak_rss_mb(),
-        before
-    );
-    let frequencies: Vec<String> = (0..count)
-        .map(|i| format!("{:.9}", sol.frequency_hz(i)))
-        .collect();
-    println!("frequencies_hz {}", frequencies.join(" "));
 }

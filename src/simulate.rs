@@ -275,6 +275,9 @@ pub fn simulate(
         applied.push((effect, theta));
     }
     let mut out = Vec::with_capacity(modes.len());
+    // The modes of one joint stiffness factor share one solution (all of them when the
+    // joint does not rise): solved once, not once per mode.
+    let mut solved: Option<(f64, ModalSolution)> = None;
     for &r in modes {
         let factor = 1.0 + rising * (r as f64 - 1.0);
         if factor <= 0.0 {
@@ -284,20 +287,27 @@ pub fn simulate(
                 reason: format!("mode {r} would have a joint stiffness factor {factor} <= 0"),
             });
         }
-        let mut rising_structure = structure.clone();
-        for p in &mut rising_structure.parameters {
-            p.value *= factor;
+        if solved
+            .as_ref()
+            .is_none_or(|(f, _)| f.to_bits() != factor.to_bits())
+        {
+            let mut rising_structure = structure.clone();
+            for p in &mut rising_structure.parameters {
+                p.value *= factor;
+            }
+            let truth = Configured {
+                ctx: ctx.clone(),
+                structure: rising_structure,
+                effects: applied.clone(),
+            };
+            let matrices = truth.assemble();
+            let modal = ModalSolution::lowest_of(&matrices, highest)?;
+            check_elastic(&matrices, &modal, rigid)?;
+            solved = Some((factor, modal));
         }
-        let truth = Configured {
-            ctx: ctx.clone(),
-            structure: rising_structure,
-            effects: applied.clone(),
-        };
-        let matrices = truth.assemble();
-        let modal = ModalSolution::lowest_of(&matrices, highest)?;
-        check_elastic(&matrices, &modal, rigid)?;
+        let (_, modal) = solved.as_ref().expect("solved just above");
         out.extend(
-            measured_modes(&modal, rigid, &[r], points, errors)
+            measured_modes(modal, rigid, &[r], points, errors)
                 .modes()
                 .iter()
                 .cloned(),

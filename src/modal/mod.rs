@@ -20,10 +20,12 @@
 //! Layer 2 (eigensolution; see the crate docs): may import the layers below: [`crate::stats`],
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
+pub mod accurate;
 pub mod elastic;
 pub mod lanczos;
 pub mod nelson;
 pub mod refine;
+pub mod residual;
 pub mod sparse_llt;
 
 use faer::sparse::SparseColMatRef;
@@ -98,7 +100,9 @@ pub enum ModalError {
     /// The iterative eigensolver stopped before every wanted pair met the tolerance.
     #[error(
         "the Lanczos eigensolver converged {converged} of {requested} pairs in {restarts} \
-         restarts: raise max_restarts or basis_size, or loosen the tolerance"
+         restarts; the others exceed the tolerance {tolerance:e} on their {stage} (pair: value) \
+         {}: raise max_restarts or basis_size, or loosen the tolerance",
+        unconverged.iter().map(|(j, r)| format!("{j}: {r:.1e}")).collect::<Vec<_>>().join(", ")
     )]
     NotConverged {
         /// Pairs that met the tolerance.
@@ -107,6 +111,13 @@ pub enum ModalError {
         requested: usize,
         /// Restarts done.
         restarts: usize,
+        /// The measure that failed: the shift-invert residual of the Ritz pairs, or the
+        /// backward error of the refined pairs.
+        stage: &'static str,
+        /// The pairs that failed (1-based, lowest first) and their value of that measure.
+        unconverged: Vec<(usize, f64)>,
+        /// The tolerance they were held to.
+        tolerance: f64,
     },
     /// K - lambda M with the pinned DOF is singular (a repeated eigenvalue: Nelson's method
     /// needs a simple one).

@@ -22,54 +22,80 @@
 //!   Rayleigh-Ritz of (K, M) on span[Y, D]      (accurate K [Y, D])
 //! ```
 //!
-//! A correction column whose M-norm is below [`NOISE_FLOOR`] is round-off of the vector
-//! itself and is dropped; the refinement stops when every column is dropped or the Ritz
-//! values stop moving.
+//! A correction column whose M-norm is below [`NOISE_FLOOR`] may be round-off of the vector
+//! itself and is dropped, unless the pair's relative residual ||K y - lambda M y|| / ||K y||
+//! stands above [`FLOOR_FACTOR`] times its rounding floor ([`super::residual`]) and still
+//! falls: on a 3D solid the Lanczos vectors' residuals of 1e-4 come from corrections of
+//! M-norm 1e-10, which the floor rule alone would drop. The refinement stops when every
+//! column is dropped or the Ritz values stop moving.
+//!
+//! Cost: K Y in twice the precision ([`super::accurate`]) is the bulk. Four vectors share one pass over K, the
+//! error of each product comes from one fused multiply-add where the processor has it (the
+//! same error term as Dekker's product: exact either way, so the same results), and the
+//! blocks of columns, products and solves alike, run on rayon's pool.
 
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
+use rayon::prelude::*;
+
+use super::accurate::accurate_block;
+use super::residual::{self, Residual};
 use super::sparse_llt::SparseLlt;
 use super::sparse_mul;
 
-/// Corrections of M-norm below this (for M-normalised vectors) are left out: their content is
-/// the rounding of the vector, whose Rayleigh quotient is of the element scale.
+/// Corrections of M-norm below this (for M-normalised vectors) are left out, unless the
+/// pair's residual asks for them (see [`refine`]): their content may be the rounding of the
+/// vector, whose Rayleigh quotient is of the element scale.
 pub const NOISE_FLOOR: f64 = 1e-7;
 
-/// `y = A x` for a symmetric matrix stored with both triangles, every entry accumulated in
-/// twice the working precision and rounded once.
-pub fn accurate_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    for (j, yj) in y.iter_mut().enumerate() {
-        // Column j of a symmetric matrix is its row j.
-        let rows = a.symbolic().row_idx_of_col_raw(j);
-        let (mut s, mut c) = (0.0_f64, 0.0_f64);
-        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            let (p, e) = two_product(v, x[i]);
-            let (t, f) = two_sum(s, p);
-            s = t;
-            c += e + f;
-        }
-        *yj = s + c;
-    }
-}
+/// Above this rounding floor the residual of a pair says nothing (a rigid-body mode, K y = 0
+/// to round-off; a low mode of a finely meshed beam, whose K has a condition number past
+/// 1 / eps): it is not corrected for its residual.
+pub const RESOLVABLE: f64 = 1e-6;
 
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
+/// A wanted pair is corrected while its relative residual exceeds this many times its rounding
+/// floor ([`super::residual`]).
+pub const FLOOR_FACTOR: f64 = 10.0;
 
-fn split(a: f64) -> (f64, f64) {
-    let c = 134_217_729.0 * a; // 2^27 + 1
-    let hi = c - (c - a);
-    (hi, a - hi)
-}
-
-fn two_product(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    let (ah, al) = split(a);
-    let (bh, bl) = split(b);
-    (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
+/// A Q, the products accurate ([`super::accurate::accurate_mul`], four columns a pass, with || |A| |q_j| ||
+/// of every column) or plain (no bounds), the columns on rayon's threads.
+fn mul_columns(
+    a: SparseColMatRef<'_, usize, f64>,
+    q: &Mat<f64>,
+    accurate: bool,
+) -> (Mat<f64>, Vec<f64>) {
+    const W: usize = 4;
+    let (n, p) = (q.nrows(), q.ncols());
+    let col = |j: usize| q.col_as_slice(j);
+    let blocks: Vec<(Vec<f64>, Vec<f64>)> = (0..p.div_ceil(W))
+        .into_par_iter()
+        .map(|b| {
+            let (first, width) = (b * W, W.min(p - b * W));
+            let mut out = vec![0.0; n * width];
+            let mut bounds = Vec::new();
+            match (accurate, width) {
+                (true, W) => {
+                    let squares =
+                        accurate_block::<W>(a, std::array::from_fn(|r| col(first + r)), &mut out);
+                    bounds.extend(squares.iter().map(|s| s.sqrt()));
+                }
+                (true, _) => {
+                    for (r, y) in out.chunks_mut(n).enumerate() {
+                        bounds.push(accurate_block::<1>(a, [col(first + r)], y)[0].sqrt());
+                    }
+                }
+                (false, _) => {
+                    for (r, y) in out.chunks_mut(n).enumerate() {
+                        sparse_mul(a, col(first + r), y);
+                    }
+                }
+            }
+            (out, bounds)
+        })
+        .collect();
+    let product = Mat::from_fn(n, p, |i, j| blocks[j / W].0[(j % W) * n + i]);
+    (product, blocks.into_iter().flat_map(|b| b.1).collect())
 }
 
 /// Eigenpairs of the small dense pencil (a, b), b symmetric positive definite: values
@@ -100,107 +126,193 @@ pub struct Refined {
     pub values: Vec<f64>,
     /// Ritz vectors, M-orthonormal.
     pub vectors: Mat<f64>,
+    /// K Y (accurate products) and M Y of the vectors.
+    pub products: (Mat<f64>, Mat<f64>),
+    /// An upper bound of || |K| |y| || for every vector (the rounding floor's scale,
+    /// [`super::residual`]).
+    pub bounds: Vec<f64>,
     /// Correction sweeps done (0: the first Rayleigh-Ritz with accurate products sufficed).
     pub sweeps: usize,
 }
 
-/// Refines the M-orthonormal columns of `y` (lowest first wanted) by block corrections with
-/// the factor of K - sigma M, at most `max_sweeps` sweeps; stops when the Ritz values move
-/// by less than `tol * (|lambda| + |sigma|)`.
+impl Refined {
+    /// The residual of pair `j` (module docs of [`super::residual`]).
+    pub fn residual(&self, j: usize) -> Residual {
+        let (ky, my) = (
+            self.products.0.col_as_slice(j),
+            self.products.1.col_as_slice(j),
+        );
+        let r: Vec<f64> = ky
+            .iter()
+            .zip(my)
+            .map(|(a, b)| a - self.values[j] * b)
+            .collect();
+        residual::of_products(ky, &r, self.bounds[j])
+    }
+
+    /// Rayleigh-Ritz of (K, M) on the columns of Q, given K Q and M Q and the bounds of
+    /// its columns: the lowest `p` pairs.
+    fn of_basis(
+        q: &Mat<f64>,
+        kq: &Mat<f64>,
+        mq: &Mat<f64>,
+        bounds: &[f64],
+        p: usize,
+    ) -> Option<Self> {
+        let (values, x) = dense_pencil(&(q.transpose() * kq), &(q.transpose() * mq))?;
+        let x = x.subcols(0, p).to_owned();
+        // |K| |Q x| <= sum_i |x_i| |K| |q_i|, column by column.
+        let bounds = (0..p)
+            .map(|j| (0..x.nrows()).map(|i| x[(i, j)].abs() * bounds[i]).sum())
+            .collect();
+        Some(Refined {
+            values: values[..p].to_vec(),
+            vectors: q * &x,
+            products: (kq * &x, mq * &x),
+            bounds,
+            sweeps: 0,
+        })
+    }
+}
+
+/// Refines the M-orthonormal columns of `y` (the `wanted` lowest first) by block corrections
+/// with the factor of K - sigma M, at most `max_sweeps` sweeps. A correction enters while
+/// its M-norm is above [`NOISE_FLOOR`], or, for a wanted pair, while the pair's relative
+/// residual ||K y - lambda M y|| / ||K y|| stands above [`FLOOR_FACTOR`] times its rounding
+/// floor ([`super::residual`]), that floor is at most [`RESOLVABLE`], and the residual fell
+/// at least twofold in the last sweep. Stops when no correction enters, or when the Ritz
+/// values move by less than `tol * (|lambda| + |sigma|)` and no correction entered for its
+/// residual.
+#[allow(clippy::too_many_arguments)]
 pub fn refine(
     k: SparseColMatRef<'_, usize, f64>,
     m: SparseColMatRef<'_, usize, f64>,
-    llt: &mut SparseLlt,
+    llt: &SparseLlt,
     shift: f64,
     y: Mat<f64>,
+    wanted: usize,
     tol: f64,
     max_sweeps: usize,
 ) -> Option<Refined> {
-    let (n, p) = (y.nrows(), y.ncols());
-    let mul_all = |a: SparseColMatRef<'_, usize, f64>, q: &Mat<f64>| {
-        let mut out = Mat::<f64>::zeros(n, q.ncols());
-        for j in 0..q.ncols() {
-            accurate_mul(a, q.col_as_slice(j), out.col_as_slice_mut(j));
-        }
-        out
-    };
-    // M is well conditioned: its products need no extra precision.
-    let plain = |q: &Mat<f64>| {
-        let mut out = Mat::<f64>::zeros(n, q.ncols());
-        for j in 0..q.ncols() {
-            sparse_mul(m, q.col_as_slice(j), out.col_as_slice_mut(j));
-        }
-        out
-    };
-    let (mut ky, mut my) = (mul_all(k, &y), plain(&y));
-    let (values, x) = dense_pencil(&(y.transpose() * &ky), &(y.transpose() * &my))?;
-    let mut y = &y * &x;
-    ky = &ky * &x;
-    my = &my * &x;
-    let mut values = values;
+    let p = y.ncols();
+    let (ky, bounds) = mul_columns(k, &y, true);
+    let (my, _) = mul_columns(m, &y, false);
+    let mut block = Refined::of_basis(&y, &ky, &my, &bounds, p)?;
+    let mut last_residual = vec![f64::INFINITY; wanted.min(p)];
     for sweep in 1..=max_sweeps {
-        // Corrections.
-        let mut d = Mat::<f64>::zeros(n, p);
-        for (j, &lambda) in values.iter().enumerate() {
-            let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
-            let col = d.col_as_slice_mut(j);
-            for ((c, a), b) in col.iter_mut().zip(kc).zip(mc) {
-                *c = a - lambda * b;
-            }
-            llt.solve_in_place(col);
-        }
-        for _ in 0..2 {
-            let c = my.transpose() * &d;
-            d -= &y * &c;
-        }
-        let md = plain(&d);
-        let keep: Vec<usize> = (0..p)
-            .filter(|&j| {
-                let norm2: f64 = d
-                    .col_as_slice(j)
-                    .iter()
-                    .zip(md.col_as_slice(j))
-                    .map(|(a, b)| a * b)
-                    .sum();
-                norm2.sqrt() > NOISE_FLOOR
+        let residuals: Vec<Residual> = (0..last_residual.len())
+            .map(|j| block.residual(j))
+            .collect();
+        let above_floor: Vec<bool> = residuals
+            .iter()
+            .zip(&last_residual)
+            .map(|(r, &last)| {
+                r.floor <= RESOLVABLE
+                    && r.relative > FLOOR_FACTOR * r.floor
+                    && r.relative < 0.5 * last
             })
             .collect();
+        for (last, r) in last_residual.iter_mut().zip(&residuals) {
+            *last = r.relative;
+        }
+        let (d, md) = corrections(&block, m, llt);
+        let (mut keep, mut for_residual) = chosen(&d, &md, &above_floor);
         if keep.is_empty() {
-            return Some(Refined {
-                values,
-                vectors: y,
-                sweeps: sweep - 1,
-            });
+            block.sweeps = sweep - 1;
+            return Some(block);
         }
-        let mut dk = Mat::<f64>::zeros(n, keep.len());
-        for (j, &c) in keep.iter().enumerate() {
-            dk.col_as_slice_mut(j).copy_from_slice(d.col_as_slice(c));
+        let mut next = extended(&block, k, (&d, &md), &keep);
+        if next.is_none() && for_residual {
+            // Corrections at the rounding level that made the Gram matrix singular: without
+            // them.
+            for_residual = false;
+            keep.retain(|&(_, scale)| scale == 1.0);
+            if keep.is_empty() {
+                block.sweeps = sweep - 1;
+                return Some(block);
+            }
+            next = extended(&block, k, (&d, &md), &keep);
         }
-        let q = concat(&y, &dk);
-        let kq = concat(&ky, &mul_all(k, &dk));
-        let mq = concat(&my, &plain(&dk));
-        let (new_values, x) = dense_pencil(&(q.transpose() * &kq), &(q.transpose() * &mq))?;
-        let x = x.subcols(0, p).to_owned();
+        let next = next?;
         let moved = (0..p)
-            .map(|j| (new_values[j] - values[j]).abs() / (values[j].abs() + shift.abs()))
+            .map(|j| {
+                (next.values[j] - block.values[j]).abs() / (block.values[j].abs() + shift.abs())
+            })
             .fold(0.0, f64::max);
-        y = &q * &x;
-        ky = &kq * &x;
-        my = &mq * &x;
-        values = new_values[..p].to_vec();
-        if moved <= tol {
-            return Some(Refined {
-                values,
-                vectors: y,
-                sweeps: sweep,
-            });
+        block = next;
+        block.sweeps = sweep;
+        if moved <= tol && !for_residual {
+            return Some(block);
         }
     }
-    Some(Refined {
-        values,
-        vectors: y,
-        sweeps: max_sweeps,
-    })
+    Some(block)
+}
+
+/// D = (K - sigma M)^-1 (K Y - M Y Lambda), M-orthogonalised against Y (twice), and M D.
+fn corrections(
+    block: &Refined,
+    m: SparseColMatRef<'_, usize, f64>,
+    llt: &SparseLlt,
+) -> (Mat<f64>, Mat<f64>) {
+    let (y, (ky, my)) = (&block.vectors, &block.products);
+    let mut d = Mat::<f64>::zeros(y.nrows(), y.ncols());
+    for (j, &lambda) in block.values.iter().enumerate() {
+        let (kc, mc) = (ky.col_as_slice(j), my.col_as_slice(j));
+        for ((c, a), b) in d.col_as_slice_mut(j).iter_mut().zip(kc).zip(mc) {
+            *c = a - lambda * b;
+        }
+    }
+    llt.solve_columns_in_place(d.as_mut());
+    for _ in 0..2 {
+        let c = my.transpose() * &d;
+        d -= y * &c;
+    }
+    let (md, _) = mul_columns(m, &d, false);
+    (d, md)
+}
+
+/// The corrections that enter (column, scale), and whether any enters for its residual
+/// alone (scaled to unit M-norm: the Gram matrix of Rayleigh-Ritz stays well scaled).
+fn chosen(d: &Mat<f64>, md: &Mat<f64>, above_floor: &[bool]) -> (Vec<(usize, f64)>, bool) {
+    let mut for_residual = false;
+    let mut keep = Vec::new();
+    for j in 0..d.ncols() {
+        let norm = residual::m_norm(d.col_as_slice(j), md.col_as_slice(j));
+        if norm > NOISE_FLOOR {
+            keep.push((j, 1.0));
+        } else if above_floor.get(j).copied().unwrap_or(false) && norm > 0.0 {
+            keep.push((j, 1.0 / norm));
+            for_residual = true;
+        }
+    }
+    (keep, for_residual)
+}
+
+/// Rayleigh-Ritz on [Y, D] with the chosen columns of D, scaled.
+fn extended(
+    block: &Refined,
+    k: SparseColMatRef<'_, usize, f64>,
+    (d, md): (&Mat<f64>, &Mat<f64>),
+    keep: &[(usize, f64)],
+) -> Option<Refined> {
+    let n = d.nrows();
+    let scaled = |a: &Mat<f64>| {
+        let mut out = Mat::<f64>::zeros(n, keep.len());
+        for (j, &(c, scale)) in keep.iter().enumerate() {
+            for (o, v) in out.col_as_slice_mut(j).iter_mut().zip(a.col_as_slice(c)) {
+                *o = scale * v;
+            }
+        }
+        out
+    };
+    let dk = scaled(d);
+    let (kd, bounds_d) = mul_columns(k, &dk, true);
+    let q = concat(&block.vectors, &dk);
+    let kq = concat(&block.products.0, &kd);
+    // M D is known: its columns scaled like D's (exactly so for a scale of 1).
+    let mq = concat(&block.products.1, &scaled(md));
+    let bounds: Vec<f64> = block.bounds.iter().chain(&bounds_d).copied().collect();
+    Refined::of_basis(&q, &kq, &mq, &bounds, block.vectors.ncols())
 }
 
 fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
@@ -209,34 +321,4 @@ fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
     out.subcols_mut(0, p).copy_from(a);
     out.subcols_mut(p, b.ncols()).copy_from(b);
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::structure::SymMatrix;
-
-    /// Row 0 of A x sums 1 + 1e16 - 1e16: the plain product loses the 1, the accurate one
-    /// keeps it (exact value by hand).
-    #[test]
-    fn accurate_product_survives_cancellation() {
-        let a = SymMatrix::from_entries(
-            3,
-            &[
-                (0, 0, 1.0),
-                (0, 1, 1e16),
-                (1, 0, 1e16),
-                (0, 2, -1e16),
-                (2, 0, -1e16),
-                (1, 1, 1.0),
-                (2, 2, 1.0),
-            ],
-        );
-        let x = [1.0, 1.0, 1.0];
-        let (mut plain, mut accurate) = ([0.0; 3], [0.0; 3]);
-        sparse_mul(a.as_faer(), &x, &mut plain);
-        accurate_mul(a.as_faer(), &x, &mut accurate);
-        assert_eq!(plain[0], 0.0);
-        assert_eq!(accurate, [1.0, 1e16 + 1.0, 1.0 - 1e16]);
-    }
 }

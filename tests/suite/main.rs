@@ -49,6 +49,7 @@ mod setups;
 mod signals;
 mod slurm_injection;
 mod solid;
+mod sparse_solver;
 mod study;
 mod study_measured_noise;
 mod uff_formats;

@@ -21,7 +21,7 @@ const STEEL: Material = Material {
 };
 
 /// A small specimen (540 DOFs) with a bolt patch.
-const LAP: &str = "width = 0.02\noverlap = 0.04\n\
+pub(crate) const LAP: &str = "width = 0.02\noverlap = 0.04\n\
     [material]\nyoungs_modulus = 2.1e11\npoisson_ratio = 0.3\ndensity = 7850.0\n\
     [[bar]]\nlength = 0.16\nthickness = 0.01\n[[bar]]\nlength = 0.12\nthickness = 0.008\n\
     [interface]\nnormal = 1e13\nshear_x = 2e12\nshear_y = 3e12\n\
