@@ -29,7 +29,10 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let matrices = model.assemble();
-    let count = args.n.unwrap_or(model.rigid + 1);
+    let modes = selected(args, &measured)?;
+    // the paper's basis of n pairs, or every pair the modes' frequencies pair with
+    let reach = modes.iter().map(|m| m.mode + model.rigid).max();
+    let count = args.n.or(reach).unwrap_or(model.rigid + 1);
     let modal = ModalSolution::lowest_of(&matrices, count)
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     check_elastic(&matrices, &modal, model.rigid)
@@ -49,7 +52,6 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         }
         _ => None,
     };
-    let modes = selected(args, &measured)?;
     let mut rows = Vec::new();
     let mut outcomes = Vec::new();
     let mut fallbacks = Vec::new();
@@ -95,11 +97,10 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                         outcomes.push(o);
                     }
                     _ => {
-                        let f_model = ModalSolution::lowest_of(&matrices, t + 1)?.frequency_hz(t);
                         rows.extend(out::unsolved_rows(
                             mode.mode,
                             mode.frequency_hz,
-                            f_model,
+                            modal.frequency_hz(t),
                             &all,
                         ));
                     }

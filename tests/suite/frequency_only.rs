@@ -102,9 +102,9 @@ fn the_spring_is_recovered_from_each_symmetric_frequency() {
     for (f, t) in measured.iter().zip([2usize, 4]) {
         let out = identify(&start, t, t - 1, *f, Some(1e-3), Choice::Named(1)).unwrap();
         let k2 = 1.0e5 * (1.0 + out.relative);
-        // the FE discretisation (60 elements per half) is the only difference
+        // the FE discretisation (60 elements per half) is the only difference: 2.3e-6 at mode 3
         assert!(
-            (k2 / k2_true - 1.0).abs() < 2e-4,
+            (k2 / k2_true - 1.0).abs() < 1e-5,
             "mode {t}: k2 {k2} vs {k2_true}"
         );
         assert!(out.sensitivity > 0.0, "a stiffness raises the frequency");
@@ -132,7 +132,8 @@ fn the_standard_deviation_is_the_derivative_of_the_solution() {
     let dlnp_dlnf = ((1.0 + up.relative).ln() - (1.0 + down.relative).ln()) / (2.0 * h);
     let predicted = centre.std.unwrap() / (1.0 + centre.relative) / 1e-3;
     assert!(
-        (dlnp_dlnf / predicted - 1.0).abs() < 1e-4,
+        // the root is solved to 1e-12 in ln lambda: over a step of 1e-5, 1e-7 at worst
+        (dlnp_dlnf / predicted - 1.0).abs() < 1e-6,
         "{dlnp_dlnf} vs {predicted}"
     );
 }

@@ -102,6 +102,23 @@ pub fn per_mode_corrections(
         let values: Vec<f64> = params.iter().map(|p| p.value).collect();
         let s = fitted.pairing.model_index[r];
         let outcome = identifier.identify_paired(m, s).ok();
+        let relatives = outcome
+            .as_ref()
+            .and_then(|o| o.relative.as_ref().ok())
+            .cloned();
+        if relatives.is_none()
+            && let Ok(f) = frequency_only::identify(
+                fitted.structure_of(r),
+                s,
+                m.mode,
+                m.frequency_hz,
+                Some(noise.frequency),
+                Choice::MostSensitive,
+            )
+        {
+            out.extend(from_frequency(m, &params, &f));
+            continue;
+        }
         // A mode paired beyond the basis (fewer sensors than the mode's index) has no
         // per-mode system: its correction is absent, not a panic.
         let std = Projector::new(&observe(identifier.basis(), &m.points))
@@ -124,35 +141,6 @@ pub fn per_mode_corrections(
                     noise.frequency * noise.frequency,
                 ))
             });
-        let relatives = outcome
-            .as_ref()
-            .and_then(|o| o.relative.as_ref().ok())
-            .cloned();
-        if relatives.is_none()
-            && let Ok(f) = frequency_only::identify(
-                fitted.structure_of(r),
-                s,
-                m.mode,
-                m.frequency_hz,
-                Some(noise.frequency),
-                Choice::MostSensitive,
-            )
-        {
-            out.extend(params.iter().enumerate().map(|(i, p)| {
-                let own = i == f.param;
-                ModeCorrection {
-                    mode: m.mode,
-                    frequency_hz: m.frequency_hz,
-                    param: p.name.clone(),
-                    relative: own.then_some(f.relative),
-                    correction: own.then_some(f.relative * p.value),
-                    std: f.std.filter(|_| own).map(|sd| sd * p.value),
-                    physical: own.then_some(true),
-                    source: if own { Source::Frequency } else { Source::Held },
-                }
-            }));
-            continue;
-        }
         for (i, p) in params.iter().enumerate() {
             let relative = relatives.as_ref().map(|z| z[i]);
             out.push(ModeCorrection {
@@ -168,6 +156,32 @@ pub fn per_mode_corrections(
         }
     }
     out
+}
+
+/// The corrections of mode `m` identified from its frequency alone (`f`): its one parameter,
+/// the others held.
+fn from_frequency(
+    m: &crate::measured::MeasuredMode,
+    params: &[crate::structure::Parameter],
+    f: &frequency_only::FrequencyOutcome,
+) -> Vec<ModeCorrection> {
+    params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let own = i == f.param;
+            ModeCorrection {
+                mode: m.mode,
+                frequency_hz: m.frequency_hz,
+                param: p.name.clone(),
+                relative: own.then_some(f.relative),
+                correction: own.then_some(f.relative * p.value),
+                std: f.std.filter(|_| own).map(|sd| sd * p.value),
+                physical: own.then_some(true),
+                source: if own { Source::Frequency } else { Source::Held },
+            }
+        })
+        .collect()
 }
 
 /// Flatness of the per-mode corrections of every parameter.

@@ -24,6 +24,7 @@
 //! Newton's converges quadratically.
 
 use crate::diagnose::fit::FitError;
+use crate::identify::frequency_only::sensitivities;
 use crate::modal::ModalSolution;
 use crate::structure::{Matrices, Structure};
 
@@ -74,21 +75,12 @@ pub struct Solved {
     pub sensitivity: Vec<f64>,
 }
 
-/// G_j = d ln f_s / d ln p_j of pair `s` of `modal`, solution of `structure`.
+/// G_j = d ln f_s / d ln p_j of pair `s` of `modal`, solution of `structure`: half the
+/// eigenvalue's logarithmic sensitivity.
 pub fn log_sensitivity(structure: &Structure, modal: &ModalSolution, s: usize) -> Vec<f64> {
-    let y: Vec<f64> = modal.vectors().col(s).iter().copied().collect();
-    let lambda = modal.values()[s];
-    let n = y.len();
-    let (mut kv, mut mv) = (vec![0.0; n], vec![0.0; n]);
-    structure
-        .identified()
-        .iter()
-        .map(|p| {
-            p.stiffness.apply(&y, &mut kv);
-            p.mass.apply(&y, &mut mv);
-            let d: f64 = (0..n).map(|i| y[i] * (kv[i] - lambda * mv[i])).sum();
-            p.value * d / (2.0 * lambda)
-        })
+    sensitivities(structure, modal, s)
+        .into_iter()
+        .map(|g| 0.5 * g)
         .collect()
 }
 
