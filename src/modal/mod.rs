@@ -22,6 +22,7 @@
 
 pub mod accurate;
 pub mod elastic;
+mod krylov;
 pub mod lanczos;
 pub mod nelson;
 pub mod refine;
