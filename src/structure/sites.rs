@@ -51,6 +51,9 @@ pub struct JointSite {
     pub parameters: [usize; 2],
     /// Whether it is a layered lap (a distributed interface over an overlap).
     pub lap: bool,
+    /// Of a layered lap with notched roots: the index of their k_r in the structure's
+    /// parameters.
+    pub root: Option<usize>,
 }
 
 /// A beam element.

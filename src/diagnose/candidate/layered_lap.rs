@@ -40,6 +40,9 @@ pub struct LayeredLap;
 const SHEAR_FACTORS: [f64; 7] = [1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3];
 /// Factors of the grid of starts on the normal scale.
 const NORMAL_FACTORS: [f64; 3] = [1e-2, 1.0, 1e2];
+/// Factors of the grid of starts on the roots' notch stiffness (the bonded limit: a real
+/// interface makes the root stiffer).
+const ROOT_FACTORS: [f64; 2] = [1.0, 10.0];
 
 /// The structure with the layered laps, if the model gives one.
 fn alternative(ctx: &EffectContext) -> Option<&Arc<Structure>> {
@@ -50,24 +53,27 @@ fn alternative(ctx: &EffectContext) -> Option<&Arc<Structure>> {
         .map(|a| &a.structure)
 }
 
-/// The indices (into the parameters) of every lap's k_n and k_s.
-fn lap_parameters(structure: &Structure) -> Vec<[usize; 2]> {
+/// The indices (into the parameters) of every lap's k_n, k_s and, where its roots are
+/// notched, k_r.
+fn lap_parameters(structure: &Structure) -> Vec<[Option<usize>; 3]> {
     structure
         .sites
         .joints
         .iter()
         .filter(|j| j.lap)
-        .map(|j| j.parameters)
+        .map(|j| [Some(j.parameters[0]), Some(j.parameters[1]), j.root])
         .collect()
 }
 
-/// The context of `structure` with every lap's (k_n, k_s) at `factors` times their nominal
-/// values.
-fn context_at(stage: &Stage, structure: &Structure, factors: [f64; 2]) -> Arc<EffectContext> {
+/// The context of `structure` with every lap's (k_n, k_s, k_r) at `factors` times their
+/// nominal values.
+fn context_at(stage: &Stage, structure: &Structure, factors: [f64; 3]) -> Arc<EffectContext> {
     let mut s = structure.clone();
-    for pair in lap_parameters(structure) {
-        for (k, &i) in pair.iter().enumerate() {
-            s.parameters[i].value *= factors[k];
+    for lap in lap_parameters(structure) {
+        for (k, i) in lap.iter().enumerate() {
+            if let Some(i) = *i {
+                s.parameters[i].value *= factors[k];
+            }
         }
     }
     Arc::new(EffectContext {
@@ -102,9 +108,18 @@ fn axial_pair(fitted: &Fitted) -> Option<usize> {
 fn start(stage: &Stage, structure: &Structure) -> Result<Arc<EffectContext>, CandidateError> {
     let mut best: Option<(f64, Arc<EffectContext>)> = None;
     let mut failure = None;
-    for n in NORMAL_FACTORS {
-        for s in SHEAR_FACTORS {
-            let ctx = context_at(stage, structure, [n, s]);
+    let roots: &[f64] = if lap_parameters(structure).iter().any(|l| l[2].is_some()) {
+        &ROOT_FACTORS
+    } else {
+        &[1.0]
+    };
+    for (n, s, r) in NORMAL_FACTORS
+        .iter()
+        .flat_map(|&n| SHEAR_FACTORS.iter().map(move |&s| (n, s)))
+        .flat_map(|(n, s)| roots.iter().map(move |&r| (n, s, r)))
+    {
+        {
+            let ctx = context_at(stage, structure, [n, s, r]);
             let r = fit::as_given(&ctx, stage.measured, stage.calibration);
             match r {
                 Ok(f) if axial_pair(&f).is_none() && best.as_ref().is_none_or(|b| f.chi2 < b.0) => {
@@ -164,9 +179,19 @@ impl Candidate for LayeredLap {
             let at = identified.iter().position(|&p| p == i)?;
             Some(fitted.estimates[at].clone())
         };
-        let parameters: Vec<fit::Estimate> =
-            laps.iter().flatten().filter_map(|&i| estimate(i)).collect();
-        let first_ks = laps.first().map(|pair| pair[1]);
+        let parameters: Vec<fit::Estimate> = laps
+            .iter()
+            .flatten()
+            .flatten()
+            .filter_map(|&i| estimate(i))
+            .collect();
+        // One added parameter for the overlap's given geometry, one per fitted k_r.
+        let added = 1 + laps
+            .iter()
+            .filter_map(|l| l[2])
+            .filter(|&i| estimate(i).is_some())
+            .count();
+        let first_ks = laps.first().and_then(|l| l[1]);
         let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
         let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
         let excluded = axial_pair(&fitted)
@@ -178,7 +203,7 @@ impl Candidate for LayeredLap {
             parameters,
             (size, size_se),
             describe,
-            1,
+            added,
             excluded,
         ))
     }

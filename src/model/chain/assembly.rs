@@ -12,7 +12,7 @@
 use super::Chain;
 use super::beam::{element_mass, element_stiffness};
 use super::joint::{JointStiffness, parameter_name};
-use super::lap::LAP_UNIT;
+use super::lap::{LAP_UNIT, ROOT_UNIT};
 use super::layered::{self, Laps};
 use super::mesh::Mesh;
 use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
@@ -40,7 +40,8 @@ impl Chain {
         let hanging = layout.hanging_dofs(&mut infos);
         let laps = Laps::number(self, &layout.mesh, &layout.node_dofs, tol, &mut infos);
         let n = infos.len();
-        let lines = layout.lines();
+        let mut lines = layout.lines();
+        laps.hinge(&mut lines);
         let (supports, node_held, held_count) = layout.held_supports();
         // Base matrices: elements, support springs, masses, sensor masses; the parameters
         // after the joints': identified support springs and masses.
@@ -407,6 +408,20 @@ impl Layout<'_> {
                     });
                 }
             }
+            let root = match (laps.roots(j), joint.active_lap().and_then(|l| l.k_r)) {
+                (Some(pattern), Some(k_r)) => {
+                    parameters.push(Parameter {
+                        name: layered::root_name(j, chain.joints.len()),
+                        unit: ROOT_UNIT,
+                        value: k_r,
+                        stiffness: pattern,
+                        mass: SparseSym::zero(),
+                        role: joint.active_lap().map_or(Role::Identified, |l| l.root_role),
+                    });
+                    Some(parameters.len() - 1)
+                }
+                _ => None,
+            };
             let points = if interface.is_some() {
                 &[][..]
             } else {
@@ -443,6 +458,7 @@ impl Layout<'_> {
                 ],
                 parameters: [first, first + 1],
                 lap: interface.is_some(),
+                root,
             });
         }
         (parameters, joints)

@@ -52,7 +52,7 @@ use serde::Deserialize;
 use super::Chain;
 use super::beam::{Beam, Section, Segment};
 use super::joint::Joint;
-use super::lap::{RawLap, lap};
+use super::lap::{ROOT_PARAMETER, RawLap, lap};
 use super::setup::{PointMass, Sensor};
 use super::support::{Support, SupportCheck};
 use crate::input::{FieldCheck, InputError, TaggedTable};
@@ -525,24 +525,37 @@ fn joint(j: &RawJoint, i: usize, beams: &[Beam], check: &FieldCheck) -> Result<J
             ));
         }
     };
-    let names: [&str; 2] = if active { ["k_n", "k_s"] } else { ["k1", "k2"] };
+    let names: &[&str] = if active {
+        &["k_n", "k_s", ROOT_PARAMETER]
+    } else {
+        &["k1", "k2"]
+    };
     let mut roles = [Role::Identified; 2];
+    let mut root_role = Role::Identified;
     for (k, name) in j.fixed.iter().enumerate() {
-        let Some(slot) = names.iter().position(|n| n == name) else {
-            return Err(check.invalid(
-                format!("joint[{i}].fixed[{k}]"),
-                format!("\"{name}\""),
-                format!(
-                    "a joint's parameters are \"{}\" and \"{}\"",
-                    names[0], names[1]
-                ),
-            ));
-        };
-        roles[slot] = Role::Fixed;
+        match names.iter().position(|n| n == name) {
+            Some(2) => root_role = Role::Fixed,
+            Some(slot) => roles[slot] = Role::Fixed,
+            None => {
+                return Err(check.invalid(
+                    format!("joint[{i}].fixed[{k}]"),
+                    format!("\"{name}\""),
+                    format!(
+                        "a joint's parameters are \"{}\" and \"{}\"",
+                        names[..names.len() - 1].join("\", \""),
+                        names[names.len() - 1]
+                    ),
+                ));
+            }
+        }
     }
     let lap = match (&j.lap, active) {
         (Some(raw), _) => {
-            let lap_roles = if active { roles } else { [Role::Identified; 2] };
+            let lap_roles = if active {
+                (roles, root_role)
+            } else {
+                ([Role::Identified; 2], Role::Identified)
+            };
             Some(lap(raw, i, active, lap_roles, beams, check)?)
         }
         (None, true) => {
@@ -554,6 +567,15 @@ fn joint(j: &RawJoint, i: usize, beams: &[Beam], check: &FieldCheck) -> Result<J
         }
         (None, false) => None,
     };
+    if let Some(k) = j.fixed.iter().position(|n| n == ROOT_PARAMETER)
+        && lap.is_some_and(|l| l.k_r.is_none())
+    {
+        return Err(check.invalid(
+            format!("joint[{i}].fixed[{k}]"),
+            "\"k_r\"",
+            "the lap's roots are rigid (no joint.lap.k_r given): there is no k_r to hold",
+        ));
+    }
     if active {
         if let Some((name, value)) = [("k1", j.k1), ("k2", j.k2)]
             .into_iter()

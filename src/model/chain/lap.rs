@@ -32,6 +32,7 @@
 use serde::Deserialize;
 
 use super::beam::{Beam, Section};
+use super::notch;
 use crate::input::{FieldCheck, InputError};
 use crate::structure::Role;
 
@@ -59,6 +60,14 @@ pub struct Lap {
     pub k_s: f64,
     /// Whether k_n, k_s are identified or held fixed.
     pub roles: [Role; 2],
+    /// The notch stiffness of each layer's root (the upper layer's at the overlap's start, the
+    /// lower's at its end; [`super::notch`]), `None` where the layer is its beam's full height.
+    pub notches: [Option<f64>; 2],
+    /// The rotational stiffness of every notched root, N m/rad: `None`, the roots are rigid
+    /// (plane sections through them).
+    pub k_r: Option<f64>,
+    /// Whether k_r is identified or held fixed.
+    pub root_role: Role,
     /// `true`: the joint is this layered lap; `false`: a point joint whose overlap this is.
     pub active: bool,
 }
@@ -67,6 +76,10 @@ pub struct Lap {
 pub const LAP_PARAMETERS: [&str; 2] = ["k_n", "k_s"];
 /// The unit of k_n and k_s.
 pub const LAP_UNIT: &str = "N/m^2";
+/// The name of the roots' rotational stiffness.
+pub const ROOT_PARAMETER: &str = "k_r";
+/// Its unit.
+pub const ROOT_UNIT: &str = "N m/rad";
 
 impl Lap {
     /// The overlap's ends for a joint at `x`, m.
@@ -104,6 +117,7 @@ pub(crate) struct RawLap {
     lower: Option<RawLayer>,
     k_n: Option<f64>,
     k_s: Option<f64>,
+    k_r: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -116,12 +130,12 @@ struct RawLayer {
 }
 
 /// The lap of joint `j` (between `beams[j]` and `beams[j + 1]`), the joint itself when
-/// `active`, its roles `roles`.
+/// `active`, its roles `roles` (k_n, k_s) and `root_role` (k_r).
 pub(crate) fn lap(
     raw: &RawLap,
     j: usize,
     active: bool,
-    roles: [Role; 2],
+    (roles, root_role): ([Role; 2], Role),
     beams: &[Beam],
     check: &FieldCheck,
 ) -> Result<Lap, InputError> {
@@ -164,12 +178,32 @@ pub(crate) fn lap(
             ));
         }
     };
+    let notches = [0, 1].map(|r| {
+        let depth = notch::height(&sections[r]) - notch::height(&layers[r].section);
+        notch::stiffness(&sections[r], depth)
+    });
+    let nominal: Vec<f64> = notches.iter().flatten().copied().collect();
+    let k_r = match raw.k_r {
+        Some(_) if nominal.is_empty() => {
+            return Err(check.invalid(
+                p("k_r"),
+                raw.k_r.unwrap_or_default(),
+                "neither layer's root is a notch (each layer is its beam's full height): leave k_r out",
+            ));
+        }
+        Some(v) => Some(check.positive(p("k_r"), v, "N m/rad")?),
+        None if active || nominal.is_empty() => None,
+        None => Some(nominal.iter().sum::<f64>() / nominal.len() as f64),
+    };
     let mut lap = Lap {
         length,
         layers,
         k_n: 0.0,
         k_s: 0.0,
         roles,
+        notches,
+        k_r,
+        root_role,
         active,
     };
     let value = |v: Option<f64>, name: &str, scale: f64| match v {

@@ -25,11 +25,11 @@ use super::Chain;
 use super::beam::{Beam, element_mass, element_stiffness};
 use super::interface::{bar_mass, bar_stiffness, normal, shear};
 use super::joint::Joint;
-use super::lap::{LAP_PARAMETERS, Lap};
+use super::lap::{LAP_PARAMETERS, Lap, ROOT_PARAMETER};
 use super::mesh::Mesh;
 use super::support::{Support, SupportKind};
 use crate::input::{FieldCheck, InputError};
-use crate::structure::{Direction, DofInfo, SparseSym};
+use crate::structure::{Direction, DofInfo, LineElement, SparseSym};
 
 /// A DOF of an element as a combination of global DOFs: sum of coefficient x DOF.
 type Combo = Vec<(usize, f64)>;
@@ -43,6 +43,19 @@ enum Outer {
     Held,
     /// A rigid axial translation: its DOF and the part's mass.
     Free(usize, f64),
+}
+
+/// A layer's notched root (`super::notch`): the beam's rotation and the layer's, which a
+/// spring of stiffness k_r joins.
+#[derive(Debug, Clone, Copy)]
+struct Hinge {
+    /// The beam's theta at the root.
+    beam: Option<usize>,
+    /// The layer's own theta there.
+    layer: usize,
+    /// The chain's element (index into the mesh's) that the layer begins or ends with, and
+    /// which of its ends (0, 1) is the root.
+    element: (usize, usize),
 }
 
 /// One lap's DOFs.
@@ -60,6 +73,8 @@ struct LapDofs {
     axial: [Vec<Combo>; 2],
     /// Per layer, per element: the axial DOF of its middle.
     mids: [Vec<usize>; 2],
+    /// The notched roots, when the lap's k_r is given.
+    hinges: Vec<Hinge>,
 }
 
 /// The layered laps of a chain (see the module docs).
@@ -76,6 +91,15 @@ pub fn parameter_name(joint: usize, count: usize, k: usize) -> String {
         LAP_PARAMETERS[k].to_string()
     } else {
         format!("joint{}.{}", joint + 1, LAP_PARAMETERS[k])
+    }
+}
+
+/// The name of the roots' rotational stiffness of joint `joint` of `count`.
+pub fn root_name(joint: usize, count: usize) -> String {
+    if count == 1 {
+        ROOT_PARAMETER.to_string()
+    } else {
+        format!("joint{}.{ROOT_PARAMETER}", joint + 1)
     }
 }
 
@@ -221,6 +245,33 @@ impl Laps {
     }
 }
 
+impl Laps {
+    /// dK/dk_r of joint `joint`, if it is a layered lap with notched roots.
+    pub(super) fn roots(&self, joint: usize) -> Option<SparseSym> {
+        let lap = self.laps.iter().find(|l| l.joint == joint)?;
+        if lap.hinges.is_empty() {
+            return None;
+        }
+        let mut k = SparseSym::zero();
+        for h in &lap.hinges {
+            let dofs = [
+                h.beam.map(|b| vec![(b, 1.0)]).unwrap_or_default(),
+                vec![(h.layer, 1.0)],
+            ];
+            add_combined(&mut k, &dofs, &[[1.0, -1.0], [-1.0, 1.0]]);
+        }
+        Some(k)
+    }
+
+    /// The chain's elements with the layers' own rotations at their notched roots.
+    pub(super) fn hinge(&self, lines: &mut [LineElement]) {
+        for h in self.laps.iter().flat_map(|l| &l.hinges) {
+            let (element, end) = h.element;
+            lines[element].dofs[2 * end + 1] = Some(h.layer);
+        }
+    }
+}
+
 impl LapDofs {
     /// The axial DOFs of element `i` of layer `layer`: its two nodes and its middle.
     fn bar(&self, layer: usize, i: usize) -> [Combo; 3] {
@@ -281,16 +332,44 @@ fn number_lap(
             None => new_node(1, k, infos),
         })
         .collect();
-    let bend = [upper, lower];
+    let mut bend = [upper, lower];
     // The layers' ends that continue into their beams: the upper's first node, the lower's
     // last.
     let ends = [(0, j), (xs.len() - 1, j + 1)];
+    let roots = [left[0], right[right.len() - 1]];
+    let mut hinges = Vec::new();
+    for layer in 0..2 {
+        let (end, beam) = ends[layer];
+        let continues = matches!(outer[beam], Outer::Free(..) | Outer::Held);
+        if !(continues && lap.k_r.is_some() && lap.notches[layer].is_some()) {
+            continue;
+        }
+        let label = format!("lap{}.{}{end}:{}", j + 1, names[layer], Direction::Theta);
+        let theta = push_dof(infos, label, xs[end], Direction::Theta);
+        bend[layer][end][1] = Some(theta);
+        let element = mesh
+            .elements
+            .iter()
+            .position(|e| e.beam == beam && e.nodes[layer] == roots[layer])
+            .expect("a layer begins or ends with an element of its beam");
+        hinges.push(Hinge {
+            beam: node_dofs[roots[layer]][1],
+            layer: theta,
+            element: (element, layer),
+        });
+    }
     let axial: [Vec<Combo>; 2] = std::array::from_fn(|layer| {
         let (end, beam) = ends[layer];
         let offset = lap.layers[layer].offset;
         (0..xs.len())
             .map(|k| {
-                let theta = bend[layer][k][1];
+                // At its root a layer's axial motion is the beam section's at the layer's
+                // centroid (the notch's hinge lies there).
+                let theta = if k == end {
+                    node_dofs[roots[layer]][1]
+                } else {
+                    bend[layer][k][1]
+                };
                 let tie = |u: Option<usize>| -> Combo {
                     u.map(|u| (u, 1.0))
                         .into_iter()
@@ -324,6 +403,7 @@ fn number_lap(
         bend,
         axial,
         mids,
+        hinges,
     }
 }
 

@@ -22,6 +22,7 @@ pub mod joint;
 pub mod lap;
 pub mod layered;
 pub mod mesh;
+pub mod notch;
 pub mod setup;
 pub mod support;
 
