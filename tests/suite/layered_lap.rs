@@ -479,3 +479,34 @@ fn the_interface_derivatives_match_central_differences() {
         }
     }
 }
+
+/// A root stiffness that is not positive, given where no root is notched, or held where none
+/// is given, is refused with the field, the value and what is allowed.
+#[test]
+fn bad_root_stiffnesses_are_refused() {
+    let lap = "kind = \"lap\"\n[joint.lap]\nlength = 0.12\nk_n = 1e9\nk_s = 1e9\n";
+    let cases = [
+        (
+            format!("{lap}k_r = 0\n"),
+            "m.toml: joint[0].lap.k_r = 0 is invalid: it must be finite and > 0 (N m/rad)",
+        ),
+        (
+            format!("{lap}k_r = -3e4\n"),
+            "m.toml: joint[0].lap.k_r = -30000 is invalid: it must be finite and > 0 (N m/rad)",
+        ),
+        (
+            format!("{lap}layers = \"full\"\nk_r = 3e4\n"),
+            "m.toml: joint[0].lap.k_r = 30000 is invalid: neither layer's root is a notch (each layer is its beam's full height): leave k_r out",
+        ),
+        (
+            lap.replacen("kind = \"lap\"\n", "kind = \"lap\"\nfixed = [\"k_r\"]\n", 1),
+            "m.toml: joint[0].fixed[0] = \"k_r\" is invalid: the lap's roots are rigid (no joint.lap.k_r given): there is no k_r to hold",
+        ),
+    ];
+    for (joint, message) in cases {
+        let err = chain_from_toml(&model([0.35, 0.35], 0.01, &joint), Path::new("m.toml"))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, message, "{joint}");
+    }
+}

@@ -1,26 +1,30 @@
 //! `layered_lap`: the point joints whose overlap the model file gives (`[joint.lap]`) replaced
 //! by the layered lap over that overlap (`crate::model::chain::layered`): two layers joined by
 //! an interface of normal and shear stiffness k_n, k_s per unit length, fitted in place of the
-//! joint's k1, k2.
+//! joint's k1, k2, and, where a layer is thinner than its beam, the rotational stiffness k_r
+//! of the notch at its root (`crate::model::chain::notch`), fitted with them. Without k_r the
+//! 1D layers are stiffer than the solid lap they stand for: plane sections carry the beam's
+//! full section right up to the free face where the other layer ends.
 //!
 //! The fit is the calibration's (module `fit`): x = ln(p / p_0) for every joint parameter (the
-//! laps' k_n, k_s and the other joints' k1, k2), the shape scales c_r, Levenberg-Marquardt.
-//! The start p_0 of k_n, k_s is the best, by chi^2 with only the shape scales fitted, of a grid
-//! around their nominal values (the model file's, or else the interface's natural scales:
+//! laps' k_n, k_s, k_r and the other joints' k1, k2), the shape scales c_r, Levenberg-Marquardt.
+//! The start p_0 of k_n, k_s, k_r is the best, by chi^2 with only the shape scales fitted, of a
+//! grid around their nominal values (the model file's, or else the interface's natural scales:
 //! [`crate::model::chain::Lap::shear_scale`] for k_s, 10^4 times
 //! [`crate::model::chain::Lap::normal_scale`] for k_n, bolted contact being stiff in
-//! compression): k_s at 10^-3 ... 10^3 of its nominal value, k_n at 10^-2, 1, 10^2 of its;
-//! every lap at the same factors. The refit of a later stage starts from the earlier optimum,
-//! on the same start.
+//! compression, and the notch's bonded-limit stiffness for k_r): k_s at 10^-3 ... 10^3 of its
+//! nominal value, k_n at 10^-2, 1, 10^2 of its, k_r at 1 and 10 times its (a compliant
+//! interface makes the root stiffer than the bonded notch); every lap at the same factors. The
+//! refit of a later stage starts from the earlier optimum, on the same start.
 //!
 //! A start, or a fit, that pairs a measured mode with an axial mode of the layers (the slip of
 //! a soft interface brings them down among the bending modes) is refused: a grid point is then
 //! no start, a fit is excluded with that reason.
 //!
-//! The lap is not nested in the point joint: it has as many parameters. Its likelihood-ratio
-//! statistic chi^2(point) - chi^2(lap) is tested as one added parameter, which the overlap's
-//! given geometry stands for (conservative: a model with no more unknowns than the point
-//! joint is asked to explain more).
+//! The lap is not nested in the point joint. Its likelihood-ratio statistic chi^2(point) -
+//! chi^2(lap) is tested with one added parameter for the overlap's given geometry (k_n, k_s
+//! are as many as k1, k2: a model with no more unknowns than the point joint is asked to
+//! explain more, conservative) and one per fitted k_r.
 //!
 //! Size: k_s of the first lap, N/m per m.
 
@@ -113,22 +117,19 @@ fn start(stage: &Stage, structure: &Structure) -> Result<Arc<EffectContext>, Can
     } else {
         &[1.0]
     };
-    for (n, s, r) in NORMAL_FACTORS
+    let grid = NORMAL_FACTORS
         .iter()
         .flat_map(|&n| SHEAR_FACTORS.iter().map(move |&s| (n, s)))
-        .flat_map(|(n, s)| roots.iter().map(move |&r| (n, s, r)))
-    {
-        {
-            let ctx = context_at(stage, structure, [n, s, r]);
-            let r = fit::as_given(&ctx, stage.measured, stage.calibration);
-            match r {
-                Ok(f) if axial_pair(&f).is_none() && best.as_ref().is_none_or(|b| f.chi2 < b.0) => {
-                    best = Some((f.chi2, ctx))
-                }
-                Ok(_) => {}
-                Err(e) => {
-                    failure.get_or_insert(e);
-                }
+        .flat_map(|(n, s)| roots.iter().map(move |&r| [n, s, r]));
+    for factors in grid {
+        let ctx = context_at(stage, structure, factors);
+        match fit::as_given(&ctx, stage.measured, stage.calibration) {
+            Ok(f) if axial_pair(&f).is_none() && best.as_ref().is_none_or(|b| f.chi2 < b.0) => {
+                best = Some((f.chi2, ctx))
+            }
+            Ok(_) => {}
+            Err(e) => {
+                failure.get_or_insert(e);
             }
         }
     }
@@ -149,7 +150,7 @@ impl Candidate for LayeredLap {
     }
 
     fn describe(&self) -> &'static str {
-        "the point joints whose overlap the model file gives ([joint.lap]) replaced by the layered lap: the two beams as two layers over the overlap, joined by an interface of normal and shear stiffness k_n, k_s per unit length fitted in place of k1, k2; size = k_s of the first lap (N/m per m)"
+        "the point joints whose overlap the model file gives ([joint.lap]) replaced by the layered lap: the two beams as two layers over the overlap, joined by an interface of normal and shear stiffness k_n, k_s per unit length fitted in place of k1, k2, with the rotational stiffness k_r of the layers' notched roots; size = k_s of the first lap (N/m per m)"
     }
 
     fn applies(&self, ctx: &EffectContext) -> bool {
