@@ -67,6 +67,12 @@ pub struct AmplitudeArgs {
     /// amplitude_parameters.csv, amplitude_bands.csv, amplitude_mode<r>.svg.
     #[arg(long)]
     pub out: PathBuf,
+    /// Also the joint's own stiffness and damping against amplitude: the named identified
+    /// parameter of the model (e.g. k2) from each level's frequency of each mode, the joint's
+    /// damping zeta / s; writes joint_levels.csv, joint_laws.csv, joint_parameters.csv,
+    /// joint_bands.csv, joint_errors.csv (frequencies before and after), joint_mode<r>.svg.
+    #[arg(long)]
+    pub joint: Option<String>,
 }
 
 /// `jointid solid`.

@@ -244,15 +244,14 @@ fn level_rows(
     Ok(rows)
 }
 
-/// Reads every level's modes and amplitudes (module docs): one [`ModeData`] per mode of the
-/// first level, each with a row per level.
-pub fn load(levels: &Levels) -> Result<Vec<ModeData>, AmplitudeError> {
-    let model = crate::model::from_path(&levels.model)?;
+/// Reads every level's modes and amplitudes (module docs) against `model`: one [`ModeData`]
+/// per mode of the first level, each with a row per level.
+pub fn load(levels: &Levels, model: &Structure) -> Result<Vec<ModeData>, AmplitudeError> {
     let per_level: Vec<Vec<Row>> = levels
         .levels
         .iter()
         .enumerate()
-        .map(|(i, level)| level_rows(i, level, levels, &model))
+        .map(|(i, level)| level_rows(i, level, levels, model))
         .collect::<Result<_, _>>()?;
     let first: Vec<usize> = per_level[0].iter().map(|r| r.mode).collect();
     let mut out: Vec<ModeData> = first

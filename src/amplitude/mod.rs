@@ -9,15 +9,19 @@
 //! - [`iwan`]: the Iwan model's closed forms (secant stiffness, dissipation) and derivatives;
 //! - [`laws`]: the three laws of stiffness and damping against amplitude;
 //! - [`fit`](mod@fit): weighted least squares of one law, the extra variance of the scatter;
-//! - [`select`]: every law on one mode, the choice, the bands.
+//! - [`select`]: every law on one mode, the choice, the bands;
+//! - [`joint`]: with a joint parameter named, the same on the joint's own stiffness and
+//!   damping per level, and the frequencies before and after.
 //!
 //! Entry point: [`fit_levels`]. Returns data; `crate::output::amplitude` writes it.
 //!
 //! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
-//! ([`crate::input`], [`crate::optim`], [`crate::uff`], [`crate::model`], [`crate::measured`]).
+//! ([`crate::input`], [`crate::optim`], [`crate::uff`], [`crate::model`], [`crate::measured`],
+//! [`crate::identify`], [`crate::modal`]).
 
 pub mod fit;
 pub mod iwan;
+pub mod joint;
 pub mod laws;
 pub mod levels;
 pub mod load;
@@ -27,6 +31,7 @@ use std::path::PathBuf;
 
 pub use fit::{Series, Weights};
 pub use iwan::{Iwan, Segalman};
+pub use joint::{JointData, LevelError};
 pub use laws::{LAWS, Law, Regime};
 pub use levels::Levels;
 pub use load::{ModeData, Row, load};
@@ -44,6 +49,9 @@ pub enum AmplitudeError {
     /// An FRF file.
     #[error(transparent)]
     Uff(#[from] crate::uff::UffError),
+    /// The joint's stiffness cannot be had from a level's frequency.
+    #[error("the joint's stiffness: {0}")]
+    Joint(String),
     /// A file whose content does not serve the fit.
     #[error("{file}: {message}")]
     Data {
@@ -72,6 +80,19 @@ pub struct ModeResult {
     pub data: ModeData,
     /// The fit.
     pub fit: ModeFit,
+    /// With a joint parameter named: its data, fit and the frequencies before and after.
+    pub joint: Option<JointResult>,
+}
+
+/// The joint's stiffness and damping of one mode against amplitude ([`joint`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointResult {
+    /// The joint's parameter and damping per level.
+    pub data: JointData,
+    /// The laws fitted on them.
+    pub fit: ModeFit,
+    /// Per level: the frequencies with the constant and the chosen law's joint.
+    pub errors: Vec<LevelError>,
 }
 
 /// Every mode of a levels file.
@@ -83,15 +104,45 @@ pub struct AmplitudeFit {
     pub modes: Vec<ModeResult>,
 }
 
-/// Reads the levels of `levels` and fits every mode (module docs).
-pub fn fit_levels(levels: &Levels) -> Result<AmplitudeFit, AmplitudeError> {
-    let modes = load(levels)?
+/// Reads the levels of `levels` and fits every mode (module docs); with `joint` (the name of
+/// one of the model's identified parameters) also the joint's stiffness and damping.
+pub fn fit_levels(levels: &Levels, joint: Option<&str>) -> Result<AmplitudeFit, AmplitudeError> {
+    let model = crate::model::from_path(&levels.model)?;
+    let param = joint
+        .map(|name| {
+            let names: Vec<String> = model.identified().iter().map(|p| p.name.clone()).collect();
+            names.iter().position(|n| *n == name).ok_or_else(|| {
+                AmplitudeError::Input(crate::input::InputError::Invalid {
+                    file: levels.model.clone(),
+                    path: "--joint".into(),
+                    value: format!("\"{name}\""),
+                    allowed: format!(
+                        "the name of one of the model's identified parameters: {}",
+                        names.join(", ")
+                    ),
+                })
+            })
+        })
+        .transpose()?;
+    let modes = load(levels, &model)?
         .into_iter()
         .map(|data| {
             let fit = fit_mode(&data.series());
-            ModeResult { data, fit }
+            let joint = param
+                .map(|param| -> Result<JointResult, AmplitudeError> {
+                    let jd = joint::joint_data(&model, param, &data)?;
+                    let jfit = fit_mode(&jd.series(&data));
+                    let errors = joint::level_errors(&model, param, &data, &jfit)?;
+                    Ok(JointResult {
+                        data: jd,
+                        fit: jfit,
+                        errors,
+                    })
+                })
+                .transpose()?;
+            Ok(ModeResult { data, fit, joint })
         })
-        .collect();
+        .collect::<Result<_, AmplitudeError>>()?;
     Ok(AmplitudeFit {
         excitation_unit: levels.excitation_unit.clone(),
         modes,

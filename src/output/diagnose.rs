@@ -470,7 +470,8 @@ fn write_candidates(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     Ok(())
 }
 
-/// One row per candidate: its fit and tests, or why it failed or was excluded.
+/// One row per candidate: its fit and tests, or why it failed or was excluded (a note after
+/// the columns).
 pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
     // Name, size, chi^2/dof and LR statistic of a fitted candidate.
     let fitted_cells = |c: &crate::diagnose::CandidateReport| {
@@ -490,6 +491,7 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
                     "excluded".into(),
                     String::new(),
                     String::new(),
+                    String::new(),
                     c.excluded.clone().unwrap_or_default(),
                 ],
             ]
@@ -497,6 +499,7 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
             Some(e) => vec![
                 c.name.clone(),
                 "fit failed".into(),
+                String::new(),
                 String::new(),
                 String::new(),
                 String::new(),

@@ -2,7 +2,9 @@
 
 use std::io::{self, Write};
 
-/// Writes `header` and `rows` as right-aligned columns separated by two spaces.
+/// Writes `header` and `rows` as right-aligned columns separated by two spaces. Cells of a
+/// row beyond the header's columns are a note (why a row has no values), written after its
+/// columns and left out of their widths.
 pub fn write_table(out: &mut dyn Write, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
     let mut widths: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
     for row in rows {
@@ -10,17 +12,24 @@ pub fn write_table(out: &mut dyn Write, header: &[&str], rows: &[Vec<String>]) -
             *w = (*w).max(cell.chars().count());
         }
     }
-    let line = |cells: Vec<&str>| {
-        cells
+    let line = |cells: &[&str]| {
+        let columns = cells.len().min(widths.len());
+        let mut text = cells[..columns]
             .iter()
             .zip(&widths)
             .map(|(c, w)| format!("{c:>w$}"))
             .collect::<Vec<_>>()
-            .join("  ")
+            .join("  ");
+        for note in &cells[columns..] {
+            text.push_str("  ");
+            text.push_str(note);
+        }
+        text
     };
-    writeln!(out, "{}", line(header.to_vec()))?;
+    writeln!(out, "{}", line(header))?;
     for row in rows {
-        writeln!(out, "{}", line(row.iter().map(String::as_str).collect()))?;
+        let cells: Vec<&str> = row.iter().map(String::as_str).collect();
+        writeln!(out, "{}", line(&cells))?;
     }
     Ok(())
 }
@@ -65,5 +74,16 @@ mod tests {
         write_table(&mut buf, &["a", "long"], &[vec!["123".into(), "x".into()]]).unwrap();
         assert_eq!(String::from_utf8(buf).unwrap(), "  a  long\n123     x\n");
         assert_eq!(sci(2.0e6), "2.000e6");
+        // A note beyond the header's columns follows its row and widens no column.
+        let mut buf = Vec::new();
+        let rows = [
+            vec!["12".into(), "x".into(), "a long note".into()],
+            vec!["3".into(), "yy".into()],
+        ];
+        write_table(&mut buf, &["a", "b"], &rows).unwrap();
+        assert_eq!(
+            String::from_utf8(buf).unwrap(),
+            " a   b\n12   x  a long note\n 3  yy\n"
+        );
     }
 }

@@ -16,7 +16,7 @@ use jointid::identify::frequency_only::{Choice, FrequencyError, identify};
 use jointid::model::{Chain, Joint};
 use jointid::structure::Structure;
 
-const HALF: f64 = 0.25;
+pub const HALF: f64 = 0.25;
 
 /// det of the half-beam's boundary conditions at b (1/m), spring 2 k2 at x = 0.
 fn det(b: f64, k2: f64) -> f64 {
@@ -47,7 +47,7 @@ fn det(b: f64, k2: f64) -> f64 {
 }
 
 /// The lowest `count` symmetric frequencies (Hz) with spring k2, by scanning and bisection.
-fn symmetric_hz(k2: f64, count: usize) -> Vec<f64> {
+pub fn symmetric_hz(k2: f64, count: usize) -> Vec<f64> {
     let bar = steel_bar(HALF, 1);
     let c = (bar.bending_stiffness() / bar.mass_per_length()).sqrt();
     let mut roots = Vec::new();

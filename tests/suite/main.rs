@@ -14,6 +14,7 @@
 mod common;
 
 mod amplitude;
+mod amplitude_joint;
 mod amplitude_levels;
 mod analytic_beam;
 mod bounded_input;

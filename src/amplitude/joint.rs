@@ -1,0 +1,163 @@
+//! The joint's own stiffness and damping against amplitude (`jointid amplitude --joint P`): per
+//! level and mode, the joint parameter p that the model needs for that level's frequency
+//! (`crate::identify::frequency_only`, the mode paired with the model's deformable mode of its
+//! number), and the joint's damping ratio zeta_j = zeta / s, s = d ln lambda / d ln p the share
+//! of the mode's strain energy that the joint stores (the modal damping all the joint's: what
+//! a dissipative joint element of loss factor 2 zeta_j gives the mode to first order). The three
+//! laws are then fitted on (A, p, zeta_j) as on the modal series.
+//!
+//! Before and after, per level: the frequencies of the model with the constant law's joint (one
+//! stiffness for every level) and with the chosen law's joint at the level's amplitude, against
+//! the measured ones.
+//!
+//! Imports: [`super::load`], [`super::select`], [`super::laws`], [`crate::identify`],
+//! [`crate::modal`], [`crate::structure`].
+
+use super::AmplitudeError;
+use super::fit::Series;
+use super::laws::Law;
+use super::load::ModeData;
+use super::select::ModeFit;
+use crate::identify::frequency_only::{self, Choice};
+use crate::modal::ModalSolution;
+use crate::structure::Structure;
+
+/// One mode's joint parameter and damping per level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointData {
+    /// The parameter's name in the model.
+    pub name: String,
+    /// Its unit.
+    pub unit: &'static str,
+    /// Its value per level.
+    pub value: Vec<f64>,
+    /// Its standard error per level, from the frequency's (0 when not given).
+    pub std: Vec<f64>,
+    /// d ln lambda / d ln p at each level's value.
+    pub sensitivity: Vec<f64>,
+    /// The joint's damping ratio zeta / s per level.
+    pub damping: Vec<f64>,
+    /// Its standard error.
+    pub damping_std: Vec<f64>,
+}
+
+impl JointData {
+    /// The series the laws are fitted on.
+    pub fn series(&self, data: &ModeData) -> Series {
+        Series {
+            amplitude: data.rows.iter().map(|r| r.amplitude).collect(),
+            stiffness: self.value.clone(),
+            stiffness_std: self.std.clone(),
+            damping: self.damping.clone(),
+            damping_std: self.damping_std.clone(),
+        }
+    }
+}
+
+/// Per level: the measured frequency and the model's with the constant and the chosen joint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelError {
+    /// The level's excitation.
+    pub excitation: f64,
+    /// The response amplitude (m).
+    pub amplitude: f64,
+    /// Measured frequency (Hz).
+    pub measured_hz: f64,
+    /// The model's with the constant law's joint (Hz).
+    pub constant_hz: f64,
+    /// The model's with the chosen law's joint at this amplitude (Hz).
+    pub selected_hz: f64,
+}
+
+/// The model mode (0-based, rigid-body modes counted) that measured mode `mode` pairs with.
+fn model_mode(model: &Structure, mode: usize) -> usize {
+    mode - 1 + model.rigid
+}
+
+/// The joint data of one mode (module docs); `param` indexes [`Structure::identified`].
+pub fn joint_data(
+    model: &Structure,
+    param: usize,
+    data: &ModeData,
+) -> Result<JointData, AmplitudeError> {
+    let p0 = model.identified()[param].value;
+    let t = model_mode(model, data.mode);
+    let mut out = JointData {
+        name: model.identified()[param].name.clone(),
+        unit: model.identified()[param].unit,
+        value: Vec::new(),
+        std: Vec::new(),
+        sensitivity: Vec::new(),
+        damping: Vec::new(),
+        damping_std: Vec::new(),
+    };
+    for r in &data.rows {
+        let rel_std = (r.frequency_std > 0.0).then(|| r.frequency_std / r.frequency_hz);
+        let o = frequency_only::identify(
+            model,
+            t,
+            data.mode,
+            r.frequency_hz,
+            rel_std,
+            Choice::Named(param),
+        )
+        .map_err(|e| AmplitudeError::Joint(format!("level {}: {e}", r.excitation)))?;
+        let s = o.sensitivity;
+        out.value.push(p0 * (1.0 + o.relative));
+        out.std.push(p0 * o.std.unwrap_or(0.0));
+        out.sensitivity.push(s);
+        out.damping.push(r.damping / s.abs());
+        out.damping_std.push(r.damping_std / s.abs());
+    }
+    Ok(out)
+}
+
+/// The frequency (Hz) of measured mode `mode`'s model mode with the joint parameter at `p`.
+fn frequency_at(
+    model: &Structure,
+    param: usize,
+    mode: usize,
+    p: f64,
+) -> Result<f64, AmplitudeError> {
+    let mut s = model.clone();
+    s.parameters[model.identified_indices()[param]].value = p;
+    let t = model_mode(model, mode);
+    let modal = ModalSolution::lowest_of(&s.assemble(), t + 1).map_err(|e| {
+        AmplitudeError::Joint(format!(
+            "the model at {} = {p:e}: {e}",
+            model.identified()[param].name
+        ))
+    })?;
+    Ok(modal.frequency_hz(t))
+}
+
+/// Before (the constant law's joint) and after (the chosen law's) per level of one mode.
+pub fn level_errors(
+    model: &Structure,
+    param: usize,
+    data: &ModeData,
+    fit: &ModeFit,
+) -> Result<Vec<LevelError>, AmplitudeError> {
+    let law_value = |law: Law, a: f64| {
+        fit.laws.iter().find(|j| j.fitted.law == law).map(|j| {
+            law.evaluate(j.fitted.regime, &j.fitted.parameters, a)
+                .stiffness
+        })
+    };
+    data.rows
+        .iter()
+        .map(|r| {
+            let at = |law: Law| match law_value(law, r.amplitude) {
+                Some(p) => frequency_at(model, param, data.mode, p),
+                None => Ok(f64::NAN),
+            };
+            Ok(LevelError {
+                excitation: r.excitation,
+                amplitude: r.amplitude,
+                measured_hz: r.frequency_hz,
+                constant_hz: at(Law::Constant)?,
+                selected_hz: at(fit.selected)?,
+            })
+        })
+        .collect()
+}

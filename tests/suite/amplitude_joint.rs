@@ -1,0 +1,174 @@
+//! `jointid amplitude --joint k2`: the joint's own stiffness and damping against amplitude,
+//! recovered from levels whose frequencies come from the continuous solution of a jointed
+//! beam, and the frequencies before (constant joint) and after (the chosen law).
+//!
+//! Independence: the levels' frequencies are the symmetric modes of two free-free steel beams
+//! joined by a rotational spring (the 4 x 4 determinant of `frequency_only`, not jointid's
+//! elements), with k2 following a power law of the amplitude, k2 = K0 (1 - c A^b); the modal
+//! damping is the joint's, zeta_j = z0 + d A^g, times the joint's share of the strain energy
+//! d ln lambda / d ln k2 taken by central differences of the same continuous solution. jointid
+//! sees frequencies, damping ratios and amplitudes, and a 60-element model of the beams.
+
+use std::f64::consts::PI;
+
+use crate::common::{jointid, jointid_ok, s, scratch};
+use crate::frequency_only::{HALF, symmetric_hz};
+
+const K0: f64 = 2.0e4;
+const POWER: [f64; 2] = [1.0, 0.5];
+const DAMPING: [f64; 3] = [0.01, 0.5, 0.7];
+const AMPLITUDES: [f64; 7] = [1e-4, 2e-4, 4e-4, 8e-4, 1.6e-3, 3.2e-3, 6.4e-3];
+
+fn k2_at(a: f64) -> f64 {
+    K0 * (1.0 - POWER[0] * a.powf(POWER[1]))
+}
+
+fn zeta_joint(a: f64) -> f64 {
+    DAMPING[0] + DAMPING[1] * a.powf(DAMPING[2])
+}
+
+/// d ln lambda / d ln k2 of the two symmetric modes, by central differences.
+fn shares(k2: f64) -> [f64; 2] {
+    let h = 1e-4;
+    let (up, down) = (
+        symmetric_hz(k2 * (1.0 + h), 2),
+        symmetric_hz(k2 * (1.0 - h), 2),
+    );
+    std::array::from_fn(|i| 2.0 * (up[i] / down[i]).ln() / ((1.0 + h) / (1.0 - h)).ln())
+}
+
+/// The model (60 elements per beam, k2 nominal 1e5), a modes file per level (the symmetric
+/// modes, elastic modes 1 and 3), the levels file.
+fn inputs(dir: &std::path::Path) -> std::path::PathBuf {
+    let beam = "[[beam]]\nlength = 0.25\nelements = 60\nyoungs_modulus = 2.1e11\ndensity = 7850\narea = 2.4e-3\nsecond_moment = 3.2e-7\n";
+    assert_eq!(HALF, 0.25);
+    let model = format!(
+        "{beam}{beam}[[joint]]\nk1 = 1e13\nk2 = 1e5\nfixed = [\"k1\"]\n[[sensor]]\nx = 0.0\n"
+    );
+    std::fs::write(dir.join("model.toml"), model).unwrap();
+    let mut levels = "model = \"model.toml\"\n".to_string();
+    for (i, &a) in AMPLITUDES.iter().enumerate() {
+        let k2 = k2_at(a);
+        let f = symmetric_hz(k2, 2);
+        let share = shares(k2);
+        let mut csv = "mode,frequency_hz,x,dof,value,damping_ratio\n".to_string();
+        let mut accel = Vec::new();
+        for (r, mode) in [1, 3].iter().enumerate() {
+            csv += &format!("{mode},{},0.0,w,1.0,{}\n", f[r], share[r] * zeta_joint(a));
+            accel.push(a * (2.0 * PI * f[r]).powi(2));
+        }
+        let name = format!("modes{i}.csv");
+        std::fs::write(dir.join(&name), csv).unwrap();
+        levels += &format!(
+            "[[level]]\nexcitation = {}\nmodes = \"{name}\"\nacceleration = [{}, {}]\n",
+            i + 1,
+            accel[0],
+            accel[1]
+        );
+    }
+    let path = dir.join("levels.toml");
+    std::fs::write(&path, levels).unwrap();
+    path
+}
+
+fn rows(path: &std::path::Path) -> Vec<Vec<String>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[test]
+fn the_joint_law_is_recovered_from_the_levels_and_closes_the_frequencies() {
+    let dir = scratch("amplitude-joint", "power");
+    let levels = inputs(&dir);
+    let out = dir.join("out");
+    jointid_ok(&["amplitude", s(&levels), "--out", s(&out), "--joint", "k2"]);
+    // Per level: k2 and the joint's damping against the generating law (the FE model's 60
+    // elements against the continuous beams: 1e-5 on k2, 1e-4 on the energy share).
+    let data = rows(&out.join("joint_levels.csv"));
+    assert_eq!(data.len(), 2 * AMPLITUDES.len());
+    for row in &data {
+        let a: f64 = row[2].parse().unwrap();
+        let (k2, zeta): (f64, f64) = (row[6].parse().unwrap(), row[9].parse().unwrap());
+        assert_eq!(row[4], "k2");
+        assert!(
+            (k2 / k2_at(a) - 1.0).abs() < 1e-5,
+            "{row:?}: k2 {}",
+            k2_at(a)
+        );
+        assert!(
+            (zeta / zeta_joint(a) - 1.0).abs() < 1e-4,
+            "{row:?}: zeta_j {}",
+            zeta_joint(a)
+        );
+    }
+    // The power law is chosen on both modes and gives back K0, c, b, z0, d, g.
+    let params = rows(&out.join("joint_parameters.csv"));
+    let want = [K0, POWER[0], POWER[1], DAMPING[0], DAMPING[1], DAMPING[2]];
+    for mode in ["1", "3"] {
+        let chosen: Vec<&Vec<String>> = params
+            .iter()
+            .filter(|r| r[0] == mode && r[2] == "yes")
+            .collect();
+        assert!(
+            chosen.iter().all(|r| r[1] == "power_law"),
+            "mode {mode}: {chosen:?}"
+        );
+        for (r, w) in chosen.iter().zip(want) {
+            let v: f64 = r[4].parse().unwrap();
+            assert!(
+                (v / w - 1.0).abs() < 1e-2,
+                "mode {mode} {}: {v} vs {w}",
+                r[3]
+            );
+        }
+    }
+    // Before: one k2 for every level leaves the softening (0.1-0.5%); after: the law's k2.
+    for row in rows(&out.join("joint_errors.csv")) {
+        let (before, after): (f64, f64) = (row[5].parse().unwrap(), row[8].parse().unwrap());
+        assert!(after.abs() < 1e-3, "{row:?}");
+        assert!(before.abs() > 10.0 * after.abs(), "{row:?}");
+    }
+    for f in [
+        "joint_laws.csv",
+        "joint_bands.csv",
+        "joint_mode1.svg",
+        "joint_mode3.svg",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_joint_the_model_does_not_identify_or_a_mode_that_does_not_see_it_is_refused() {
+    let dir = scratch("amplitude-joint", "bad");
+    let levels = inputs(&dir);
+    let out = dir.join("out");
+    let refused = |joint: &str, needle: &str| {
+        let o = jointid(&["amplitude", s(&levels), "--out", s(&out), "--joint", joint]);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(needle), "{err}");
+        assert!(!out.exists(), "nothing is written");
+    };
+    refused(
+        "k3",
+        "--joint = \"k3\" is invalid: the name of one of the model's identified parameters: k2",
+    );
+    // k1 held fixed is not identified either.
+    refused("k1", "--joint = \"k1\" is invalid");
+    // A measured antisymmetric mode (elastic mode 2) does not see k2.
+    for i in 0..AMPLITUDES.len() {
+        let modes = dir.join(format!("modes{i}.csv"));
+        let text = std::fs::read_to_string(&modes)
+            .unwrap()
+            .replace("\n3,", "\n2,");
+        std::fs::write(&modes, text).unwrap();
+    }
+    refused("k2", "does not depend on k2");
+    let _ = std::fs::remove_dir_all(&dir);
+}
