@@ -18,7 +18,9 @@
 # (examples/unesp_joint_figure.rs). Then levels.toml and `jointid amplitude`: per mode, the
 # stiffness and damping against the response amplitude by three laws with the chosen one
 # (amplitude_levels.csv, amplitude_laws.csv, amplitude_parameters.csv, amplitude_bands.csv,
-# amplitude_mode1.svg, amplitude_mode2.svg).
+# amplitude_mode1.svg, amplitude_mode2.svg), and with --joint k2 the same of the joint's own
+# k2 and damping (joint_*.csv, joint_mode1.svg, joint_mode2.svg) with the frequencies before
+# (one k2 for every level) and after (the chosen law) in joint_errors.csv.
 #
 # usage: bash scripts/unesp-bert.sh
 set -euo pipefail
@@ -99,7 +101,7 @@ DATA_REL=$(realpath --relative-to="$OUT" "$DATA")
             "${level/p/.}" "$level" "$DATA_REL" "$level"
     done
 } > "$OUT/levels.toml"
-"$J" amplitude "$OUT/levels.toml" --out "$OUT"
+"$J" amplitude "$OUT/levels.toml" --out "$OUT" --joint k2
 column -s, -t "$OUT/summary.csv"
 column -s, -t "$OUT/calibrated.csv"
 column -s, -t "$OUT/replicates.csv"
