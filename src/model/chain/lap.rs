@@ -19,10 +19,12 @@
 //! # [joint.lap.upper]      # or each layer given: area, second_moment, offset, to_interface
 //! # k_n = 1e12            # N/m per m: start values (optional for a point joint)
 //! # k_s = 1e10
+//! # k_r = 4e3             # N m/rad: the layers' notched roots (see super::notch; a point
+//! #                       # joint's default: the notch's closed form; kind = "lap": rigid)
 //! ```
 //!
 //! A joint with `kind = "lap"` is the layered lap itself (no k1, k2; `k_n`, `k_s` required,
-//! `fixed` names "k_n" and/or "k_s").
+//! `k_r` optional, `fixed` names any of "k_n", "k_s", "k_r").
 //!
 //! `layers = "half"`: each beam cut to half its height h = sqrt(12 I / A) over the overlap: area
 //! A / 2, second moment I / 8, offsets +h/4 (upper) and -h/4 (lower), h/4 to the interface.

@@ -13,10 +13,15 @@
 //! - per lap, the upper layer's w, theta where the left beam has no node (right of the
 //!   joint), then the lower layer's (left of it); each layer's axial displacement at every
 //!   overlap node and at the middle of every overlap element (`lap<j>.upper<k>:x`,
-//!   `lap<j>.upper<k>m:x`; quadratic bar elements).
+//!   `lap<j>.upper<k>m:x`; quadratic bar elements);
+//! - where the lap's k_r is given, the layer's own rotation at each notched root
+//!   (`lap<j>.upper0:theta`, `lap<j>.lower<n>:theta`; [`super::notch`]): the layer's first
+//!   (last) element and the interface there take it, the beam keeps the node's, and the
+//!   parameter k_r joins the two, dK/dk_r = sum over the roots of (e_beam - e_layer)(...)^T.
 //!
 //! Where a layer continues into its beam (the upper layer at the overlap's start, the lower at
-//! its end), plane sections tie its axial displacement to the beam's: u = U_b - offset theta.
+//! its end), plane sections tie its axial displacement to the beam's: u = U_b - offset theta,
+//! theta the beam's (a notch's hinge lies at the layer's centroid).
 //! Where the beam has no part outside the overlap the layer's end is axially free. The axial
 //! translation of every group of beams joined by laps is a rigid-body mode unless a support
 //! holds one of them: it adds one to the chain's count.
@@ -243,9 +248,7 @@ impl Laps {
         }
         Some([kn, ks])
     }
-}
 
-impl Laps {
     /// dK/dk_r of joint `joint`, if it is a layered lap with notched roots.
     pub(super) fn roots(&self, joint: usize) -> Option<SparseSym> {
         let lap = self.laps.iter().find(|l| l.joint == joint)?;
