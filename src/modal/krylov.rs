@@ -209,6 +209,12 @@ impl<'a> Krylov<'a> {
         self.v.subcols(0, self.size) * s.subcols(0, count)
     }
 
+    /// The factor, the basis let go (the refinement needs only the factor: V and M V are
+    /// N x (size + 1) each, the largest blocks of the solve before it).
+    pub(super) fn into_factor(self) -> SparseLlt {
+        self.llt
+    }
+
     /// Thick restart: keeps the `keep` best Ritz vectors, then the residual direction.
     pub(super) fn restart(&mut self, theta: &[f64], s: &Mat<f64>, keep: usize) {
         let size = self.size;

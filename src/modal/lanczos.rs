@@ -222,7 +222,10 @@ pub fn lowest_modes(
             let refining = Instant::now();
             let extra = (count + REFINE_EXTRA).min(size);
             let start = krylov.basis(&s, extra);
-            let refined = refine(k, m, &krylov.llt, shift, start, count, tol, REFINE_SWEEPS)
+            let (applications, solves, orthogonalisation) =
+                (krylov.applications, krylov.solves, krylov.orthogonalisation);
+            let llt = krylov.into_factor();
+            let refined = refine(k, m, &llt, shift, start, count, tol, REFINE_SWEEPS)
                 .ok_or(ModalError::NoConvergence)?;
             let pairs = ritz_pairs(shift, &refined, count, norms);
             let unconverged: Vec<(usize, f64)> = (0..count)
@@ -232,12 +235,12 @@ pub fn lowest_modes(
             if unconverged.is_empty() {
                 return Ok(LowestModes {
                     restarts: restart,
-                    operator_applications: krylov.applications,
+                    operator_applications: applications,
                     refinement_sweeps: refined.sweeps,
                     timings: Timings {
                         factorisation,
-                        solves: krylov.solves.as_secs_f64(),
-                        orthogonalisation: krylov.orthogonalisation.as_secs_f64(),
+                        solves: solves.as_secs_f64(),
+                        orthogonalisation: orthogonalisation.as_secs_f64(),
                         refinement: refining.elapsed().as_secs_f64(),
                         total: started.elapsed().as_secs_f64(),
                     },

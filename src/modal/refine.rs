@@ -34,8 +34,9 @@
 //! same error term as Dekker's product: exact either way, so the same results), and the
 //! blocks of columns, products and solves alike, run on rayon's pool.
 
+use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
-use faer::{Mat, Side};
+use faer::{Accum, Mat, MatMut, Par, Side};
 
 use rayon::prelude::*;
 
@@ -59,7 +60,8 @@ pub const RESOLVABLE: f64 = 1e-6;
 pub const FLOOR_FACTOR: f64 = 10.0;
 
 /// A Q, the products accurate ([`super::accurate::accurate_mul`], four columns a pass, with || |A| |q_j| ||
-/// of every column) or plain (no bounds), the columns on rayon's threads.
+/// of every column) or plain (no bounds), the columns on rayon's threads, each block written
+/// into its place (a block of four columns as scratch, never a second N x p copy).
 fn mul_columns(
     a: SparseColMatRef<'_, usize, f64>,
     q: &Mat<f64>,
@@ -68,10 +70,20 @@ fn mul_columns(
     const W: usize = 4;
     let (n, p) = (q.nrows(), q.ncols());
     let col = |j: usize| q.col_as_slice(j);
-    let blocks: Vec<(Vec<f64>, Vec<f64>)> = (0..p.div_ceil(W))
+    let mut product = Mat::<f64>::zeros(n, p);
+    let mut chunks: Vec<MatMut<'_, f64>> = Vec::new();
+    let mut rest = product.as_mut();
+    while rest.ncols() > W {
+        let (head, tail) = rest.split_at_col_mut(W);
+        chunks.push(head);
+        rest = tail;
+    }
+    chunks.push(rest);
+    let bounds: Vec<Vec<f64>> = chunks
         .into_par_iter()
-        .map(|b| {
-            let (first, width) = (b * W, W.min(p - b * W));
+        .enumerate()
+        .map(|(b, mut target)| {
+            let (first, width) = (b * W, target.ncols());
             let mut out = vec![0.0; n * width];
             let mut bounds = Vec::new();
             match (accurate, width) {
@@ -91,11 +103,19 @@ fn mul_columns(
                     }
                 }
             }
-            (out, bounds)
+            for (r, y) in out.chunks(n).enumerate() {
+                target
+                    .as_mut()
+                    .col_mut(r)
+                    .try_as_col_major_mut()
+                    .expect("a column of an owned matrix is contiguous")
+                    .as_slice_mut()
+                    .copy_from_slice(y);
+            }
+            bounds
         })
         .collect();
-    let product = Mat::from_fn(n, p, |i, j| blocks[j / W].0[(j % W) * n + i]);
-    (product, blocks.into_iter().flat_map(|b| b.1).collect())
+    (product, bounds.into_iter().flatten().collect())
 }
 
 /// Eigenpairs of the small dense pencil (a, b), b symmetric positive definite: values
@@ -150,30 +170,69 @@ impl Refined {
         residual::of_products(ky, &r, self.bounds[j])
     }
 
-    /// Rayleigh-Ritz of (K, M) on the columns of Q, given K Q and M Q and the bounds of
-    /// its columns: the lowest `p` pairs.
-    fn of_basis(
-        q: &Mat<f64>,
-        kq: &Mat<f64>,
-        mq: &Mat<f64>,
-        bounds: &[f64],
-        p: usize,
-    ) -> Option<Self> {
-        let (values, x) = dense_pencil(&(q.transpose() * kq), &(q.transpose() * mq))?;
-        let x = x.subcols(0, p).to_owned();
+    /// Rayleigh-Ritz of (K, M) on the columns of Q, given in blocks (Q_b, K Q_b, M Q_b) with
+    /// the bounds of its columns: the lowest `p` pairs. The blocks are never joined: the
+    /// Gram matrices are formed block by block and the Ritz vectors summed into their
+    /// place (three N x (p + corrections) copies fewer at the refinement's peak).
+    fn of_blocks(blocks: &[Block<'_>], bounds: &[f64], p: usize) -> Option<Self> {
+        let widths: Vec<usize> = blocks.iter().map(|b| b.0.ncols()).collect();
+        let offsets: Vec<usize> = widths
+            .iter()
+            .scan(0, |at, w| {
+                let o = *at;
+                *at += w;
+                Some(o)
+            })
+            .collect();
+        let total: usize = widths.iter().sum();
+        let (mut a, mut b) = (
+            Mat::<f64>::zeros(total, total),
+            Mat::<f64>::zeros(total, total),
+        );
+        for (i, (qi, _, _)) in blocks.iter().enumerate() {
+            for (j, (_, kqj, mqj)) in blocks.iter().enumerate() {
+                let (oi, oj, wi, wj) = (offsets[i], offsets[j], widths[i], widths[j]);
+                a.submatrix_mut(oi, oj, wi, wj)
+                    .copy_from(qi.transpose() * *kqj);
+                b.submatrix_mut(oi, oj, wi, wj)
+                    .copy_from(qi.transpose() * *mqj);
+            }
+        }
+        let (values, x) = dense_pencil(&a, &b)?;
+        let n = blocks[0].0.nrows();
+        // sum over the blocks of Q_b x_b, for Q, K Q and M Q.
+        // 0: Q, 1: K Q, 2: M Q.
+        let combine = |which: usize| {
+            let mut out = Mat::<f64>::zeros(n, p);
+            for (block, (&o, &w)) in blocks.iter().zip(offsets.iter().zip(&widths)) {
+                let part = [block.0, block.1, block.2][which];
+                matmul(
+                    out.as_mut(),
+                    Accum::Add,
+                    part.as_ref(),
+                    x.submatrix(o, 0, w, p),
+                    1.0,
+                    Par::Seq,
+                );
+            }
+            out
+        };
         // |K| |Q x| <= sum_i |x_i| |K| |q_i|, column by column.
         let bounds = (0..p)
-            .map(|j| (0..x.nrows()).map(|i| x[(i, j)].abs() * bounds[i]).sum())
+            .map(|j| (0..total).map(|i| x[(i, j)].abs() * bounds[i]).sum())
             .collect();
         Some(Refined {
             values: values[..p].to_vec(),
-            vectors: q * &x,
-            products: (kq * &x, mq * &x),
+            vectors: combine(0),
+            products: (combine(1), combine(2)),
             bounds,
             sweeps: 0,
         })
     }
 }
+
+/// A block of a basis: its columns Q_b, K Q_b and M Q_b.
+type Block<'a> = (&'a Mat<f64>, &'a Mat<f64>, &'a Mat<f64>);
 
 /// Refines the M-orthonormal columns of `y` (the `wanted` lowest first) by block corrections
 /// with the factor of K - sigma M, at most `max_sweeps` sweeps. A correction enters while
@@ -197,7 +256,9 @@ pub fn refine(
     let p = y.ncols();
     let (ky, bounds) = mul_columns(k, &y, true);
     let (my, _) = mul_columns(m, &y, false);
-    let mut block = Refined::of_basis(&y, &ky, &my, &bounds, p)?;
+    let mut block = Refined::of_blocks(&[(&y, &ky, &my)], &bounds, p)?;
+    // The block holds its own vectors and products from here.
+    drop((y, ky, my));
     let mut last_residual = vec![f64::INFINITY; wanted.min(p)];
     for sweep in 1..=max_sweeps {
         let residuals: Vec<Residual> = (0..last_residual.len())
@@ -216,22 +277,27 @@ pub fn refine(
             *last = r.relative;
         }
         let (d, md) = corrections(&block, m, llt);
-        let (mut keep, mut for_residual) = chosen(&d, &md, &above_floor);
+        let (keep, mut for_residual) = chosen(&d, &md, &above_floor);
         if keep.is_empty() {
             block.sweeps = sweep - 1;
             return Some(block);
         }
-        let mut next = extended(&block, k, (&d, &md), &keep);
+        let (dk, mdk) = selected((d, md), &keep);
+        let mut next = extended(&block, k, (&dk, &mdk));
         if next.is_none() && for_residual {
             // Corrections at the rounding level that made the Gram matrix singular: without
-            // them.
+            // them (the columns of scale 1, as they were).
             for_residual = false;
-            keep.retain(|&(_, scale)| scale == 1.0);
-            if keep.is_empty() {
+            let unit: Vec<(usize, f64)> = (keep.iter().enumerate())
+                .filter(|(_, (_, scale))| *scale == 1.0)
+                .map(|(at, _)| (at, 1.0))
+                .collect();
+            if unit.is_empty() {
                 block.sweeps = sweep - 1;
                 return Some(block);
             }
-            next = extended(&block, k, (&d, &md), &keep);
+            let (dk, mdk) = selected((dk, mdk), &unit);
+            next = extended(&block, k, (&dk, &mdk));
         }
         let next = next?;
         let moved = (0..p)
@@ -288,16 +354,19 @@ fn chosen(d: &Mat<f64>, md: &Mat<f64>, above_floor: &[bool]) -> (Vec<(usize, f64
     (keep, for_residual)
 }
 
-/// Rayleigh-Ritz on [Y, D] with the chosen columns of D, scaled.
-fn extended(
-    block: &Refined,
-    k: SparseColMatRef<'_, usize, f64>,
-    (d, md): (&Mat<f64>, &Mat<f64>),
-    keep: &[(usize, f64)],
-) -> Option<Refined> {
-    let n = d.nrows();
+/// The chosen columns (column, scale) of D and M D, scaled; D and M D themselves when every
+/// column enters as it is (no copy: they are the largest blocks of a sweep).
+fn selected((d, md): (Mat<f64>, Mat<f64>), keep: &[(usize, f64)]) -> (Mat<f64>, Mat<f64>) {
+    let whole = keep.len() == d.ncols()
+        && keep
+            .iter()
+            .enumerate()
+            .all(|(j, &(c, scale))| c == j && scale == 1.0);
+    if whole {
+        return (d, md);
+    }
     let scaled = |a: &Mat<f64>| {
-        let mut out = Mat::<f64>::zeros(n, keep.len());
+        let mut out = Mat::<f64>::zeros(a.nrows(), keep.len());
         for (j, &(c, scale)) in keep.iter().enumerate() {
             for (o, v) in out.col_as_slice_mut(j).iter_mut().zip(a.col_as_slice(c)) {
                 *o = scale * v;
@@ -305,20 +374,17 @@ fn extended(
         }
         out
     };
-    let dk = scaled(d);
-    let (kd, bounds_d) = mul_columns(k, &dk, true);
-    let q = concat(&block.vectors, &dk);
-    let kq = concat(&block.products.0, &kd);
-    // M D is known: its columns scaled like D's (exactly so for a scale of 1).
-    let mq = concat(&block.products.1, &scaled(md));
-    let bounds: Vec<f64> = block.bounds.iter().chain(&bounds_d).copied().collect();
-    Refined::of_basis(&q, &kq, &mq, &bounds, block.vectors.ncols())
+    (scaled(&d), scaled(&md))
 }
 
-fn concat(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    let (n, p) = (a.nrows(), a.ncols());
-    let mut out = Mat::<f64>::zeros(n, p + b.ncols());
-    out.subcols_mut(0, p).copy_from(a);
-    out.subcols_mut(p, b.ncols()).copy_from(b);
-    out
+/// Rayleigh-Ritz on [Y, D] (D the chosen corrections, M D their M products).
+fn extended(
+    block: &Refined,
+    k: SparseColMatRef<'_, usize, f64>,
+    (d, md): (&Mat<f64>, &Mat<f64>),
+) -> Option<Refined> {
+    let (kd, bounds_d) = mul_columns(k, d, true);
+    let bounds: Vec<f64> = block.bounds.iter().chain(&bounds_d).copied().collect();
+    let (y, (ky, my)) = (&block.vectors, &block.products);
+    Refined::of_blocks(&[(y, ky, my), (d, &kd, md)], &bounds, block.vectors.ncols())
 }
