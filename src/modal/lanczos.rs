@@ -74,9 +74,12 @@
 //! an assembly in a deformation basis (K = B^T D B with the element strains B u computed
 //! from the DOFs), which the sparse-matrix interface of a structure does not carry.
 //!
-//! Memory is linear in N: the basis V and M V (N x (basis_size + 1) each), the Cholesky factor
-//! of the banded or sparse K - sigma M, the refinement's blocks (N x (count + REFINE_EXTRA),
-//! a few of them) and N x count for the result.
+//! Memory is linear in N: the basis V and M V (N x (basis_size + 1) each) while Lanczos runs,
+//! let go before the refinement; the Cholesky factor of the banded or sparse K - sigma M; the
+//! refinement's blocks of p = count + REFINE_EXTRA columns: at its peak the pairs and their K,
+//! M products (3 N x p), the corrections and their products (3 N x p) and the next pairs (3 N x p)
+//! (module docs of [`super::refine`]). On the cantilever of 1e5 DOFs, 20 modes: 241 MB peak for
+//! the whole process, 500 MB before these blocks were counted (docs/benchmarks.md).
 //!
 //! Threads: the refinement's block solves and products with K and M run on rayon's pool
 //! (`RAYON_NUM_THREADS`); the Lanczos recurrence itself is sequential. [`LowestModes::timings`]

@@ -33,6 +33,12 @@
 //! error of each product comes from one fused multiply-add where the processor has it (the
 //! same error term as Dekker's product: exact either way, so the same results), and the
 //! blocks of columns, products and solves alike, run on rayon's pool.
+//!
+//! Memory: a sweep holds the pairs (Y, K Y, M Y), the corrections (D, K D, M D) and builds the
+//! next pairs from them, nine N x p blocks at most: the Rayleigh-Ritz matrices are formed block
+//! by block and the new vectors summed into place ([`Refined`] never joins [Y, D]), the
+//! corrections are copied only when some are left out or rescaled, the products are written
+//! into their matrix, four columns of scratch per thread.
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
