@@ -28,6 +28,18 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     }
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
+    let all = model.identified();
+    let (params, selection, choice) = chosen(args.params.as_deref(), &all)?;
+    // The settings are checked before the eigensolution, which takes minutes on a large model.
+    let settings = match (args.n, args.m, args.weighting) {
+        (Some(n), Some(m), Some(weighting)) => {
+            let s =
+                Settings::new(n, m, weighting, &model).map_err(|e| flagged(e, &[("n", "--n")]))?;
+            s.check_equations(params.len(), model.rigid)?;
+            Some(s)
+        }
+        _ => None,
+    };
     let matrices = model.assemble();
     let modes = selected(args, &measured)?;
     // the paper's basis of n pairs, or every pair the modes' frequencies pair with
@@ -37,21 +49,9 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: modal solution", args.model.display()))?;
     check_elastic(&matrices, &modal, model.rigid)
         .with_context(|| format!("{}", args.model.display()))?;
-    let all = model.identified();
-    let (params, selection, choice) = chosen(args.params.as_deref(), &all)?;
-    let identifier = match (args.n, args.m, args.weighting) {
-        (Some(n), Some(m), Some(weighting)) => {
-            let settings =
-                Settings::new(n, m, weighting, &model).map_err(|e| flagged(e, &[("n", "--n")]))?;
-            Some(Identifier::new(
-                &modal,
-                params.clone(),
-                model.rigid,
-                settings,
-            )?)
-        }
-        _ => None,
-    };
+    let identifier = settings
+        .map(|settings| Identifier::new(&modal, params.clone(), model.rigid, settings))
+        .transpose()?;
     let mut rows = Vec::new();
     let mut outcomes = Vec::new();
     let mut fallbacks = Vec::new();

@@ -59,6 +59,12 @@ impl Settings {
         check_basis_size(n, structure.rigid, structure.dof_count())?;
         Ok(Settings { n, m, weighting })
     }
+
+    /// m against `q` identified parameters and the basis's deformable rows (as
+    /// [`Identifier::new`] checks it): a check that needs no eigensolution, to make before one.
+    pub fn check_equations(&self, q: usize, rigid: usize) -> Result<(), SettingError> {
+        check_equations(self.m, q, self.n, rigid)
+    }
 }
 
 /// n must leave one deformable mode and not exceed the `dofs` pairs available.
