@@ -40,8 +40,14 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         }
         _ => None,
     };
-    let matrices = model.assemble();
     let modes = selected(args, &measured)?;
+    if let Some(s) = &settings {
+        for mode in &modes {
+            jointid::identify::basis_index(mode.mode, model.rigid, s.n)
+                .with_context(|| format!("{}", args.measured.display()))?;
+        }
+    }
+    let matrices = model.assemble();
     // the paper's basis of n pairs, or every pair the modes' frequencies pair with
     let reach = modes.iter().map(|m| m.mode + model.rigid).max();
     let count = args.n.or(reach).unwrap_or(model.rigid + 1);

@@ -105,6 +105,21 @@ fn check_equations(m: usize, q: usize, n: usize, rigid: usize) -> Result<(), Set
     Ok(())
 }
 
+/// The basis index (0-based) that measured mode `mode` pairs with in a basis of `n` pairs,
+/// `rigid` of them rigid-body modes, or why none (no eigensolution needed: a check to make
+/// before one).
+pub fn basis_index(mode: usize, rigid: usize, n: usize) -> Result<usize, IdentifyError> {
+    match (mode - 1).checked_add(rigid) {
+        Some(s) if s < n => Ok(s),
+        _ => Err(IdentifyError::ModeBeyondBasis {
+            mode,
+            index: (mode - 1).saturating_add(rigid).saturating_add(1),
+            rigid,
+            n,
+        }),
+    }
+}
+
 /// Settings or data the method cannot work with.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum IdentifyError {
@@ -236,15 +251,7 @@ impl Identifier {
 
     /// Basis index s_r (0-based) of deformable mode r >= 1, checked to lie in the sub-basis.
     pub fn basis_index(&self, mode: usize) -> Result<usize, IdentifyError> {
-        match (mode - 1).checked_add(self.rigid) {
-            Some(s) if s < self.settings.n => Ok(s),
-            _ => Err(IdentifyError::ModeBeyondBasis {
-                mode,
-                index: (mode - 1).saturating_add(self.rigid).saturating_add(1),
-                rigid: self.rigid,
-                n: self.settings.n,
-            }),
-        }
+        basis_index(mode, self.rigid, self.settings.n)
     }
 
     /// The retained, weighted system of the mode paired with basis index `s_r`.
