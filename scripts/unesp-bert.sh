@@ -96,6 +96,7 @@ DATA_REL=$(realpath --relative-to="$OUT" "$DATA")
     echo "reference = 1"
     echo 'excitation_unit = "V"'
     echo "random_band_hz = 110.0"
+    echo "reference_x = 0.5  # the tip accelerometer (node 1) in the modes files: --joint takes the lap's rotation"
     for level in 0p05 0p10 0p15 0p20 0p25 0p30; do
         printf '\n[[level]]\nexcitation = %s\nmodes = "modes_%sV.csv"\nfrf = "%s/frf_%sV.uff"\n' \
             "${level/p/.}" "$level" "$DATA_REL" "$level"

@@ -9,6 +9,8 @@
 //! reference = 1                      # FRF response node whose peak gives the amplitude
 //! excitation_unit = "V"              # the unit of `excitation` (labels only)
 //! random_band_hz = 110.0             # a flat random excitation of this band, RMS = level
+//! reference_x = 0.5                  # optional: the reference sensor in the modes files
+//! reference_dof = "w"                # (x, dof): --joint then uses the joint's deformation
 //!
 //! [[level]]
 //! excitation = 0.05                  # > 0, each level once
@@ -39,6 +41,10 @@ pub struct RawLevels {
     pub excitation_unit: Option<String>,
     /// Bandwidth (Hz) of a flat random excitation whose RMS is `excitation`.
     pub random_band_hz: Option<f64>,
+    /// The reference sensor's point in the modes files: its abscissa (m) ...
+    pub reference_x: Option<f64>,
+    /// ... and direction (`w` by default).
+    pub reference_dof: Option<String>,
     /// The levels.
     #[serde(default)]
     pub level: Vec<RawLevel>,
@@ -93,6 +99,9 @@ pub struct Levels {
     /// Bandwidth (Hz) of a flat random excitation whose RMS is the level (None: harmonic
     /// excitation of amplitude the level).
     pub random_band_hz: Option<f64>,
+    /// The reference sensor among the modes files' points (abscissa, direction): with it, the
+    /// joint's fit (`--joint`) takes the joint's own deformation amplitude.
+    pub reference_point: Option<(f64, String)>,
     /// The levels, in the file's order (at least two, distinct excitations).
     pub levels: Vec<Level>,
 }
@@ -124,6 +133,30 @@ impl Levels {
         let random_band_hz = match raw.random_band_hz {
             Some(b) => Some(check.positive("random_band_hz", b, "Hz")?),
             None => None,
+        };
+        let reference_point = match (raw.reference_x, raw.reference_dof) {
+            (Some(x), dof) => {
+                if !x.is_finite() {
+                    return Err(check.invalid("reference_x", Number(x), "it must be finite (m)"));
+                }
+                let dof = dof.unwrap_or_else(|| "w".into());
+                if dof != "w" && dof != "theta" {
+                    return Err(check.invalid(
+                        "reference_dof",
+                        format!("\"{dof}\""),
+                        "it must be \"w\" or \"theta\"",
+                    ));
+                }
+                Some((x, dof))
+            }
+            (None, Some(dof)) => {
+                return Err(check.invalid(
+                    "reference_dof",
+                    format!("\"{dof}\""),
+                    "it needs `reference_x`, the reference sensor's abscissa in the modes files",
+                ));
+            }
+            (None, None) => None,
         };
         let mut levels: Vec<Level> = Vec::with_capacity(raw.level.len());
         for (i, l) in raw.level.into_iter().enumerate() {
@@ -188,6 +221,7 @@ impl Levels {
             reference: raw.reference,
             excitation_unit: raw.excitation_unit.unwrap_or_default(),
             random_band_hz,
+            reference_point,
             levels,
         })
     }

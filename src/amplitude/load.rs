@@ -24,7 +24,7 @@ use super::fit::Series;
 use super::levels::{Level, Levels, Source};
 use crate::input::InputError;
 use crate::measured::{MeasuredMode, MeasuredModes};
-use crate::structure::Structure;
+use crate::structure::{Observation, Structure};
 use crate::uff::{Function, FunctionType, Record};
 
 /// One level's row of one mode, as read.
@@ -53,6 +53,9 @@ pub struct Row {
 pub struct ModeData {
     /// Mode number.
     pub mode: usize,
+    /// The reference sensor's point in the first level's modes file, when the levels file
+    /// names it (`reference_x`).
+    pub reference: Option<Observation>,
     /// One row per level, in the levels file's order.
     pub rows: Vec<Row>,
 }
@@ -258,9 +261,34 @@ pub fn load(levels: &Levels, model: &Structure) -> Result<Vec<ModeData>, Amplitu
         .iter()
         .map(|&mode| ModeData {
             mode,
+            reference: None,
             rows: Vec::new(),
         })
         .collect();
+    if let Some((x, dof)) = &levels.reference_point {
+        let first = &levels.levels[0].modes;
+        let modes = MeasuredModes::from_path(first, model)?;
+        for data in &mut out {
+            let Some(m) = modes.modes().iter().find(|m| m.mode == data.mode) else {
+                continue;
+            };
+            let found = m.points.iter().find(|p| {
+                (p.x - x).abs() <= 1e-9 * x.abs().max(1.0) && p.direction.to_string() == *dof
+            });
+            data.reference = Some(found.cloned().ok_or_else(|| {
+                let list: Vec<String> = m.points.iter().map(|p| p.label.clone()).collect();
+                data_error(
+                    first,
+                    format!(
+                        "mode {} has no point at x = {x}, {dof} (`reference_x`, `reference_dof` of {}); its points: {}",
+                        m.mode,
+                        levels.file.display(),
+                        list.join(", ")
+                    ),
+                )
+            })?);
+        }
+    }
     for (level, rows) in levels.levels.iter().zip(&per_level) {
         for data in &mut out {
             let row = rows.iter().find(|r| r.mode == data.mode).ok_or_else(|| {

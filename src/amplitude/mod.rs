@@ -131,8 +131,8 @@ pub fn fit_levels(levels: &Levels, joint: Option<&str>) -> Result<AmplitudeFit, 
             let joint = param
                 .map(|param| -> Result<JointResult, AmplitudeError> {
                     let jd = joint::joint_data(&model, param, &data)?;
-                    let jfit = fit_mode(&jd.series(&data));
-                    let errors = joint::level_errors(&model, param, &data, &jfit)?;
+                    let jfit = fit_mode(&jd.series());
+                    let errors = joint::level_errors(&model, param, &data, &jd, &jfit)?;
                     Ok(JointResult {
                         data: jd,
                         fit: jfit,

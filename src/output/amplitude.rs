@@ -41,7 +41,7 @@ fn joint(fit: &AmplitudeFit) -> Vec<View<'_>> {
             let j = m.joint.as_ref()?;
             Some(View {
                 mode: m.data.mode,
-                data: j.data.series(&m.data),
+                data: j.data.series(),
                 fit: &j.fit,
             })
         })
@@ -81,8 +81,8 @@ pub fn write_levels(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<()> {
 pub fn write_joint_levels(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<()> {
     writeln!(
         w,
-        "mode,excitation,amplitude_m,frequency_hz,parameter,unit,value,std,sensitivity,\
-         joint_damping,joint_damping_std"
+        "mode,excitation,amplitude_m,joint_amplitude,frequency_hz,parameter,unit,value,std,\
+         sensitivity,joint_damping,joint_damping_std"
     )?;
     for m in &fit.modes {
         let Some(j) = &m.joint else { continue };
@@ -90,10 +90,11 @@ pub fn write_joint_levels(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<(
         for (i, r) in m.data.rows.iter().enumerate() {
             writeln!(
                 w,
-                "{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.mode,
                 r.excitation,
                 r.amplitude,
+                d.amplitude[i],
                 r.frequency_hz,
                 d.name,
                 d.unit,
@@ -113,7 +114,7 @@ pub fn write_joint_levels(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<(
 pub fn write_joint_errors(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Result<()> {
     writeln!(
         w,
-        "mode,excitation,amplitude_m,frequency_hz,constant_hz,constant_error_pct,selected_law,\
+        "mode,excitation,joint_amplitude,frequency_hz,constant_hz,constant_error_pct,selected_law,\
          selected_hz,selected_error_pct"
     )?;
     for m in &fit.modes {
@@ -282,6 +283,7 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
             "modal stiffness",
             "modal stiffness (2 pi f)^2",
             "damping ratio",
+            "displacement amplitude at the reference sensor (m)",
         ],
     )
 }
@@ -291,18 +293,35 @@ pub fn joint_figure(m: &ModeResult) -> Option<Result<String, PlotError>> {
     let j = m.joint.as_ref()?;
     let view = View {
         mode: m.data.mode,
-        data: j.data.series(&m.data),
+        data: j.data.series(),
         fit: &j.fit,
     };
     let name = format!("joint {}", j.data.name);
+    let x = if j.data.at_joint {
+        format!(
+            "the joint's deformation amplitude ({})",
+            deformation_unit(j.data.unit)
+        )
+    } else {
+        "displacement amplitude at the reference sensor (m)".to_string()
+    };
     Some(figure_of(
         &view,
-        [&name, &name, "joint damping ratio zeta / s"],
+        [&name, &name, "joint damping ratio zeta / s", &x],
     ))
 }
 
-/// `titles`: the stiffness's title, its axis's name, the damping's title.
-fn figure_of(m: &View, titles: [&str; 3]) -> Result<String, PlotError> {
+/// The unit of a joint's deformation from the unit of its stiffness.
+fn deformation_unit(stiffness: &str) -> &'static str {
+    match stiffness {
+        "N m/rad" => "rad",
+        "N/m" => "m",
+        _ => "of the parameter's pattern",
+    }
+}
+
+/// `titles`: the stiffness's title, its axis's name, the damping's title, the amplitude axis.
+fn figure_of(m: &View, titles: [&str; 4]) -> Result<String, PlotError> {
     let data = &m.data;
     let weights = Weights::new(data, m.fit.tau_stiffness, m.fit.tau_damping);
     // The stiffness is shown as its change from the level of smallest amplitude (%), the
@@ -385,7 +404,7 @@ fn figure_of(m: &View, titles: [&str; 3]) -> Result<String, PlotError> {
         (series, bands)
     };
     let axes = |y: &str| LineAxes {
-        x_desc: "displacement amplitude at the reference sensor (m)".to_string(),
+        x_desc: titles[3].to_string(),
         y_desc: y.to_string(),
         log_x: false,
         log_y: false,
@@ -428,7 +447,7 @@ pub fn summary(fit: &AmplitudeFit) -> String {
         let Some(j) = &m.joint else { continue };
         let v = View {
             mode: m.data.mode,
-            data: j.data.series(&m.data),
+            data: j.data.series(),
             fit: &j.fit,
         };
         out += &format!("joint {} ({}), ", j.data.name, j.data.unit);

@@ -40,13 +40,18 @@ fn shares(k2: f64) -> [f64; 2] {
 /// The model (60 elements per beam, k2 nominal 1e5), a modes file per level (the symmetric
 /// modes, elastic modes 1 and 3), the levels file.
 fn inputs(dir: &std::path::Path) -> std::path::PathBuf {
+    inputs_with(dir, "")
+}
+
+/// As [`inputs`], with `extra` lines at the top of the levels file.
+fn inputs_with(dir: &std::path::Path, extra: &str) -> std::path::PathBuf {
     let beam = "[[beam]]\nlength = 0.25\nelements = 60\nyoungs_modulus = 2.1e11\ndensity = 7850\narea = 2.4e-3\nsecond_moment = 3.2e-7\n";
     assert_eq!(HALF, 0.25);
     let model = format!(
         "{beam}{beam}[[joint]]\nk1 = 1e13\nk2 = 1e5\nfixed = [\"k1\"]\n[[sensor]]\nx = 0.0\n"
     );
     std::fs::write(dir.join("model.toml"), model).unwrap();
-    let mut levels = "model = \"model.toml\"\n".to_string();
+    let mut levels = format!("model = \"model.toml\"\n{extra}");
     for (i, &a) in AMPLITUDES.iter().enumerate() {
         let k2 = k2_at(a);
         let f = symmetric_hz(k2, 2);
@@ -92,8 +97,12 @@ fn the_joint_law_is_recovered_from_the_levels_and_closes_the_frequencies() {
     assert_eq!(data.len(), 2 * AMPLITUDES.len());
     for row in &data {
         let a: f64 = row[2].parse().unwrap();
-        let (k2, zeta): (f64, f64) = (row[6].parse().unwrap(), row[9].parse().unwrap());
-        assert_eq!(row[4], "k2");
+        let (k2, zeta): (f64, f64) = (row[7].parse().unwrap(), row[10].parse().unwrap());
+        assert_eq!(row[5], "k2");
+        assert_eq!(
+            row[3], row[2],
+            "without a reference point the amplitude is the sensor's"
+        );
         assert!(
             (k2 / k2_at(a) - 1.0).abs() < 1e-5,
             "{row:?}: k2 {}",
@@ -143,6 +152,76 @@ fn the_joint_law_is_recovered_from_the_levels_and_closes_the_frequencies() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The rotation across the joint per unit displacement of the free end, in a symmetric mode
+/// of frequency `f_hz` with spring `k2`, from the continuous half beam (x from the joint to
+/// the free end at a, w = A cos bx + B sin bx + C cosh bx + D sinh bx): with A = 1 the free
+/// end's two conditions and w'''(0) = 0 (D = B) give B and C; the rotations on either side are
+/// opposite, so the jump is 2 |w'(0)| = 2 |2 b B|.
+fn rotation_per_end(f_hz: f64) -> f64 {
+    let bar = jointid::model::fixtures::steel_bar(HALF, 1);
+    let c_wave = (bar.bending_stiffness() / bar.mass_per_length()).sqrt();
+    let b = (2.0 * PI * f_hz / c_wave).sqrt();
+    let a = HALF;
+    let (c, s, ch, sh) = ((b * a).cos(), (b * a).sin(), (b * a).cosh(), (b * a).sinh());
+    // [ch, sh - s; sh, ch - c] [C; B] = [c; -s]
+    let det = ch * (ch - c) - sh * (sh - s);
+    let big_c = (c * (ch - c) + s * (sh - s)) / det;
+    let big_b = (-s * ch - sh * c) / det;
+    let end = c + big_b * s + big_c * ch + big_b * sh;
+    2.0 * (2.0 * b * big_b).abs() / end.abs()
+}
+
+/// With the reference sensor named (the free end, x = 0), the laws are fitted against the
+/// joint's own rotation amplitude A_j = A |theta_left - theta_right| / |w(0)| of the model's
+/// mode: against the continuous solution's ratio (`rotation_per_end`) at every level, and the
+/// power law's exponent b stays while its coefficient becomes c / r^b.
+#[test]
+fn with_the_reference_named_the_joint_law_is_against_its_rotation() {
+    let dir = scratch("amplitude-joint", "rotation");
+    let levels = inputs_with(&dir, "reference_x = 0.0\n");
+    let out = dir.join("out");
+    jointid_ok(&["amplitude", s(&levels), "--out", s(&out), "--joint", "k2"]);
+    let data = rows(&out.join("joint_levels.csv"));
+    let params = rows(&out.join("joint_parameters.csv"));
+    for mode in ["1", "3"] {
+        let ratios: Vec<f64> = data
+            .iter()
+            .filter(|r| r[0] == mode)
+            .map(|r| {
+                let ratio = r[3].parse::<f64>().unwrap() / r[2].parse::<f64>().unwrap();
+                let exact = rotation_per_end(r[4].parse().unwrap());
+                assert!(
+                    (ratio / exact - 1.0).abs() < 1e-3,
+                    "{r:?}: {ratio} vs {exact}"
+                );
+                ratio
+            })
+            .collect();
+        let r = ratios[0];
+        // The shape changes little with an 8% softer joint.
+        assert!(
+            ratios.iter().all(|q| (q / r - 1.0).abs() < 0.05),
+            "{ratios:?}"
+        );
+        let value = |name: &str| -> f64 {
+            params
+                .iter()
+                .find(|p| p[0] == mode && p[1] == "power_law" && p[3] == name)
+                .unwrap()[4]
+                .parse()
+                .unwrap()
+        };
+        let (c, b) = (value("c"), value("b"));
+        assert!((b / POWER[1] - 1.0).abs() < 0.05, "mode {mode}: b {b}");
+        let c_at_reference = c * r.powf(b);
+        assert!(
+            (c_at_reference / POWER[0] - 1.0).abs() < 0.05,
+            "mode {mode}: c {c} r {r} -> {c_at_reference}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_joint_the_model_does_not_identify_or_a_mode_that_does_not_see_it_is_refused() {
     let dir = scratch("amplitude-joint", "bad");
@@ -170,5 +249,21 @@ fn a_joint_the_model_does_not_identify_or_a_mode_that_does_not_see_it_is_refused
         std::fs::write(&modes, text).unwrap();
     }
     refused("k2", "does not depend on k2");
+    // A reference point the modes files do not have.
+    let dir = scratch("amplitude-joint", "bad-reference");
+    let levels = inputs_with(&dir, "reference_x = 0.1\n");
+    let out = dir.join("out");
+    let o = jointid(&["amplitude", s(&levels), "--out", s(&out), "--joint", "k2"]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("mode 1 has no point at x = 0.1, w"), "{err}");
+    assert!(!out.exists());
+    let levels = inputs_with(&dir, "reference_dof = \"theta\"\n");
+    let o = jointid(&["amplitude", s(&levels), "--out", s(&out), "--joint", "k2"]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains("reference_dof = \"theta\" is invalid: it needs `reference_x`"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
