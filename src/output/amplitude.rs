@@ -8,7 +8,9 @@
 
 use std::io::{self, Write};
 
-use crate::amplitude::{AmplitudeFit, ModeFit, ModeResult, Series as Data, Weights, estimates};
+use crate::amplitude::{
+    AmplitudeFit, BandPoint, ModeFit, ModeResult, Series as Data, Weights, estimates,
+};
 use crate::output::plot::{Band, LineAxes, PlotError, Series, lines_with_bands, svg};
 
 /// Half-width of the bands, in standard errors (about 95%).
@@ -320,6 +322,42 @@ fn deformation_unit(stiffness: &str) -> &'static str {
     }
 }
 
+/// Every law's curve over the amplitudes, as `shown` draws a band point (value, se); the
+/// chosen law's with its band of +- [`BAND_SE`] se.
+fn law_bands(fit: &ModeFit, shown: impl Fn(&BandPoint) -> (f64, f64)) -> Vec<Band> {
+    fit.laws
+        .iter()
+        .zip(&fit.bands)
+        .map(|(j, band)| {
+            let chosen = j.fitted.law == fit.selected;
+            let curve: Vec<(f64, f64)> = band.iter().map(&shown).collect();
+            Band {
+                name: format!(
+                    "{}{} (dAICc {:.1})",
+                    j.fitted.law.name(),
+                    if chosen { ", chosen, +-2 se" } else { "" },
+                    j.delta_aicc
+                ),
+                points: band
+                    .iter()
+                    .zip(&curve)
+                    .map(|(p, c)| (p.amplitude, c.0))
+                    .collect(),
+                half_width: curve
+                    .iter()
+                    .map(|&(_, se)| {
+                        if chosen && se.is_finite() {
+                            BAND_SE * se
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
 /// `titles`: the stiffness's title, its axis's name, the damping's title, the amplitude axis.
 fn figure_of(m: &View, titles: [&str; 4]) -> Result<String, PlotError> {
     let data = &m.data;
@@ -359,48 +397,13 @@ fn figure_of(m: &View, titles: [&str; 4]) -> Result<String, PlotError> {
             errors: Some(measured.iter().map(|&(_, s)| s).collect()),
             line: false,
         }];
-        let bands: Vec<Band> = m
-            .fit
-            .laws
-            .iter()
-            .zip(&m.fit.bands)
-            .map(|(j, band)| {
-                let chosen = j.fitted.law == m.fit.selected;
-                let curve: Vec<(f64, f64)> = band
-                    .iter()
-                    .map(|p| {
-                        if stiffness {
-                            shown(p.stiffness, p.stiffness_se)
-                        } else {
-                            shown(p.damping, p.damping_se)
-                        }
-                    })
-                    .collect();
-                Band {
-                    name: format!(
-                        "{}{} (dAICc {:.1})",
-                        j.fitted.law.name(),
-                        if chosen { ", chosen, +-2 se" } else { "" },
-                        j.delta_aicc
-                    ),
-                    points: band
-                        .iter()
-                        .zip(&curve)
-                        .map(|(p, c)| (p.amplitude, c.0))
-                        .collect(),
-                    half_width: curve
-                        .iter()
-                        .map(|&(_, se)| {
-                            if chosen && se.is_finite() {
-                                BAND_SE * se
-                            } else {
-                                0.0
-                            }
-                        })
-                        .collect(),
-                }
-            })
-            .collect();
+        let bands = law_bands(m.fit, |p| {
+            if stiffness {
+                shown(p.stiffness, p.stiffness_se)
+            } else {
+                shown(p.damping, p.damping_se)
+            }
+        });
         (series, bands)
     };
     let axes = |y: &str| LineAxes {
