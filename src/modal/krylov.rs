@@ -1,6 +1,6 @@
 //! The Krylov basis of shift-invert Lanczos in Krylov-Schur form, OP V = V H + beta v e^T
 //! with OP = (K - sigma M)^-1 M: expansion by M-orthogonalised operator products (classical
-//! Gram-Schmidt, twice), the Ritz pairs of H, and the thick restart that keeps the best Ritz
+//! Gram-Schmidt, the first pass over the coupled vectors only), the Ritz pairs of H, and the thick restart that keeps the best Ritz
 //! vectors ([`super::lanczos`] drives it).
 //!
 //! Layer 2 (eigensolution): imports faer and the modal module's factor.
@@ -61,7 +61,7 @@ impl<'a> Krylov<'a> {
         let start = krylov.random_vector();
         krylov.z.col_as_slice_mut(0).copy_from_slice(&start);
         let mut w = krylov.apply(0);
-        krylov.orthonormalise_into(&mut w, 0);
+        krylov.orthonormalise_into(&mut w, 0, 0);
         krylov
     }
 
@@ -94,34 +94,62 @@ impl<'a> Krylov<'a> {
             .collect()
     }
 
-    /// M-orthogonalises `w` against v_0 .. v_{j-1} (twice), stores it normalised as v_j and
-    /// returns the coefficients and the norm before normalisation.
-    fn orthonormalise_into(&mut self, w: &mut [f64], j: usize) -> (Vec<f64>, f64) {
+    /// M-orthogonalises `w` against v_0 .. v_{j-1}, stores it normalised as v_j and returns
+    /// the coefficients and the norm before normalisation. Classical Gram-Schmidt in two
+    /// passes ("twice is enough"), the first over v_from .. v_{j-1} only: in the Lanczos
+    /// recurrence OP v_i lies in span(v_{i-1}, v_i, v_{i+1}) (after a thick restart, in the
+    /// span of the kept vectors and v_{i+1}), so the first pass needs just those columns to
+    /// take out the large components, and the second, over the whole basis, takes out what
+    /// round-off left. A third pass follows when the second removed more than it left (the
+    /// criterion of Daniel, Gragg, Kaufman & Stewart, Math. Comp. 30 (1976), eta = 1/sqrt 2).
+    fn orthonormalise_into(&mut self, w: &mut [f64], j: usize, from: usize) -> (Vec<f64>, f64) {
         let started = Instant::now();
         let n = w.len();
         let mut coefficients = vec![0.0; j];
         let mut mw = vec![0.0; n];
-        for _ in 0..2 {
-            if j > 0 {
-                let mut c = Mat::<f64>::zeros(j, 1);
-                let wr = MatRef::from_column_major_slice(w, n, 1);
-                matmul(
-                    &mut c,
-                    Accum::Replace,
-                    self.z.subcols(0, j).transpose(),
-                    wr,
-                    1.0,
-                    Par::Seq,
-                );
-                let wm = faer::MatMut::from_column_major_slice_mut(w, n, 1);
-                matmul(wm, Accum::Add, self.v.subcols(0, j), &c, -1.0, Par::Seq);
-                for (a, b) in coefficients.iter_mut().zip(c.col_as_slice(0)) {
-                    *a += b;
-                }
+        let from = from.min(j);
+        let pass = |w: &mut [f64], from: usize, coefficients: &mut [f64]| -> f64 {
+            let width = j - from;
+            if width == 0 {
+                return 0.0;
             }
-        }
-        sparse_mul(self.m, w, &mut mw);
-        let norm = dot(w, &mw).max(0.0).sqrt();
+            let mut c = Mat::<f64>::zeros(width, 1);
+            let wr = MatRef::from_column_major_slice(w, n, 1);
+            matmul(
+                &mut c,
+                Accum::Replace,
+                self.z.subcols(from, width).transpose(),
+                wr,
+                1.0,
+                Par::Seq,
+            );
+            let wm = faer::MatMut::from_column_major_slice_mut(w, n, 1);
+            matmul(
+                wm,
+                Accum::Add,
+                self.v.subcols(from, width),
+                &c,
+                -1.0,
+                Par::Seq,
+            );
+            let c = c.col_as_slice(0);
+            for (a, b) in coefficients[from..].iter_mut().zip(c) {
+                *a += b;
+            }
+            c.iter().map(|x| x * x).sum()
+        };
+        pass(w, from, &mut coefficients);
+        let mut removed = pass(w, 0, &mut coefficients);
+        let mut extra = 0;
+        let norm = loop {
+            sparse_mul(self.m, w, &mut mw);
+            let norm = dot(w, &mw).max(0.0).sqrt();
+            if removed <= norm * norm || extra == 2 {
+                break norm;
+            }
+            removed = pass(w, 0, &mut coefficients);
+            extra += 1;
+        };
         if norm > 0.0 {
             w.iter_mut().chain(mw.iter_mut()).for_each(|a| *a /= norm);
         }
@@ -134,8 +162,12 @@ impl<'a> Krylov<'a> {
     /// Extends the basis to `size` vectors (and the residual direction).
     pub(super) fn expand(&mut self) {
         let n = self.v.nrows();
-        for j in self.filled..self.size {
+        let first = self.filled;
+        for j in first..self.size {
             let mut w = self.apply(j);
+            // The columns the recurrence couples OP v_j to: all the kept ones on the first
+            // step after a restart, v_{j-1} and v_j after it.
+            let coupled = if j == first { 0 } else { j - 1 };
             let next = j + 1;
             if next == n {
                 // The basis spans the space: OP v_j lies in it.
@@ -144,13 +176,13 @@ impl<'a> Krylov<'a> {
                 self.beta = 0.0;
                 break;
             }
-            let (c, norm) = self.orthonormalise_into(&mut w, next);
+            let (c, norm) = self.orthonormalise_into(&mut w, next, coupled);
             self.set_column(j, &c);
             let mut beta = norm;
             if norm <= 1e-12 * (dot(&c, &c) + norm * norm).sqrt() {
                 // Invariant subspace: continue with a fresh direction, uncoupled.
                 let mut r = self.random_vector();
-                self.orthonormalise_into(&mut r, next);
+                self.orthonormalise_into(&mut r, next, 0);
                 beta = 0.0;
             }
             if next < self.size {

@@ -23,8 +23,10 @@
 //! 2. Lanczos on OP = (K - sigma M)^-1 M, which is self-adjoint in the M-inner product
 //!    <a, b> = a^T M b and has the eigenvalues theta = 1 / (lambda - sigma) > 0: the lowest
 //!    lambda are the largest theta, well separated. Every new vector is M-orthogonalised
-//!    against the whole basis twice (classical Gram-Schmidt, "twice is enough"), so that the
-//!    basis stays M-orthonormal to round-off; the products M v are kept beside the basis.
+//!    by classical Gram-Schmidt, first against the vectors the recurrence couples it to, then
+//!    against the whole basis (a third pass when the second removed more than it left), so
+//!    that the basis stays M-orthonormal to round-off; the products M v are kept beside the
+//!    basis.
 //! 3. Thick restart: when the basis holds `basis_size` vectors, the Ritz pairs of the
 //!    projected matrix H = V^T M OP V are computed, the best `keep` Ritz vectors kept, and
 //!    the expansion continues from the residual vector (the Krylov-Schur form).

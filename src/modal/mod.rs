@@ -293,13 +293,29 @@ pub fn hz_to_lambda(f: f64) -> f64 {
     w * w
 }
 
-/// `y = A x` for a matrix stored with both triangles.
+/// `y = A x` for a symmetric matrix stored with both triangles.
 pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    y.fill(0.0);
-    for (j, &xj) in x.iter().enumerate() {
+    sparse_mul_block::<1>(a, [x], y);
+}
+
+/// [`sparse_mul`] of W vectors in one pass over A, into `y` (N x W, column-major). Column j
+/// of a symmetric matrix is its row j: each entry of y is one gathered sum, written once.
+pub(crate) fn sparse_mul_block<const W: usize>(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: [&[f64]; W],
+    y: &mut [f64],
+) {
+    let n = a.ncols();
+    for j in 0..n {
         let rows = a.symbolic().row_idx_of_col_raw(j);
+        let mut s = [0.0_f64; W];
         for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            y[i] += v * xj;
+            for r in 0..W {
+                s[r] += v * x[r][i];
+            }
+        }
+        for r in 0..W {
+            y[r * n + j] = s[r];
         }
     }
 }
