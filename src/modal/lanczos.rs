@@ -96,7 +96,7 @@
 use std::time::Instant;
 
 use faer::Mat;
-use faer::sparse::{SparseColMatRef, Triplet};
+use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
 
 use super::krylov::{Krylov, dot};
 use super::refine::{FLOOR_FACTOR, Refined, refine};
@@ -199,8 +199,8 @@ pub fn lowest_modes(
     let started = Instant::now();
     let n = check_problem(k, m, count)?;
     let size = check_settings(settings, count, n)?;
-    if lower_triplets(m, 1.0)
-        .and_then(|t| SparseLlt::new(n, &t, ordering()))
+    if lower_sum(m, None)
+        .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), ordering()))
         .is_none()
     {
         return Err(ModalError::MassNotPositiveDefinite);
@@ -345,21 +345,53 @@ fn check_settings(s: &LanczosSettings, count: usize, n: usize) -> Result<usize, 
     Ok(size.max(smallest))
 }
 
-/// The lower triangle of `scale * a` as triplets (`None` on a non-finite product).
-fn lower_triplets(
+/// The lower triangle of a + scale b (both stored with both triangles; b absent: a alone) as
+/// a column-sorted sparse matrix, duplicates summed, built column by column without a global
+/// sort (`None` on a non-finite entry).
+fn lower_sum(
     a: SparseColMatRef<'_, usize, f64>,
-    scale: f64,
-) -> Option<Vec<Triplet<usize, usize, f64>>> {
-    let mut out = Vec::with_capacity(a.val().len() / 2 + a.ncols());
-    for j in 0..a.ncols() {
-        let rows = a.symbolic().row_idx_of_col_raw(j);
-        for (&i, &v) in rows.iter().zip(a.val_of_col(j)) {
-            if i >= j {
-                out.push(Triplet::new(i, j, scale * v));
+    b: Option<(SparseColMatRef<'_, usize, f64>, f64)>,
+) -> Option<SparseColMat<usize, f64>> {
+    let n = a.ncols();
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    let mut rows = Vec::with_capacity(a.val().len() / 2 + n);
+    let mut values = Vec::with_capacity(a.val().len() / 2 + n);
+    let mut column: Vec<(usize, f64)> = Vec::new();
+    col_ptr.push(0);
+    for j in 0..n {
+        column.clear();
+        let mut push = |m: SparseColMatRef<'_, usize, f64>, scale: f64| {
+            let entries = m
+                .symbolic()
+                .row_idx_of_col_raw(j)
+                .iter()
+                .zip(m.val_of_col(j));
+            column.extend(
+                entries
+                    .filter(|(i, _)| **i >= j)
+                    .map(|(&i, &v)| (i, scale * v)),
+            );
+        };
+        push(a, 1.0);
+        if let Some((b, scale)) = b {
+            push(b, scale);
+        }
+        column.sort_unstable_by_key(|e| e.0);
+        for &(i, v) in &column {
+            if rows.len() > col_ptr[j] && rows.last() == Some(&i) {
+                *values.last_mut().expect("a value per row") += v;
+            } else {
+                rows.push(i);
+                values.push(v);
             }
         }
+        col_ptr.push(rows.len());
     }
-    out.iter().all(|t| t.val.is_finite()).then_some(out)
+    if !values.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+    Some(SparseColMat::new(symbolic, values))
 }
 
 fn ordering() -> Ordering {
@@ -405,14 +437,14 @@ fn factor_shifted(
     m: SparseColMatRef<'_, usize, f64>,
     shift: Option<f64>,
 ) -> Result<(f64, SparseLlt), ModalError> {
-    let n = k.nrows();
+    if !k.val().iter().all(|v| v.is_finite()) {
+        return Err(ModalError::NonFinite);
+    }
     let first = shift.unwrap_or_else(|| default_shift(k, m));
     let mut sigma = first;
     for _ in 0..SHIFT_ATTEMPTS {
-        let mut lower = lower_triplets(k, 1.0).ok_or(ModalError::NonFinite)?;
-        if let Some(scaled) = lower_triplets(m, -sigma) {
-            lower.extend(scaled);
-            if let Some(llt) = SparseLlt::new(n, &lower, ordering()) {
+        if let Some(lower) = lower_sum(k, Some((m, -sigma))) {
+            if let Some(llt) = SparseLlt::from_lower(lower.as_ref(), ordering()) {
                 return Ok((sigma, llt));
             }
         }
