@@ -1,7 +1,7 @@
 //! The Krylov basis of shift-invert Lanczos in Krylov-Schur form, OP V = V H + beta v e^T
 //! with OP = (K - sigma M)^-1 M: expansion by M-orthogonalised operator products (classical
-//! Gram-Schmidt, the first pass over the coupled vectors only), the Ritz pairs of H, and the thick restart that keeps the best Ritz
-//! vectors ([`super::lanczos`] drives it).
+//! Gram-Schmidt, the first pass over the coupled vectors only), the Ritz pairs of H, and the
+//! thick restart that keeps the best Ritz vectors ([`super::lanczos`] drives it).
 //!
 //! Layer 2 (eigensolution): imports faer and the modal module's factor.
 
