@@ -199,8 +199,14 @@ pub fn lowest_modes(
     let started = Instant::now();
     let n = check_problem(k, m, count)?;
     let size = check_settings(settings, count, n)?;
+    // The check of M under minimum degree, not the fewest-entries rule of K - sigma M: on
+    // the lap of 212,562 DOFs the DOF order fills less (3.3e7 entries against 6.2e7) but
+    // factorises 13 times slower (9.5 s against 0.7 s), likely because a solid's consistent
+    // M couples each direction only with itself and the three interleave, so that adjacent
+    // columns seldom share a pattern. On K - sigma M the DOF order was the faster (2.6 s
+    // against 7.5 s).
     if lower_sum(m, None)
-        .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), ordering()))
+        .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), Ordering::Amd))
         .is_none()
     {
         return Err(ModalError::MassNotPositiveDefinite);
