@@ -32,9 +32,9 @@
 //! projected pencil, whose dense solution then carries an absolute error of eps times it: an
 //! earlier version did so, and its low eigenvalues moved by 1e-7 from sweep to sweep, its
 //! residuals stalled at 1e-8 or reached their floor by chance, depending on the rounding of
-//! the Lanczos vectors. Subtracted, they
-//! take the residuals of the 540-DOF lap (`tests/suite/sparse_solver.rs`) from 1e-8 to 1e-10
-//! in one sweep. The refinement stops when no column enters or the Ritz values stop moving.
+//! the Lanczos vectors. Subtracted, they take the residuals of the 540-DOF lap
+//! (`tests/suite/sparse_solver.rs`) from 1e-8 to 1e-10 in one sweep. The refinement stops
+//! when no column enters or the Ritz values stop moving.
 //!
 //! Cost: K Y in twice the precision ([`super::accurate`]) is the bulk. Four vectors share one pass over K, the
 //! error of each product comes from one fused multiply-add where the processor has it (the
