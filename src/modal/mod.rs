@@ -25,8 +25,10 @@ pub mod elastic;
 mod krylov;
 pub mod lanczos;
 pub mod nelson;
+mod pencil;
 pub mod refine;
 pub mod residual;
+mod shift;
 pub mod sparse_llt;
 
 use faer::sparse::SparseColMatRef;

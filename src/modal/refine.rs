@@ -49,11 +49,12 @@
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Mat, MatMut, Par, Side};
+use faer::{Accum, Mat, MatMut, Par};
 
 use rayon::prelude::*;
 
 use super::accurate::accurate_block;
+use super::pencil::dense_pencil;
 use super::residual::{self, Residual};
 use super::sparse_llt::SparseLlt;
 use super::{sparse_mul, sparse_mul_block};
@@ -132,62 +133,6 @@ fn mul_columns(
         })
         .collect();
     (product, bounds.into_iter().flatten().collect())
-}
-
-/// Below this fraction of b's largest eigenvalue, a direction of a basis whose Gram matrix b
-/// is not numerically positive definite is left out ([`dense_pencil`]).
-pub const DEPENDENT: f64 = 1e-10;
-
-/// Eigenpairs of the small dense pencil (a, b), b symmetric positive semidefinite: values
-/// ascending, vectors X with X^T b X = E. Scaled to unit largest entry for faer's symmetric
-/// solver (see the module docs of [`super`]). When b has no Cholesky factor (corrections
-/// that are nearly dependent), the pencil is solved on b's eigenvectors of eigenvalue above
-/// [`DEPENDENT`] times its largest: fewer pairs than the pencil's order then.
-pub fn dense_pencil(a: &Mat<f64>, b: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
-    let n = a.nrows();
-    let sym = |x: &Mat<f64>| Mat::from_fn(n, n, |i, j| 0.5 * (x[(i, j)] + x[(j, i)]));
-    let Ok(llt) = sym(b).llt(Side::Lower) else {
-        return independent_pencil(&sym(a), &sym(b));
-    };
-    let l = llt.L();
-    let mut x = sym(a);
-    l.solve_lower_triangular_in_place(x.as_mut());
-    let mut c = x.transpose().to_owned();
-    l.solve_lower_triangular_in_place(c.as_mut());
-    let scale = c.norm_max().max(f64::MIN_POSITIVE);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]) / scale);
-    let evd = c.self_adjoint_eigen(Side::Lower).ok()?;
-    let values = (0..n).map(|i| evd.S()[i] * scale).collect();
-    let mut vectors = evd.U().to_owned();
-    l.transpose()
-        .solve_upper_triangular_in_place(vectors.as_mut());
-    Some((values, vectors))
-}
-
-/// [`dense_pencil`] on the independent directions of b: b = V S V^T, W = V_k S_k^(-1/2) over
-/// the eigenvalues s_k > [`DEPENDENT`] max s, then the standard problem W^T a W, X = W X'.
-fn independent_pencil(a: &Mat<f64>, b: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
-    let n = a.nrows();
-    let evd = b.self_adjoint_eigen(Side::Lower).ok()?;
-    let largest = evd.S()[n - 1];
-    if largest.is_nan() || largest <= 0.0 {
-        return None;
-    }
-    let kept: Vec<usize> = (0..n)
-        .filter(|&i| evd.S()[i] > DEPENDENT * largest)
-        .collect();
-    let w = Mat::from_fn(n, kept.len(), |i, c| {
-        evd.U()[(i, kept[c])] / evd.S()[kept[c]].sqrt()
-    });
-    let reduced = w.transpose() * a * &w;
-    let r = kept.len();
-    let scale = reduced.norm_max().max(f64::MIN_POSITIVE);
-    let c = Mat::from_fn(r, r, |i, j| {
-        0.5 * (reduced[(i, j)] + reduced[(j, i)]) / scale
-    });
-    let inner = c.self_adjoint_eigen(Side::Lower).ok()?;
-    let values = (0..r).map(|i| inner.S()[i] * scale).collect();
-    Some((values, w * inner.U()))
 }
 
 /// Refined pairs.
@@ -454,48 +399,4 @@ fn extended(
     let bounds: Vec<f64> = block.bounds.iter().chain(&bounds_d).copied().collect();
     let (y, (ky, my)) = (&block.vectors, &block.products);
     Refined::of_blocks(&[(y, ky, my), (d, &kd, md)], &bounds, block.vectors.ncols())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A basis [q1, q2, q3, q1 (1 + 1e-14)]: its Gram matrix b has no Cholesky factor. The
-    /// pencil's pairs are those of the three independent columns, whose Gram matrices are
-    /// diag(1, 2, 3) and I (analytic: the values 1, 2, 3 with vectors e_i), and the vectors
-    /// it returns satisfy X^T b X = I.
-    #[test]
-    fn a_pencil_on_dependent_columns_keeps_the_independent_ones() {
-        let t = 1.0 + 1e-14;
-        // Columns of the basis in the coordinates of q1, q2, q3.
-        let q = Mat::from_fn(3, 4, |i, j| match (i, j) {
-            (0, 3) => t,
-            (i, j) if i == j => 1.0,
-            _ => 0.0,
-        });
-        let k = Mat::from_fn(3, 3, |i, j| if i == j { (i + 1) as f64 } else { 0.0 });
-        let a = q.transpose() * &k * &q;
-        let b = q.transpose() * &q;
-        assert!(
-            b.llt(Side::Lower).is_err(),
-            "b should not be positive definite"
-        );
-        let (values, x) = dense_pencil(&a, &b).expect("the independent part is solved");
-        assert_eq!(values.len(), 3);
-        for (v, want) in values.iter().zip([1.0, 2.0, 3.0]) {
-            assert!((v - want).abs() < 1e-12, "{values:?}");
-        }
-        let xbx = x.transpose() * &b * &x;
-        let xax = x.transpose() * &a * &x;
-        for i in 0..3 {
-            for j in 0..3 {
-                let e = if i == j { 1.0 } else { 0.0 };
-                assert!((xbx[(i, j)] - e).abs() < 1e-10, "X^T b X ({i},{j})");
-                assert!(
-                    (xax[(i, j)] - e * values[i]).abs() < 1e-10,
-                    "X^T a X ({i},{j})"
-                );
-            }
-        }
-    }
 }
