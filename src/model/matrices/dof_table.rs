@@ -212,7 +212,7 @@ pub fn write(out: &mut dyn Write, dofs: &[DofInfo]) -> io::Result<()> {
     write_iter(out, dofs.iter().cloned())
 }
 
-/// [`write`] from an iterator of the DOFs in index order (a large table written as it is
+/// [`write`](fn@write) from an iterator of the DOFs in index order (a large table written as it is
 /// made).
 pub fn write_iter(out: &mut dyn Write, dofs: impl Iterator<Item = DofInfo>) -> io::Result<()> {
     let mut w = ::csv::Writer::from_writer(out);
