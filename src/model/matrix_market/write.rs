@@ -15,7 +15,7 @@ pub fn write(
     write_entries(out, size, lower.len(), lower.iter().copied(), comments)
 }
 
-/// [`write`] from an iterator of `count` entries (a large matrix written as it is read from
+/// [`write`](fn@write) from an iterator of `count` entries (a large matrix written as it is read from
 /// its store, never copied).
 pub fn write_entries(
     out: &mut dyn Write,
