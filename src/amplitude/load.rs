@@ -265,29 +265,8 @@ pub fn load(levels: &Levels, model: &Structure) -> Result<Vec<ModeData>, Amplitu
             rows: Vec::new(),
         })
         .collect();
-    if let Some((x, dof)) = &levels.reference_point {
-        let first = &levels.levels[0].modes;
-        let modes = MeasuredModes::from_path(first, model)?;
-        for data in &mut out {
-            let Some(m) = modes.modes().iter().find(|m| m.mode == data.mode) else {
-                continue;
-            };
-            let found = m.points.iter().find(|p| {
-                (p.x - x).abs() <= 1e-9 * x.abs().max(1.0) && p.direction.to_string() == *dof
-            });
-            data.reference = Some(found.cloned().ok_or_else(|| {
-                let list: Vec<String> = m.points.iter().map(|p| p.label.clone()).collect();
-                data_error(
-                    first,
-                    format!(
-                        "mode {} has no point at x = {x}, {dof} (`reference_x`, `reference_dof` of {}); its points: {}",
-                        m.mode,
-                        levels.file.display(),
-                        list.join(", ")
-                    ),
-                )
-            })?);
-        }
+    if let Some(point) = &levels.reference_point {
+        find_references(levels, point, model, &mut out)?;
     }
     for (level, rows) in levels.levels.iter().zip(&per_level) {
         for data in &mut out {
@@ -307,4 +286,37 @@ pub fn load(levels: &Levels, model: &Structure) -> Result<Vec<ModeData>, Amplitu
         }
     }
     Ok(out)
+}
+
+/// Each mode's reference point `(x, dof)` (`reference_x`, `reference_dof`) among its points
+/// in the first level's modes file.
+fn find_references(
+    levels: &Levels,
+    (x, dof): &(f64, String),
+    model: &Structure,
+    out: &mut [ModeData],
+) -> Result<(), AmplitudeError> {
+    let first = &levels.levels[0].modes;
+    let modes = MeasuredModes::from_path(first, model)?;
+    for data in out {
+        let Some(m) = modes.modes().iter().find(|m| m.mode == data.mode) else {
+            continue;
+        };
+        let found = m.points.iter().find(|p| {
+            (p.x - x).abs() <= 1e-9 * x.abs().max(1.0) && p.direction.to_string() == *dof
+        });
+        data.reference = Some(found.cloned().ok_or_else(|| {
+            let list: Vec<String> = m.points.iter().map(|p| p.label.clone()).collect();
+            data_error(
+                first,
+                format!(
+                    "mode {} has no point at x = {x}, {dof} (`reference_x`, `reference_dof` of {}); its points: {}",
+                    m.mode,
+                    levels.file.display(),
+                    list.join(", ")
+                ),
+            )
+        })?);
+    }
+    Ok(())
 }

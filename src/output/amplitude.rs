@@ -16,6 +16,9 @@ use crate::output::plot::{Band, LineAxes, PlotError, Series, lines_with_bands, s
 /// Half-width of the bands, in standard errors (about 95%).
 pub const BAND_SE: f64 = 2.0;
 
+/// The amplitude axis of the modal laws (and of the joint's without a reference point).
+const SENSOR_AMPLITUDE: &str = "displacement amplitude at the reference sensor (m)";
+
 /// One mode's series and fit, modal or the joint's.
 struct View<'a> {
     mode: usize,
@@ -285,7 +288,7 @@ pub fn figure(m: &ModeResult) -> Result<String, PlotError> {
             "modal stiffness",
             "modal stiffness (2 pi f)^2",
             "damping ratio",
-            "displacement amplitude at the reference sensor (m)",
+            SENSOR_AMPLITUDE,
         ],
     )
 }
@@ -305,7 +308,7 @@ pub fn joint_figure(m: &ModeResult) -> Option<Result<String, PlotError>> {
             deformation_unit(j.data.unit)
         )
     } else {
-        "displacement amplitude at the reference sensor (m)".to_string()
+        SENSOR_AMPLITUDE.to_string()
     };
     Some(figure_of(
         &view,

@@ -31,31 +31,36 @@ fn with_overlap(case: &str, length: &str) -> String {
 /// k_s within 3 standard errors of the 2D model's k_t b. Its k_n (1.2e9 +- 0.3e9) is below
 /// the 2D model's 2.5e9: the layers are Euler-Bernoulli beams, the 2D solids also shear
 /// (checked here to stay below the truth, not asserted equal).
-#[test]
-fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
-    let dir = scratch("layered-lap", "lap2d");
+/// `jointid diagnose` of fixture `case` with the half-lap overlap of 0.12 m given and the
+/// noise options `noise`: its terminal output and its JSON report.
+fn diagnosed(case: &str, noise: &[&str]) -> (String, Value) {
+    let dir = scratch("layered-lap", case);
     let model = dir.join("model.toml");
-    std::fs::write(&model, with_overlap("uniform", "0.12")).unwrap();
+    std::fs::write(&model, with_overlap(case, "0.12")).unwrap();
     let json = dir.join("report.json");
-    let measured = format!("{FIXTURES}/uniform/measured.csv");
-    jointid_ok(&[
-        "diagnose",
-        "--model",
-        s(&model),
-        "--measured",
-        &measured,
-        "--shape-noise",
-        "0.01",
-        "--json",
-        s(&json),
-    ]);
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let lap = report["candidates"]
+    let measured = format!("{FIXTURES}/{case}/measured.csv");
+    let mut args = vec!["diagnose", "--model", s(&model), "--measured", &measured];
+    args.extend_from_slice(noise);
+    args.extend(["--json", s(&json)]);
+    let out = jointid_ok(&args);
+    let report = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    (String::from_utf8_lossy(&out.stdout).into_owned(), report)
+}
+
+/// The layered lap's row of a report's candidates.
+fn layered_lap(report: &Value) -> &Value {
+    report["candidates"]
         .as_array()
         .unwrap()
         .iter()
         .find(|c| c["name"] == "layered_lap")
-        .expect("the layered lap is tried");
+        .expect("the layered lap is tried")
+}
+
+#[test]
+fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
+    let (_, report) = diagnosed("uniform", &["--shape-noise", "0.01"]);
+    let lap = layered_lap(&report);
     let chi2 = number(&lap["chi2"]);
     let before = number(&report["before"]["chi2"]);
     assert!(chi2 < 50.0 && before > 1e4, "chi^2 {before} -> {chi2}");
@@ -72,25 +77,10 @@ fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
 /// (0.07%); the table of before and after is printed.
 #[test]
 fn the_bolted_lap_is_named_and_closes_the_loop() {
-    let dir = scratch("layered-lap", "bolted");
-    let model = dir.join("model.toml");
-    std::fs::write(&model, with_overlap("bolted", "0.12")).unwrap();
-    let json = dir.join("report.json");
-    let measured = format!("{FIXTURES}/bolted/measured.csv");
-    let out = jointid_ok(&[
-        "diagnose",
-        "--model",
-        s(&model),
-        "--measured",
-        &measured,
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.01",
-        "--json",
-        s(&json),
-    ]);
-    let out = String::from_utf8_lossy(&out.stdout).into_owned();
+    let (out, report) = diagnosed(
+        "bolted",
+        &["--frequency-noise", "0.001", "--shape-noise", "0.01"],
+    );
     eprintln!("{}", out.lines().take(14).collect::<Vec<_>>().join("\n"));
     assert!(out.starts_with("verdict: effect: layered_lap\n"), "{out}");
     for row in ["joint calibrated", "after"] {
@@ -99,19 +89,13 @@ fn the_bolted_lap_is_named_and_closes_the_loop() {
             "{row}"
         );
     }
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let (before, after) = (
         number(&report["before"]["frequency_rms_pct"]),
         number(&report["after"]["frequency_rms_pct"]),
     );
     assert!(before > 3.0, "the point joint leaves {before}%");
     assert!(after <= 1.0, "the layered lap leaves {after}%");
-    let lap = report["candidates"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|c| c["name"] == "layered_lap")
-        .unwrap();
+    let lap = layered_lap(&report);
     let names: Vec<&str> = lap["parameters"]
         .as_array()
         .unwrap()

@@ -186,10 +186,10 @@ pub(crate) fn lap(
     });
     let nominal: Vec<f64> = notches.iter().flatten().copied().collect();
     let k_r = match raw.k_r {
-        Some(_) if nominal.is_empty() => {
+        Some(v) if nominal.is_empty() => {
             return Err(check.invalid(
                 p("k_r"),
-                raw.k_r.unwrap_or_default(),
+                v,
                 "neither layer's root is a notch (each layer is its beam's full height): leave k_r out",
             ));
         }
@@ -225,7 +225,7 @@ pub(crate) fn lap(
 /// Half of a rectangle-equivalent section (height sqrt(12 I / A)), its centroid `sign` h/4
 /// from the beam's axis (+1: the upper half).
 fn half(s: Section, sign: f64) -> Layer {
-    let h = (12.0 * s.second_moment / s.area).sqrt();
+    let h = notch::height(&s);
     Layer {
         section: Section {
             area: 0.5 * s.area,
@@ -239,7 +239,7 @@ fn half(s: Section, sign: f64) -> Layer {
 
 /// A beam's full section as a layer, its centroid on the beam's axis.
 fn full(s: Section) -> Layer {
-    let h = (12.0 * s.second_moment / s.area).sqrt();
+    let h = notch::height(&s);
     Layer {
         section: s,
         offset: 0.0,

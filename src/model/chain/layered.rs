@@ -298,18 +298,8 @@ fn number_lap(
     outer: &[Outer],
     infos: &mut Vec<DofInfo>,
 ) -> LapDofs {
-    let left: Vec<usize> = (0..mesh.nodes.len())
-        .filter(|&n| mesh.nodes[n].beam == j && mesh.nodes[n].x >= a - tol)
-        .collect();
-    let right: Vec<usize> = (0..mesh.nodes.len())
-        .filter(|&n| mesh.nodes[n].beam == j + 1 && mesh.nodes[n].x <= b + tol)
-        .collect();
+    let (left, right, xs) = overlap_nodes(j, (a, b), mesh, tol);
     let joint_node = left.len() - 1;
-    let xs: Vec<f64> = left
-        .iter()
-        .chain(&right[1..])
-        .map(|&n| mesh.nodes[n].x)
-        .collect();
     let names = ["upper", "lower"];
     let new_node = |layer: usize, k: usize, infos: &mut Vec<DofInfo>| {
         let at = |d: Direction| format!("lap{}.{}{k}:{d}", j + 1, names[layer]);
@@ -390,14 +380,7 @@ fn number_lap(
             })
             .collect()
     });
-    let mids: [Vec<usize>; 2] = std::array::from_fn(|layer| {
-        (0..xs.len() - 1)
-            .map(|i| {
-                let label = format!("lap{}.{}{i}m:x", j + 1, names[layer]);
-                push_dof(infos, label, 0.5 * (xs[i] + xs[i + 1]), Direction::X)
-            })
-            .collect()
-    });
+    let mids = midpoint_dofs(j, &xs, names, infos);
     LapDofs {
         joint: j,
         lap,
@@ -408,6 +391,46 @@ fn number_lap(
         mids,
         hinges,
     }
+}
+
+/// The mesh nodes over the overlap (a, b) of joint `j`: those of beam j from a on (the
+/// joint's node last), those of beam j + 1 up to b (the joint's node first), and the
+/// abscissae of the lap's stations (the two lists joined at the joint's node).
+fn overlap_nodes(
+    j: usize,
+    (a, b): (f64, f64),
+    mesh: &Mesh,
+    tol: f64,
+) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+    let left: Vec<usize> = (0..mesh.nodes.len())
+        .filter(|&n| mesh.nodes[n].beam == j && mesh.nodes[n].x >= a - tol)
+        .collect();
+    let right: Vec<usize> = (0..mesh.nodes.len())
+        .filter(|&n| mesh.nodes[n].beam == j + 1 && mesh.nodes[n].x <= b + tol)
+        .collect();
+    let xs: Vec<f64> = left
+        .iter()
+        .chain(&right[1..])
+        .map(|&n| mesh.nodes[n].x)
+        .collect();
+    (left, right, xs)
+}
+
+/// Each layer's axial DOF at the middle of every segment between the stations `xs`.
+fn midpoint_dofs(
+    j: usize,
+    xs: &[f64],
+    names: [&str; 2],
+    infos: &mut Vec<DofInfo>,
+) -> [Vec<usize>; 2] {
+    std::array::from_fn(|layer| {
+        (0..xs.len() - 1)
+            .map(|i| {
+                let label = format!("lap{}.{}{i}m:x", j + 1, names[layer]);
+                push_dof(infos, label, 0.5 * (xs[i] + xs[i + 1]), Direction::X)
+            })
+            .collect()
+    })
 }
 
 /// The joints that are layered laps.
