@@ -19,6 +19,12 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Conj, MatMut, Par, Side};
 
+/// Columns solved together by [`SparseLlt::solve_columns_in_place`]. Measured per column on
+/// the factor of the 212k-DOF lap (1.3e8 entries): 0.138 s alone, 0.034 s in a block of 4,
+/// 0.021 s in 8, 0.013 s in 24; on the 1e5 cantilever's band 1.1 ms alone, 0.37 ms in 8 and
+/// 0.76 ms in 24 (the block no longer in cache).
+pub const SOLVE_WIDTH: usize = 8;
+
 /// Fill-reducing ordering of the factorisation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Ordering {
@@ -108,13 +114,12 @@ impl SparseLlt {
         );
     }
 
-    /// Overwrites every column of `x` (N x p) with A^-1 x: the columns in blocks, the blocks
-    /// on the threads of rayon's pool (a block of right-hand sides goes through the supernodes
-    /// as matrix products, faster per column than one at a time).
+    /// Overwrites every column of `x` (N x p) with A^-1 x: the columns in blocks of
+    /// [`SOLVE_WIDTH`], the blocks on the threads of rayon's pool (a block of right-hand sides
+    /// goes through the supernodes as matrix products, faster per column than one at a time).
+    /// The blocks do not depend on the number of threads: a column solved in another block
+    /// differs in its last bits.
     pub fn solve_columns_in_place(&self, x: MatMut<'_, f64>) {
-        let p = x.ncols();
-        let threads = rayon::current_num_threads().clamp(1, p.max(1));
-        let width = p.div_ceil(threads).max(1);
         let llt = LltRef::new(&self.symbolic, &self.values);
         let solve = |block: MatMut<'_, f64>| {
             let mut scratch = MemBuffer::new(
@@ -123,7 +128,7 @@ impl SparseLlt {
             );
             llt.solve_in_place_with_conj(Conj::No, block, Par::Seq, MemStack::new(&mut scratch));
         };
-        split_columns(x, width, &solve);
+        split_columns(x, SOLVE_WIDTH, &solve);
     }
 
     /// Entries of the factor L.
@@ -168,4 +173,64 @@ fn split_columns(x: MatMut<'_, f64>, width: usize, f: &(dyn Fn(MatMut<'_, f64>) 
         || split_columns(left, width, f),
         || split_columns(right, width, f),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::Mat;
+
+    /// The 3D Laplacian of a q x q x q grid plus the identity (its supernodes are dense
+    /// blocks, so that the solve runs matrix products).
+    fn grid(q: usize) -> (usize, Vec<Triplet<usize, usize, f64>>) {
+        let n = q * q * q;
+        let at = |i: usize, j: usize, l: usize| (i * q + j) * q + l;
+        let mut lower = Vec::new();
+        for i in 0..q {
+            for j in 0..q {
+                for l in 0..q {
+                    let c = at(i, j, l);
+                    lower.push(Triplet::new(c, c, 7.0));
+                    for (di, dj, dl) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
+                        let (a, b, e) = (i + di, j + dj, l + dl);
+                        if a < q && b < q && e < q {
+                            lower.push(Triplet::new(at(a, b, e), c, -1.0));
+                        }
+                    }
+                }
+            }
+        }
+        (n, lower)
+    }
+
+    /// Columns solved together differ in their last bits from columns solved alone (faer
+    /// runs a block of right-hand sides through other kernels), so the blocks are the same
+    /// for any number of threads: the same bits on 1, 2 or 3 threads.
+    #[test]
+    fn columns_solve_alike_on_any_number_of_threads() {
+        let (n, lower) = grid(14);
+        let llt = SparseLlt::new(n, &lower, Ordering::Amd).unwrap();
+        let b = Mat::from_fn(n, 19, |i, j| {
+            ((i * 31 + j * 17) % 23) as f64 - 11.0 + 0.1 * j as f64
+        });
+        let solved = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut x = b.clone();
+            pool.install(|| llt.solve_columns_in_place(x.as_mut()));
+            x
+        };
+        let one = solved(1);
+        for threads in [2, 3] {
+            assert!(solved(threads) == one, "{threads} threads");
+        }
+        // The check can fail: together and alone differ.
+        let mut alone = b.clone();
+        for j in 0..b.ncols() {
+            llt.solve_columns_in_place(alone.as_mut().subcols_mut(j, 1));
+        }
+        assert!(alone != one);
+    }
 }
