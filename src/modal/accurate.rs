@@ -18,21 +18,21 @@ use faer::sparse::SparseColMatRef;
 /// `y = A x` for a symmetric matrix stored with both triangles, every entry accumulated in
 /// twice the working precision and rounded once.
 pub fn accurate_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    accurate_block::<1>(a, [x], y);
+    accurate_block::<1>(a, [x], [y]);
 }
 
 /// [`accurate_mul`], returning also || |A| |x| ||_2 (the scale of the rounding of A x).
 pub fn accurate_mul_bounded(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) -> f64 {
-    accurate_block::<1>(a, [x], y)[0].sqrt()
+    accurate_block::<1>(a, [x], [y])[0].sqrt()
 }
 
 /// [`accurate_mul`] of W vectors at once (one pass over A for all of them; the same
-/// operations per vector, so the same results), into `y` (N x W, column-major); returns
+/// operations per vector, so the same results), into the W columns `y`; returns
 /// || |A| |x_r| ||^2 of every vector.
 pub fn accurate_block<const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: &mut [f64],
+    y: [&mut [f64]; W],
 ) -> [f64; W] {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("fma") {
@@ -49,7 +49,7 @@ pub fn accurate_block<const W: usize>(
 unsafe fn accurate_block_fma<const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: &mut [f64],
+    y: [&mut [f64]; W],
 ) -> [f64; W] {
     accurate_block_with::<true, W>(a, x, y)
 }
@@ -58,7 +58,7 @@ unsafe fn accurate_block_fma<const W: usize>(
 fn accurate_block_with<const FMA: bool, const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: &mut [f64],
+    y: [&mut [f64]; W],
 ) -> [f64; W] {
     let n = a.ncols();
     let mut squares = [0.0; W];
@@ -81,7 +81,7 @@ fn accurate_block_with<const FMA: bool, const W: usize>(
             }
         }
         for r in 0..W {
-            y[r * n + j] = s[r] + c[r];
+            y[r][j] = s[r] + c[r];
             squares[r] += bound[r] * bound[r];
         }
     }
@@ -160,14 +160,19 @@ mod tests {
             [-1.0, 1.0, 1e-8],
             [1.0 / 3.0, 2.0 / 3.0, 1.0],
         ];
-        let mut block = vec![0.0; 12];
-        accurate_block::<4>(a.as_faer(), std::array::from_fn(|r| &xs[r][..]), &mut block);
+        let mut block = [[0.0; 3]; 4];
+        let [b0, b1, b2, b3] = &mut block;
+        accurate_block::<4>(
+            a.as_faer(),
+            std::array::from_fn(|r| &xs[r][..]),
+            [b0, b1, b2, b3],
+        );
         for (r, x) in xs.iter().enumerate() {
             let (mut one, mut generic) = ([0.0; 3], [0.0; 3]);
             let bound = accurate_mul_bounded(a.as_faer(), x, &mut one);
-            accurate_block_with::<false, 1>(a.as_faer(), [&x[..]], &mut generic);
+            accurate_block_with::<false, 1>(a.as_faer(), [&x[..]], [&mut generic]);
             assert_eq!(one, generic, "vector {r}");
-            assert_eq!(&block[3 * r..3 * r + 3], &one[..], "vector {r}");
+            assert_eq!(block[r], one, "vector {r}");
             let by_hand = [
                 4.0 * x[0].abs() + 1e16 * x[1].abs(),
                 1e16 * x[0].abs() + 3.0 * x[1].abs() + 0.1 * x[2].abs(),

@@ -297,15 +297,15 @@ pub fn hz_to_lambda(f: f64) -> f64 {
 
 /// `y = A x` for a symmetric matrix stored with both triangles.
 pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut [f64]) {
-    sparse_mul_block::<1>(a, [x], y);
+    sparse_mul_block::<1>(a, [x], [y]);
 }
 
-/// [`sparse_mul`] of W vectors in one pass over A, into `y` (N x W, column-major). Column j
+/// [`sparse_mul`] of W vectors in one pass over A, into the W columns `y`. Column j
 /// of a symmetric matrix is its row j: each entry of y is one gathered sum, written once.
 pub(crate) fn sparse_mul_block<const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: &mut [f64],
+    y: [&mut [f64]; W],
 ) {
     let n = a.ncols();
     for j in 0..n {
@@ -317,7 +317,7 @@ pub(crate) fn sparse_mul_block<const W: usize>(
             }
         }
         for r in 0..W {
-            y[r * n + j] = s[r];
+            y[r][j] = s[r];
         }
     }
 }

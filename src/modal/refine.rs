@@ -49,7 +49,7 @@
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Mat, MatMut, Par};
+use faer::{Accum, Mat, Par};
 
 use rayon::prelude::*;
 
@@ -74,8 +74,8 @@ pub const RESOLVABLE: f64 = 1e-6;
 pub const FLOOR_FACTOR: f64 = 10.0;
 
 /// A Q, the products accurate ([`super::accurate::accurate_mul`], four columns a pass, with || |A| |q_j| ||
-/// of every column) or plain (no bounds), the columns on rayon's threads, each block written
-/// into its place (a block of four columns as scratch, never a second N x p copy).
+/// of every column) or plain (no bounds), the blocks of four columns on rayon's threads, each
+/// written straight into its columns of the product.
 fn mul_columns(
     a: SparseColMatRef<'_, usize, f64>,
     q: &Mat<f64>,
@@ -85,49 +85,49 @@ fn mul_columns(
     let (n, p) = (q.nrows(), q.ncols());
     let col = |j: usize| q.col_as_slice(j);
     let mut product = Mat::<f64>::zeros(n, p);
-    let mut chunks: Vec<MatMut<'_, f64>> = Vec::new();
-    let mut rest = product.as_mut();
-    while rest.ncols() > W {
-        let (head, tail) = rest.split_at_col_mut(W);
-        chunks.push(head);
-        rest = tail;
+    let columns: Vec<&mut [f64]> = product
+        .as_mut()
+        .col_iter_mut()
+        .map(|c| {
+            c.try_as_col_major_mut()
+                .expect("a column of an owned matrix is contiguous")
+                .as_slice_mut()
+        })
+        .collect();
+    let mut chunks: Vec<Vec<&mut [f64]>> = Vec::new();
+    let mut rest = columns.into_iter();
+    loop {
+        let chunk: Vec<&mut [f64]> = rest.by_ref().take(W).collect();
+        if chunk.is_empty() {
+            break;
+        }
+        chunks.push(chunk);
     }
-    chunks.push(rest);
     let bounds: Vec<Vec<f64>> = chunks
         .into_par_iter()
         .enumerate()
-        .map(|(b, mut target)| {
-            let (first, width) = (b * W, target.ncols());
-            let mut out = vec![0.0; n * width];
+        .map(|(b, target)| {
+            let first = b * W;
             let mut bounds = Vec::new();
-            match (accurate, width) {
-                (true, W) => {
+            match (accurate, <[&mut [f64]; W]>::try_from(target)) {
+                (true, Ok(block)) => {
                     let squares =
-                        accurate_block::<W>(a, std::array::from_fn(|r| col(first + r)), &mut out);
+                        accurate_block::<W>(a, std::array::from_fn(|r| col(first + r)), block);
                     bounds.extend(squares.iter().map(|s| s.sqrt()));
                 }
-                (true, _) => {
-                    for (r, y) in out.chunks_mut(n).enumerate() {
-                        bounds.push(accurate_block::<1>(a, [col(first + r)], y)[0].sqrt());
+                (true, Err(rest)) => {
+                    for (r, y) in rest.into_iter().enumerate() {
+                        bounds.push(accurate_block::<1>(a, [col(first + r)], [y])[0].sqrt());
                     }
                 }
-                (false, W) => {
-                    sparse_mul_block::<W>(a, std::array::from_fn(|r| col(first + r)), &mut out);
+                (false, Ok(block)) => {
+                    sparse_mul_block::<W>(a, std::array::from_fn(|r| col(first + r)), block);
                 }
-                (false, _) => {
-                    for (r, y) in out.chunks_mut(n).enumerate() {
+                (false, Err(rest)) => {
+                    for (r, y) in rest.into_iter().enumerate() {
                         sparse_mul(a, col(first + r), y);
                     }
                 }
-            }
-            for (r, y) in out.chunks(n).enumerate() {
-                target
-                    .as_mut()
-                    .col_mut(r)
-                    .try_as_col_major_mut()
-                    .expect("a column of an owned matrix is contiguous")
-                    .as_slice_mut()
-                    .copy_from_slice(y);
             }
             bounds
         })
@@ -332,7 +332,7 @@ fn corrections(
     llt.solve_columns_in_place(d.as_mut());
     for _ in 0..2 {
         let c = my.transpose() * &d;
-        d -= y * &c;
+        matmul(d.as_mut(), Accum::Add, y, &c, -1.0, Par::Seq);
     }
     let (md, _) = mul_columns(m, &d, false);
     (d, md)
