@@ -68,8 +68,12 @@ impl SparseLlt {
     pub fn from_lower(a: SparseColMatRef<'_, usize, f64>, ordering: Ordering) -> Option<Self> {
         let symbolic = match ordering {
             Ordering::Fewest => {
-                let amd = symbolic_of(a, Ordering::Amd)?;
-                let natural = symbolic_of(a, Ordering::Natural)?;
+                // The two analyses on two threads where there are.
+                let (amd, natural) = rayon::join(
+                    || symbolic_of(a, Ordering::Amd),
+                    || symbolic_of(a, Ordering::Natural),
+                );
+                let (amd, natural) = (amd?, natural?);
                 if natural.len_val() < amd.len_val() {
                     natural
                 } else {
