@@ -83,9 +83,15 @@
 //! (module docs of [`super::refine`]). On the cantilever of 1e5 DOFs, 20 modes: 241 MB peak for
 //! the whole process, 500 MB before these blocks were counted (docs/benchmarks.md).
 //!
-//! Threads: the refinement's block solves and products with K and M run on rayon's pool
-//! (`RAYON_NUM_THREADS`); the Lanczos recurrence itself is sequential. [`LowestModes::timings`]
-//! says where the time went.
+//! Threads: the check of M beside the factorisation of K - sigma M, and the refinement's
+//! block solves and products with K and M, run on rayon's pool (`RAYON_NUM_THREADS`); the
+//! Lanczos recurrence itself is sequential. The results are the same bits on any number of
+//! threads: every block of columns is the same whatever thread runs it. A block Lanczos
+//! (four vectors a step, one pass over the factor for the four) was tried and left out: per
+//! column a block solve costs a quarter, but the blocks needed 80 operator applications
+//! where single vectors need 50, and the block Gram-Schmidt cost more than it saved (the
+//! 24k solid 0.51-0.56 s against 0.49-0.50; the 212k lap 11.4 s against 11.9).
+//! [`LowestModes::timings`] says where the time went.
 //!
 //! A limit shared with every single-vector Krylov method: an eigenvalue of exact multiplicity
 //! m > 1 shows its further copies only through round-off, after some delay. The rigid-body
