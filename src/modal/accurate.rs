@@ -58,7 +58,7 @@ unsafe fn accurate_block_fma<const W: usize>(
 fn accurate_block_with<const FMA: bool, const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: [&mut [f64]; W],
+    mut y: [&mut [f64]; W],
 ) -> [f64; W] {
     let n = a.ncols();
     let mut squares = [0.0; W];
@@ -80,8 +80,8 @@ fn accurate_block_with<const FMA: bool, const W: usize>(
                 bound[r] += p.abs();
             }
         }
-        for r in 0..W {
-            y[r][j] = s[r] + c[r];
+        for (r, column) in y.iter_mut().enumerate() {
+            column[j] = s[r] + c[r];
             squares[r] += bound[r] * bound[r];
         }
     }

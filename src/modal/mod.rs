@@ -305,7 +305,7 @@ pub(crate) fn sparse_mul(a: SparseColMatRef<'_, usize, f64>, x: &[f64], y: &mut 
 pub(crate) fn sparse_mul_block<const W: usize>(
     a: SparseColMatRef<'_, usize, f64>,
     x: [&[f64]; W],
-    y: [&mut [f64]; W],
+    mut y: [&mut [f64]; W],
 ) {
     let n = a.ncols();
     for j in 0..n {
@@ -316,8 +316,8 @@ pub(crate) fn sparse_mul_block<const W: usize>(
                 s[r] += v * x[r][i];
             }
         }
-        for r in 0..W {
-            y[r][j] = s[r];
+        for (column, value) in y.iter_mut().zip(s) {
+            column[j] = value;
         }
     }
 }
