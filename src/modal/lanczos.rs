@@ -50,7 +50,7 @@
 //!    not asked for). The refinement corrects each wanted pair until its relative residual
 //!    ||K y - lambda M y|| / ||K y|| stands at its rounding floor ([`super::residual`]), which
 //!    it reports: on the 3D lap of 2.4e4 DOFs, 1e-4 from the Lanczos vectors, 1e-9 after
-//!    two sweeps.
+//!    one sweep.
 //! 5. Stop. Once the Krylov space has converged, a restart would hand the refinement the
 //!    same vectors: a pair the refinement cannot accept is an error at once
 //!    ([`ModalError::NotConverged`], naming how many pairs converged and each other pair
