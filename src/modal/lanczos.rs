@@ -110,7 +110,7 @@ use super::residual::Residual;
 pub use super::shift::{SHIFT_ATTEMPTS, default_shift};
 use super::shift::{factor_shifted, lower_sum};
 use super::sparse_llt::{Ordering, SparseLlt};
-use super::{ModalError, fix_sign};
+use super::{ModalError, beside, fix_sign};
 
 /// Ritz vectors beyond the wanted ones that enter the refinement.
 pub const REFINE_EXTRA: usize = 4;
@@ -210,8 +210,8 @@ pub fn lowest_modes(
     // M couples each direction only with itself and the three interleave, so that adjacent
     // columns seldom share a pattern. On K - sigma M the DOF order was the faster (2.6 s
     // against 7.5 s). The check runs beside the factorisation of K - sigma M on a second
-    // thread (1.0 s of that lap's 4.8 s of factorisations); on one thread, before it.
-    let (mass_definite, shifted) = rayon::join(
+    // thread (1.0 s of that lap's 4.8 s of factorisations); with one thread, before it.
+    let (mass_definite, shifted) = beside(
         || {
             lower_sum(m, None)
                 .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), Ordering::Amd))

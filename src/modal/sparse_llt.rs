@@ -69,7 +69,7 @@ impl SparseLlt {
         let symbolic = match ordering {
             Ordering::Fewest => {
                 // The two analyses on two threads where there are.
-                let (amd, natural) = rayon::join(
+                let (amd, natural) = super::beside(
                     || symbolic_of(a, Ordering::Amd),
                     || symbolic_of(a, Ordering::Natural),
                 );
