@@ -83,9 +83,9 @@
 //! (module docs of [`super::refine`]). On the cantilever of 1e5 DOFs, 20 modes: 241 MB peak for
 //! the whole process, 500 MB before these blocks were counted (docs/benchmarks.md).
 //!
-//! Threads: the check of M beside the factorisation of K - sigma M, and the refinement's
-//! block solves and products with K and M, run on rayon's pool (`RAYON_NUM_THREADS`); the
-//! Lanczos recurrence itself is sequential. The results are the same bits on any number of
+//! Threads: where `RAYON_NUM_THREADS` allows two, the check of M runs on a thread of its own
+//! beside the factorisation of K - sigma M; the refinement's block solves and products with
+//! K and M run on rayon's pool; the Lanczos recurrence itself is sequential. The results are the same bits on any number of
 //! threads: every block of columns is the same whatever thread runs it. A block Lanczos
 //! (four vectors a step, one pass over the factor for the four) was tried and left out: per
 //! column a block solve costs a quarter, but the blocks needed 80 operator applications
