@@ -295,15 +295,24 @@ pub fn hz_to_lambda(f: f64) -> f64 {
     w * w
 }
 
-/// `(a(), b())`: `a` on a thread of its own when rayon's pool has two threads or more, `b`
-/// on the calling thread; one after the other otherwise. Why not `rayon::join`: it runs both
-/// on the pool's threads, and there the factorisation of the 212k-DOF lap took 1 s longer
-/// than on the calling thread (5.6 against 4.6 s), likely because the calling thread's
-/// allocator arena already holds the pages it needs.
-pub(crate) fn beside<A: Send, B>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B) -> (A, B) {
+/// `(a(), b())`: called from outside rayon's pool, `a` on a thread of its own when the pool
+/// has two threads or more, `b` on the calling thread; from one of the pool's threads (a
+/// study, diagnose's candidates fitted in parallel), by `rayon::join`, which lends `a` to an
+/// idle thread of the pool rather than start one more; one after the other with one thread.
+/// Why not `rayon::join` from outside the pool: it runs both on the pool's threads, and there
+/// the factorisation of the 212k-DOF lap took 1 s longer than on the calling thread (5.6
+/// against 4.6 s), likely because the calling thread's allocator arena already holds the
+/// pages it needs.
+pub(crate) fn beside<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
     if rayon::current_num_threads() < 2 {
         let first = a();
         return (first, b());
+    }
+    if rayon::current_thread_index().is_some() {
+        return rayon::join(a, b);
     }
     std::thread::scope(|scope| {
         let first = scope.spawn(a);
