@@ -14,8 +14,8 @@
 //! stiffness for every level) and with the chosen law's joint at the level's amplitude, against
 //! the measured ones.
 //!
-//! Imports: [`super::load`](mod@super::load), [`super::select`], [`super::laws`], [`crate::identify`],
-//! [`crate::modal`], [`crate::structure`].
+//! Imports: [`super::load`](mod@super::load), [`super::select`], [`super::laws`],
+//! [`crate::identify`], [`crate::modal`], [`crate::structure`].
 
 use super::AmplitudeError;
 use super::fit::Series;

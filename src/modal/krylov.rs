@@ -9,8 +9,9 @@ use std::time::{Duration, Instant};
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Mat, MatRef, Par, Side};
+use faer::{Accum, Mat, MatRef, Par};
 
+use super::pencil::symmetric_eigen;
 use super::sparse_llt::SparseLlt;
 use super::sparse_mul;
 
@@ -221,18 +222,10 @@ impl<'a> Krylov<'a> {
     /// Ritz values theta (descending) and vectors S of H.
     pub(super) fn ritz(&self) -> (Vec<f64>, Mat<f64>) {
         let size = self.size;
-        let scale = (0..size)
-            .flat_map(|j| (0..size).map(move |i| (i, j)))
-            .map(|(i, j)| self.h[(i, j)].abs())
-            .fold(f64::MIN_POSITIVE, f64::max);
-        let a = Mat::from_fn(size, size, |i, j| {
-            0.5 * (self.h[(i, j)] + self.h[(j, i)]) / scale
-        });
-        let evd = a
-            .self_adjoint_eigen(Side::Lower)
+        let (values, u) = symmetric_eigen(&self.h)
             .expect("the symmetric eigensolver of a small finite matrix converges");
-        let theta = (0..size).rev().map(|i| evd.S()[i] * scale).collect();
-        let s = Mat::from_fn(size, size, |i, j| evd.U()[(i, size - 1 - j)]);
+        let theta = values.into_iter().rev().collect();
+        let s = Mat::from_fn(size, size, |i, j| u[(i, size - 1 - j)]);
         (theta, s)
     }
 

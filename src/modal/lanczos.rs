@@ -85,8 +85,9 @@
 //!
 //! Threads: where `RAYON_NUM_THREADS` allows two, the check of M runs on a thread of its own
 //! beside the factorisation of K - sigma M; the refinement's block solves and products with
-//! K and M run on rayon's pool; the Lanczos recurrence itself is sequential. The results are the same bits on any number of
-//! threads: every block of columns is the same whatever thread runs it. A block Lanczos
+//! K and M run on rayon's pool; the Lanczos recurrence itself is sequential. The results are
+//! the same bits on any number of threads: every block of columns is the same whatever
+//! thread runs it. A block Lanczos
 //! (four vectors a step, one pass over the factor for the four) was tried and left out: per
 //! column a block solve costs a quarter, but the blocks needed 80 operator applications
 //! where single vectors need 50, and the block Gram-Schmidt cost more than it saved (the

@@ -207,25 +207,8 @@ impl ModalSolution {
         let llt = m
             .llt(Side::Lower)
             .map_err(|_| ModalError::MassNotPositiveDefinite)?;
-        let l = llt.L();
-        // A = L^-1 K L^-T, using K = K^T: X = L^-1 K, A = L^-1 X^T.
-        let mut x = k.clone();
-        l.solve_lower_triangular_in_place(x.as_mut());
-        let mut a = x.transpose().to_owned();
-        l.solve_lower_triangular_in_place(a.as_mut());
-        let scale = (0..n)
-            .flat_map(|j| (0..n).map(move |i| (i, j)))
-            .map(|(i, j)| a[(i, j)].abs())
-            .fold(0.0_f64, f64::max)
-            .max(f64::MIN_POSITIVE);
-        let a = Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]) / scale);
-        let evd = a
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|_| ModalError::NoConvergence)?;
-        let values: Vec<f64> = (0..n).map(|i| evd.S()[i] * scale).collect();
-        let mut vectors = evd.U().to_owned();
-        l.transpose()
-            .solve_upper_triangular_in_place(vectors.as_mut());
+        let (values, mut vectors) =
+            pencil::cholesky_reduced(k, llt.L()).ok_or(ModalError::NoConvergence)?;
         for j in 0..n {
             fix_sign(&mut vectors, j);
         }

@@ -1,40 +1,58 @@
-//! Eigenpairs of a small dense symmetric pencil (a, b), the Rayleigh-Ritz step of the
-//! sparse eigensolver's refinement ([`super::refine`]): by the Cholesky factor of b, or, when
-//! b is not numerically positive definite (nearly dependent corrections), on b's independent
-//! directions.
+//! Eigenpairs of small dense symmetric problems: the standard problem scaled for faer's
+//! solver ([`symmetric_eigen`]), a pencil (a, b) by the Cholesky factor of b
+//! ([`cholesky_reduced`]: the dense modal solution, [`super::ModalSolution::solve_dense`],
+//! and the Rayleigh-Ritz step of the sparse eigensolver's refinement, [`super::refine`]),
+//! and, when b is not numerically positive definite (nearly dependent corrections), a pencil
+//! on b's independent directions ([`dense_pencil`]).
 //!
 //! Layer 2 (eigensolution), like [`super`].
 
-use faer::{Mat, Side};
+use faer::{Mat, MatRef, Side};
 
 /// Below this fraction of b's largest eigenvalue, a direction of a basis whose Gram matrix b
 /// is not numerically positive definite is left out ([`dense_pencil`]).
 pub const DEPENDENT: f64 = 1e-10;
 
-/// Eigenpairs of the small dense pencil (a, b), b symmetric positive semidefinite: values
-/// ascending, vectors X with X^T b X = E. Scaled to unit largest entry for faer's symmetric
-/// solver (see the module docs of [`super`]). When b has no Cholesky factor (corrections
-/// that are nearly dependent), the pencil is solved on b's eigenvectors of eigenvalue above
-/// [`DEPENDENT`] times its largest: fewer pairs than the pencil's order then.
-pub fn dense_pencil(a: &Mat<f64>, b: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
+/// Eigenpairs of the symmetric part of a small dense matrix, values ascending: scaled to unit
+/// largest entry before faer's symmetric solver and the values scaled back (module docs of
+/// [`super`]: without it the solver loses accuracy on entries of order 1e12). `None` when
+/// the solver does not converge.
+pub(crate) fn symmetric_eigen(a: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
     let n = a.nrows();
-    let sym = |x: &Mat<f64>| Mat::from_fn(n, n, |i, j| 0.5 * (x[(i, j)] + x[(j, i)]));
-    let Ok(llt) = sym(b).llt(Side::Lower) else {
-        return independent_pencil(&sym(a), &sym(b));
-    };
-    let l = llt.L();
-    let mut x = sym(a);
+    let scale = a.norm_max().max(f64::MIN_POSITIVE);
+    let c = Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]) / scale);
+    let evd = c.self_adjoint_eigen(Side::Lower).ok()?;
+    let values = (0..n).map(|i| evd.S()[i] * scale).collect();
+    Some((values, evd.U().to_owned()))
+}
+
+/// Eigenpairs of the pencil (a, b) given L, the Cholesky factor of b: the standard problem
+/// L^-1 a L^-T ([`symmetric_eigen`]), its vectors mapped back by L^-T (X^T b X = E). Values
+/// ascending.
+pub(crate) fn cholesky_reduced(a: &Mat<f64>, l: MatRef<'_, f64>) -> Option<(Vec<f64>, Mat<f64>)> {
+    // L^-1 a L^-T, using a = a^T: X = L^-1 a, then L^-1 X^T.
+    let mut x = a.clone();
     l.solve_lower_triangular_in_place(x.as_mut());
     let mut c = x.transpose().to_owned();
     l.solve_lower_triangular_in_place(c.as_mut());
-    let scale = c.norm_max().max(f64::MIN_POSITIVE);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]) / scale);
-    let evd = c.self_adjoint_eigen(Side::Lower).ok()?;
-    let values = (0..n).map(|i| evd.S()[i] * scale).collect();
-    let mut vectors = evd.U().to_owned();
+    let (values, mut vectors) = symmetric_eigen(&c)?;
     l.transpose()
         .solve_upper_triangular_in_place(vectors.as_mut());
     Some((values, vectors))
+}
+
+/// Eigenpairs of the small dense pencil (a, b), b symmetric positive semidefinite: values
+/// ascending, vectors X with X^T b X = E ([`cholesky_reduced`]). When b has no Cholesky
+/// factor (corrections that are nearly dependent), the pencil is solved on b's eigenvectors
+/// of eigenvalue above [`DEPENDENT`] times its largest: fewer pairs than the pencil's order
+/// then.
+pub fn dense_pencil(a: &Mat<f64>, b: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)> {
+    let n = a.nrows();
+    let sym = |x: &Mat<f64>| Mat::from_fn(n, n, |i, j| 0.5 * (x[(i, j)] + x[(j, i)]));
+    match sym(b).llt(Side::Lower) {
+        Ok(llt) => cholesky_reduced(&sym(a), llt.L()),
+        Err(_) => independent_pencil(&sym(a), &sym(b)),
+    }
 }
 
 /// [`dense_pencil`] on the independent directions of b: b = V S V^T, W = V_k S_k^(-1/2) over
@@ -52,15 +70,8 @@ fn independent_pencil(a: &Mat<f64>, b: &Mat<f64>) -> Option<(Vec<f64>, Mat<f64>)
     let w = Mat::from_fn(n, kept.len(), |i, c| {
         evd.U()[(i, kept[c])] / evd.S()[kept[c]].sqrt()
     });
-    let reduced = w.transpose() * a * &w;
-    let r = kept.len();
-    let scale = reduced.norm_max().max(f64::MIN_POSITIVE);
-    let c = Mat::from_fn(r, r, |i, j| {
-        0.5 * (reduced[(i, j)] + reduced[(j, i)]) / scale
-    });
-    let inner = c.self_adjoint_eigen(Side::Lower).ok()?;
-    let values = (0..r).map(|i| inner.S()[i] * scale).collect();
-    Some((values, w * inner.U()))
+    let (values, inner) = symmetric_eigen(&(w.transpose() * a * &w))?;
+    Some((values, w * inner))
 }
 
 #[cfg(test)]

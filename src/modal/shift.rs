@@ -61,9 +61,9 @@ pub(super) fn lower_sum(
     Some(SparseColMat::new(symbolic, values))
 }
 
-fn ordering() -> Ordering {
-    Ordering::Fewest
-}
+/// The ordering of K - sigma M's factor: of minimum degree and the DOF order, the one that
+/// fills less ([`Ordering::Fewest`]).
+const ORDERING: Ordering = Ordering::Fewest;
 
 /// The default shift of [`super::lanczos::LanczosSettings::shift`].
 pub fn default_shift(
@@ -111,7 +111,7 @@ pub(super) fn factor_shifted(
     let mut sigma = first;
     for _ in 0..SHIFT_ATTEMPTS {
         if let Some(lower) = lower_sum(k, Some((m, -sigma))) {
-            if let Some(llt) = SparseLlt::from_lower(lower.as_ref(), ordering()) {
+            if let Some(llt) = SparseLlt::from_lower(lower.as_ref(), ORDERING) {
                 return Ok((sigma, llt));
             }
         }

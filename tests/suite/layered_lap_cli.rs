@@ -26,11 +26,6 @@ fn with_overlap(case: &str, length: &str) -> String {
     )
 }
 
-/// The uniform interface (k_n b = 2.5e9, k_t b = 5e8 N/m per m in the 2D model): the layered
-/// lap takes chi^2 from 22600 (point joint) to about 23 on 15 degrees of freedom and finds
-/// k_s within 3 standard errors of the 2D model's k_t b. Its k_n (1.2e9 +- 0.3e9) is below
-/// the 2D model's 2.5e9: the layers are Euler-Bernoulli beams, the 2D solids also shear
-/// (checked here to stay below the truth, not asserted equal).
 /// `jointid diagnose` of fixture `case` with the half-lap overlap of 0.12 m given and the
 /// noise options `noise`: its terminal output and its JSON report.
 fn diagnosed(case: &str, noise: &[&str]) -> (String, Value) {
@@ -57,6 +52,11 @@ fn layered_lap(report: &Value) -> &Value {
         .expect("the layered lap is tried")
 }
 
+/// The uniform interface (k_n b = 2.5e9, k_t b = 5e8 N/m per m in the 2D model): the layered
+/// lap takes chi^2 from 22600 (point joint) to about 23 on 15 degrees of freedom and finds
+/// k_s within 3 standard errors of the 2D model's k_t b. Its k_n (1.2e9 +- 0.3e9) is below
+/// the 2D model's 2.5e9: the layers are Euler-Bernoulli beams, the 2D solids also shear
+/// (checked here to stay below the truth, not asserted equal).
 #[test]
 fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
     let (_, report) = diagnosed("uniform", &["--shape-noise", "0.01"]);

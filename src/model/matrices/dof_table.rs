@@ -212,8 +212,8 @@ pub fn write(out: &mut dyn Write, dofs: &[DofInfo]) -> io::Result<()> {
     write_iter(out, dofs.iter().cloned())
 }
 
-/// [`write`](fn@write) from an iterator of the DOFs in index order (a large table written as it is
-/// made).
+/// [`write`](fn@write) from an iterator of the DOFs in index order (a large table written as
+/// it is made).
 pub fn write_iter(out: &mut dyn Write, dofs: impl Iterator<Item = DofInfo>) -> io::Result<()> {
     let mut w = ::csv::Writer::from_writer(out);
     let to_io = |e: ::csv::Error| io::Error::other(e.to_string());

@@ -15,8 +15,8 @@ pub fn write(
     write_entries(out, size, lower.len(), lower.iter().copied(), comments)
 }
 
-/// [`write`](fn@write) from an iterator of `count` entries (a large matrix written as it is read from
-/// its store, never copied).
+/// [`write`](fn@write) from an iterator of `count` entries (a large matrix written as it is
+/// read from its store, never copied).
 pub fn write_entries(
     out: &mut dyn Write,
     size: usize,
