@@ -31,7 +31,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use faer::Mat;
 
 use super::pairing::{Pairing, PairingRule, Unpaired, pair};
-use super::sensitivity::ModeDerivative;
+use super::sensitivity::ModeDerivatives;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
@@ -390,6 +390,11 @@ impl<'a> Problem<'a> {
             )
             .collect();
         let mats = eval.configured.assemble();
+        let derivatives = ModeDerivatives::new(&mats, &eval.modal);
+        let pairs: Vec<_> = params
+            .iter()
+            .map(|(p, _)| (&p.stiffness, &p.mass))
+            .collect();
         let unknowns = x.len();
         let rows = eval.residual.len();
         let scale_at = self.joint_count() + self.effect_count();
@@ -399,9 +404,9 @@ impl<'a> Problem<'a> {
             let s = pairing.model_index[r];
             let sign = model_sign(&eval.modal, s, m);
             let f = eval.modal.frequency_hz(s);
-            let derivative = ModeDerivative::new(&mats, &eval.modal, s);
-            for (col, (p, chain)) in params.iter().enumerate() {
-                let (d_lambda, dy) = derivative.of(&p.stiffness, &p.mass);
+            let chains = params.iter().map(|(_, chain)| chain);
+            for (col, (chain, (d_lambda, dy))) in chains.zip(derivatives.of(s, &pairs)).enumerate()
+            {
                 let df = d_lambda
                     / (8.0
                         * std::f64::consts::PI

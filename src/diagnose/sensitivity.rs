@@ -8,37 +8,58 @@
 //! ```
 //! for M-normalised vectors and a simple eigenvalue lambda_s.
 //!
-//! [`ModeDerivative`] is what the fit uses: Nelson's method ([`crate::modal::nelson`]), which
-//! needs only mode s and so works on the lowest modes of a large model; the expansion above
-//! is its fallback when K - lambda_s M with the pinned DOF is singular (a repeated
-//! eigenvalue), exact only when `modal` holds every pair.
+//! [`ModeDerivatives`] is what the fits use: every pair of a small model computed, the
+//! expansion above is exact; on the lowest pairs of a large model, the deflated conjugate
+//! gradients of [`crate::modal::deflated`] give the part beyond them from the factor of
+//! K - sigma M, one factor for every mode; where they fail, Nelson's method
+//! ([`crate::modal::nelson`], one LU per mode), and the expansion over the computed pairs last
+//! (a repeated eigenvalue, where neither applies).
 
 use crate::modal::ModalSolution;
+use crate::modal::deflated::DeflatedModes;
 use crate::modal::nelson::NelsonMode;
 use crate::structure::{Matrices, SparseSym};
 
-/// The derivatives of one mode with respect to any parameter (module docs).
-pub struct ModeDerivative<'a> {
+/// The derivatives of the computed modes with respect to any parameters (module docs).
+pub struct ModeDerivatives<'a> {
+    mats: &'a Matrices,
     modal: &'a ModalSolution,
-    s: usize,
-    nelson: Option<NelsonMode>,
+    deflated: Option<DeflatedModes<'a>>,
 }
 
-impl<'a> ModeDerivative<'a> {
-    /// Mode `s` of `modal`, the solution of `mats`: one sparse LU factorisation.
-    pub fn new(mats: &Matrices, modal: &'a ModalSolution, s: usize) -> Self {
-        let y: Vec<f64> = modal.vectors().col(s).iter().copied().collect();
-        let nelson =
-            NelsonMode::new(mats.k.as_faer(), mats.m.as_faer(), modal.values()[s], &y).ok();
-        Self { modal, s, nelson }
+impl<'a> ModeDerivatives<'a> {
+    /// The pairs `modal` of `mats`: one sparse Cholesky factorisation when `modal` holds
+    /// only the lowest pairs.
+    pub fn new(mats: &'a Matrices, modal: &'a ModalSolution) -> Self {
+        let deflated = (modal.len() < modal.dof_count())
+            .then(|| DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), modal).ok())
+            .flatten();
+        Self {
+            mats,
+            modal,
+            deflated,
+        }
     }
 
-    /// d lambda_s and d y_s for the derivative matrices `dk`, `dm` of one parameter.
-    pub fn of(&self, dk: &SparseSym, dm: &SparseSym) -> (f64, Vec<f64>) {
-        match self.nelson.as_ref().map(|n| n.derivative(dk, dm)) {
-            Some(Ok(d)) => (d.value, d.vector),
-            _ => eigen_derivative(self.modal, self.s, dk, dm),
+    /// d lambda_s and d y_s of mode `s` for each parameter's derivative matrices (dK, dM).
+    pub fn of(&self, s: usize, params: &[(&SparseSym, &SparseSym)]) -> Vec<(f64, Vec<f64>)> {
+        if let Some(Ok(d)) = self.deflated.as_ref().map(|d| d.derivatives(s, params)) {
+            return d.into_iter().map(|d| (d.value, d.vector)).collect();
         }
+        let nelson = self.deflated.as_ref().and_then(|_| {
+            let y: Vec<f64> = self.modal.vectors().col(s).iter().copied().collect();
+            let (k, m) = (self.mats.k.as_faer(), self.mats.m.as_faer());
+            NelsonMode::new(k, m, self.modal.values()[s], &y).ok()
+        });
+        params
+            .iter()
+            .map(
+                |(dk, dm)| match nelson.as_ref().map(|n| n.derivative(dk, dm)) {
+                    Some(Ok(d)) => (d.value, d.vector),
+                    _ => eigen_derivative(self.modal, s, dk, dm),
+                },
+            )
+            .collect()
     }
 }
 

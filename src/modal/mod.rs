@@ -21,6 +21,7 @@
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`].
 
 pub mod accurate;
+pub mod deflated;
 pub mod elastic;
 mod krylov;
 pub mod lanczos;
@@ -139,6 +140,39 @@ pub enum ModalError {
     NotMassNormalised {
         /// y^T M y.
         norm: f64,
+    },
+    /// Two computed eigenvalues coincide: the derivative of their vectors is not defined.
+    #[error(
+        "eigenvalue {lambda:e} is repeated ({other:e} beside it): its vector's derivative is \
+         defined for a simple eigenvalue only"
+    )]
+    RepeatedEigenvalue {
+        /// The eigenvalue.
+        lambda: f64,
+        /// The other eigenvalue within [`deflated::SIMPLE_GAP`] of it.
+        other: f64,
+    },
+    /// The conjugate gradients of the deflated derivative did not converge.
+    #[error(
+        "the derivative of mode {mode} did not converge in {iterations} conjugate-gradient \
+         iterations (residual reduced by {reduction:e} only)"
+    )]
+    DerivativeNotConverged {
+        /// The mode (1-based, rigid-body modes counted).
+        mode: usize,
+        /// Iterations done.
+        iterations: usize,
+        /// The least reduction of the preconditioned residual norm.
+        reduction: f64,
+    },
+    /// K - lambda_s M is not positive definite beside the computed pairs.
+    #[error(
+        "K - lambda M of mode {mode} is not positive definite beside the computed pairs: a \
+         pair below mode {mode} is missing from them"
+    )]
+    PairMissing {
+        /// The mode (1-based, rigid-body modes counted).
+        mode: usize,
     },
     /// A vector's length differs from the number of DOFs.
     #[error("a vector of length {len} was given for a model with {dofs} DOFs")]

@@ -107,12 +107,13 @@ impl Matrices {
 /// A structure: see the module docs.
 #[derive(Debug, Clone)]
 pub struct Structure {
-    /// K and M without the parameters' contributions.
-    pub base: Matrices,
+    /// K and M without the parameters' contributions (shared: a structure with other
+    /// parameter values is a cheap clone, whatever the size of the model).
+    pub base: std::sync::Arc<Matrices>,
     /// Every parameter, identified and fixed, in model order.
     pub parameters: Vec<Parameter>,
-    /// The DOFs.
-    pub dofs: DofMap,
+    /// The DOFs (shared, like `base`).
+    pub dofs: std::sync::Arc<DofMap>,
     /// Number of rigid-body modes (zero eigenvalues), from the model.
     pub rigid: usize,
     /// Where effects can act.

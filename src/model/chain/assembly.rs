@@ -86,9 +86,10 @@ impl Chain {
             base: Matrices {
                 k: SymMatrix::from_entries(n, &k),
                 m: SymMatrix::from_entries(n, &m),
-            },
+            }
+            .into(),
             parameters,
-            dofs,
+            dofs: dofs.into(),
             sensors,
             rigid: rigid_body_modes(&self.supports) + laps.rigid(),
             sites: Sites {

@@ -70,9 +70,9 @@ impl MatricesFile {
             m: SymMatrix::from_entries(n, &m.both_triangles()),
         };
         let mut structure = Structure {
-            base,
+            base: base.into(),
             parameters,
-            dofs,
+            dofs: dofs.into(),
             rigid: 0,
             sites: Sites::default(),
             sensors: Vec::new(),

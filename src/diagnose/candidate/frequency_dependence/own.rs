@@ -26,7 +26,7 @@
 use crate::diagnose::fit::FitError;
 use crate::identify::frequency_only::sensitivities;
 use crate::modal::ModalSolution;
-use crate::structure::{Matrices, Structure};
+use crate::structure::Structure;
 
 /// Self-consistency reached: |ln F(u) - u| at most this.
 pub const TOLERANCE: f64 = 1e-12;
@@ -63,10 +63,9 @@ impl Law<'_> {
 /// A mode solved at its own frequency.
 #[derive(Debug, Clone)]
 pub struct Solved {
-    /// The structure with the joint at u.
+    /// The structure with the joint at u (its matrices are assembled again where needed:
+    /// one mode's at a time, not every mode's kept).
     pub structure: Structure,
-    /// Its matrices.
-    pub mats: Matrices,
     /// Its eigensolution.
     pub modal: ModalSolution,
     /// u = ln f at which the joint is evaluated.
@@ -108,7 +107,6 @@ pub fn solve(
         if h.abs() <= TOLERANCE || (h.abs() <= ROUND_OFF && h.abs() > 0.5 * last) {
             return Ok(Solved {
                 structure,
-                mats,
                 modal,
                 log_frequency: u,
                 sensitivity,

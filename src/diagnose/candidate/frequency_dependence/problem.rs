@@ -23,7 +23,7 @@ use faer::Mat;
 use super::own::{self, Law, Solved};
 use crate::diagnose::fit::{self, Calibration, FitError, RANGE_FACTOR, chi2, model_sign};
 use crate::diagnose::pairing::Pairing;
-use crate::diagnose::sensitivity::ModeDerivative;
+use crate::diagnose::sensitivity::ModeDerivatives;
 use crate::measured::MeasuredModes;
 use crate::model::effects::EffectContext;
 use crate::optim;
@@ -176,16 +176,15 @@ impl<'a> Problem<'a> {
             let sign = model_sign(&sv.modal, s, m);
             let f = sv.modal.frequency_hz(s);
             let level = sv.log_frequency - self.log_ref;
-            let derivative = ModeDerivative::new(&sv.mats, &sv.modal, s);
             // d y_s / d q_j at the measured points.
-            let dy: Vec<Vec<f64>> = sv
-                .structure
-                .identified()
+            let params = sv.structure.identified();
+            let pairs: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
+            let mats = sv.structure.assemble();
+            let dy: Vec<Vec<f64>> = ModeDerivatives::new(&mats, &sv.modal)
+                .of(s, &pairs)
                 .iter()
-                .map(|p| {
-                    let (_, d) = derivative.of(&p.stiffness, &p.mass);
-                    m.points.iter().map(|o| p.value * o.read(&d)).collect()
-                })
+                .zip(&params)
+                .map(|((_, d), p)| m.points.iter().map(|o| p.value * o.read(d)).collect())
                 .collect();
             let g = &sv.sensitivity;
             let denominator = 1.0 - g.iter().zip(&alpha).map(|(g, a)| g * a).sum::<f64>();
