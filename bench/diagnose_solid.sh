@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # `jointid diagnose` on the free-free 3D lap of bench/lap-solid.toml (23,958 DOFs, six
-# rigid-body modes, three interface springs), timed with its peak memory. The data: the lap
+# rigid-body modes, three interface springs) or of another solid configuration of the same
+# specimen (bench/lap-solid-212k.toml: 212,562 DOFs), timed with its peak memory. The data: the lap
 # with its normal interface spring halved ("truth"), 8 elastic modes simulated with 0.1%
 # frequency and 1% shape noise, read at 24 sensors (z translations on both long edges, every
 # 50 mm along the outer faces of the two bars). diagnose starts from the nominal springs: it
 # should calibrate them back and find no missing effect.
-# Usage: bash bench/diagnose_solid.sh [DIR]   (default: a temporary directory, removed after)
+# Usage: bash bench/diagnose_solid.sh [CONFIG [DIR]]   (CONFIG: bench/lap-solid.toml by
+# default; DIR: a temporary directory, removed after, by default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-if [ $# -ge 1 ]; then
-    dir=$1
+config=${1:-bench/lap-solid.toml}
+[ -f "$config" ] || { echo "diagnose_solid.sh: no configuration file $config" >&2; exit 2; }
+if [ $# -ge 2 ]; then
+    dir=$2
     mkdir -p "$dir"
 else
     dir=$(mktemp -d)
@@ -17,7 +21,7 @@ else
 fi
 cargo build --release --locked --bin jointid >&2
 j=./target/release/jointid
-$j solid bench/lap-solid.toml --out "$dir/model" >&2
+$j solid "$config" --out "$dir/model" >&2
 nominal=$(awk '/^name = "k_normal"/ {found = 1} found && /^value = / {print $3; exit}' \
     "$dir/model/model.toml")
 half=$(awk -v v="$nominal" 'BEGIN {printf "%.17g", v / 2}')
