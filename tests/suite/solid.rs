@@ -1,8 +1,8 @@
 //! The 3D lap specimen of `jointid solid` (src/model/solid) checked against mechanics it
 //! does not share code with: the patch test, rigid-body motions, the mass of the volume,
 //! Euler-Bernoulli/Timoshenko frequencies of a free-free bar, the bounds a lap's frequencies
-//! must lie between, eigenpair derivatives by two other methods, and the command end to end (files read back by the external-model
-//! reader; bad input exits 2 and writes nothing).
+//! must lie between, eigenpair derivatives by two other methods, and the command end to end
+//! (files read back by the external-model reader; bad input exits 2 and writes nothing).
 
 use std::path::Path;
 
