@@ -149,6 +149,9 @@ impl<'a> DeflatedModes<'a> {
                 *gi = dky[i] - ls * dmy[i];
             }
         }
+        if !g.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
+            return Err(ModalError::NonFinite);
+        }
         // Y_T^T g: d lambda_s and the computed pairs' share.
         let mut coefficients = Mat::zeros(count, p);
         matmul(
@@ -217,18 +220,20 @@ impl<'a> DeflatedModes<'a> {
                 return Ok(x);
             }
             for c in (0..p).filter(|&c| !done[c]) {
-                let d: Vec<f64> = direction.col(c).iter().copied().collect();
-                sparse_mul(self.k, &d, &mut q);
-                sparse_mul(self.m, &d, &mut mq);
+                let d = direction.col_as_slice(c);
+                sparse_mul(self.k, d, &mut q);
+                sparse_mul(self.m, d, &mut mq);
                 q.iter_mut().zip(&mq).for_each(|(a, b)| *a -= ls * b);
-                let curvature = dot(&d, &q);
-                if !(curvature > 0.0) {
+                let curvature = dot(d, &q);
+                if curvature.is_nan() || curvature <= 0.0 {
                     return Err(ModalError::PairMissing { mode: s + 1 });
                 }
                 let alpha = rz[c] / curvature;
-                for i in 0..n {
-                    x[(i, c)] += alpha * d[i];
-                    residual[(i, c)] -= alpha * q[i];
+                for (xi, di) in x.col_as_slice_mut(c).iter_mut().zip(d) {
+                    *xi += alpha * di;
+                }
+                for (ri, qi) in residual.col_as_slice_mut(c).iter_mut().zip(&q) {
+                    *ri -= alpha * qi;
                 }
             }
             let z = self.preconditioned(&residual);
@@ -243,8 +248,12 @@ impl<'a> DeflatedModes<'a> {
                 }
                 let beta = rz_new / rz[c];
                 rz[c] = rz_new;
-                for i in 0..n {
-                    direction[(i, c)] = z[(i, c)] + beta * direction[(i, c)];
+                for (di, zi) in direction
+                    .col_as_slice_mut(c)
+                    .iter_mut()
+                    .zip(z.col_as_slice(c))
+                {
+                    *di = zi + beta * *di;
                 }
             }
         }
