@@ -400,13 +400,13 @@ impl<'a> Problem<'a> {
         let scale_at = self.joint_count() + self.effect_count();
         let mut jac = Mat::zeros(rows, unknowns);
         let mut row = 0;
-        for (r, m) in self.measured.modes().iter().enumerate() {
+        let all = derivatives.of(&pairing.model_index, &pairs);
+        for ((r, m), of_mode) in self.measured.modes().iter().enumerate().zip(all) {
             let s = pairing.model_index[r];
             let sign = model_sign(&eval.modal, s, m);
             let f = eval.modal.frequency_hz(s);
             let chains = params.iter().map(|(_, chain)| chain);
-            for (col, (chain, (d_lambda, dy))) in chains.zip(derivatives.of(s, &pairs)).enumerate()
-            {
+            for (col, (chain, (d_lambda, dy))) in chains.zip(of_mode).enumerate() {
                 let df = d_lambda
                     / (8.0
                         * std::f64::consts::PI

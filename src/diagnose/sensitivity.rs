@@ -15,9 +15,12 @@
 //! ([`crate::modal::nelson`], one LU per mode), and the expansion over the computed pairs last
 //! (a repeated eigenvalue, where neither applies).
 
+use std::sync::Arc;
+
 use crate::modal::ModalSolution;
 use crate::modal::deflated::DeflatedModes;
-use crate::modal::nelson::NelsonMode;
+use crate::modal::nelson::{EigenDerivative, NelsonMode};
+use crate::modal::sparse_llt::SparseLlt;
 use crate::structure::{Matrices, SparseSym};
 
 /// The derivatives of the computed modes with respect to any parameters (module docs).
@@ -27,12 +30,46 @@ pub struct ModeDerivatives<'a> {
     deflated: Option<DeflatedModes<'a>>,
 }
 
+/// d lambda_s and d y_s.
+pub type Derivative = (f64, Vec<f64>);
+
 impl<'a> ModeDerivatives<'a> {
     /// The pairs `modal` of `mats`: one sparse Cholesky factorisation when `modal` holds
     /// only the lowest pairs.
     pub fn new(mats: &'a Matrices, modal: &'a ModalSolution) -> Self {
+        Self::with(mats, modal, |k, m| DeflatedModes::new(k, m, modal))
+    }
+
+    /// As [`ModeDerivatives::new`], with the factor `shared` of [`ModeDerivatives::factor`]
+    /// of a model of the same DOFs that differs in its joint as the preconditioner: no
+    /// factorisation (a fresh one without `shared`).
+    pub fn sharing(
+        mats: &'a Matrices,
+        modal: &'a ModalSolution,
+        shared: Option<Arc<SparseLlt>>,
+    ) -> Self {
+        match shared {
+            Some(llt) => Self::with(mats, modal, |k, m| DeflatedModes::sharing(k, m, modal, llt)),
+            None => Self::new(mats, modal),
+        }
+    }
+
+    /// The factor of K - sigma M (none where every pair is computed), for
+    /// [`ModeDerivatives::sharing`].
+    pub fn factor(&self) -> Option<Arc<SparseLlt>> {
+        self.deflated.as_ref().map(DeflatedModes::factor)
+    }
+
+    fn with(
+        mats: &'a Matrices,
+        modal: &'a ModalSolution,
+        deflate: impl FnOnce(
+            faer::sparse::SparseColMatRef<'a, usize, f64>,
+            faer::sparse::SparseColMatRef<'a, usize, f64>,
+        ) -> Result<DeflatedModes<'a>, crate::modal::ModalError>,
+    ) -> Self {
         let deflated = (modal.len() < modal.dof_count())
-            .then(|| DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), modal).ok())
+            .then(|| deflate(mats.k.as_faer(), mats.m.as_faer()).ok())
             .flatten();
         Self {
             mats,
@@ -41,10 +78,25 @@ impl<'a> ModeDerivatives<'a> {
         }
     }
 
-    /// d lambda_s and d y_s of mode `s` for each parameter's derivative matrices (dK, dM).
-    pub fn of(&self, s: usize, params: &[(&SparseSym, &SparseSym)]) -> Vec<(f64, Vec<f64>)> {
-        if let Some(Ok(d)) = self.deflated.as_ref().map(|d| d.derivatives(s, params)) {
-            return d.into_iter().map(|d| (d.value, d.vector)).collect();
+    /// The derivatives of the modes `modes` for each parameter's derivative matrices
+    /// (dK, dM): `[mode][parameter]`.
+    pub fn of(&self, modes: &[usize], params: &[(&SparseSym, &SparseSym)]) -> Vec<Vec<Derivative>> {
+        let pairs = |d: Vec<EigenDerivative>| d.into_iter().map(|d| (d.value, d.vector)).collect();
+        match self.deflated.as_ref().map(|d| d.derivatives(modes, params)) {
+            Some(Ok(all)) => all.into_iter().map(pairs).collect(),
+            _ => modes.iter().map(|&s| self.of_one(s, params)).collect(),
+        }
+    }
+
+    /// Mode `s` alone, where the modes together failed: the deflated factor, Nelson's
+    /// method, the expansion.
+    fn of_one(&self, s: usize, params: &[(&SparseSym, &SparseSym)]) -> Vec<Derivative> {
+        if let Some(Ok(mut d)) = self.deflated.as_ref().map(|d| d.derivatives(&[s], params)) {
+            return d
+                .remove(0)
+                .into_iter()
+                .map(|d| (d.value, d.vector))
+                .collect();
         }
         let nelson = self.deflated.as_ref().and_then(|_| {
             let y: Vec<f64> = self.modal.vectors().col(s).iter().copied().collect();

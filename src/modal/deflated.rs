@@ -27,6 +27,8 @@
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
+use std::sync::Arc;
+
 use faer::{Accum, Mat, Par};
 
 use super::nelson::EigenDerivative;
@@ -53,7 +55,7 @@ pub struct DeflatedModes<'a> {
     modal: &'a ModalSolution,
     /// M Y_T.
     my: Mat<f64>,
-    llt: SparseLlt,
+    llt: Arc<SparseLlt>,
 }
 
 impl<'a> DeflatedModes<'a> {
@@ -64,6 +66,20 @@ impl<'a> DeflatedModes<'a> {
         m: SparseColMatRef<'a, usize, f64>,
         modal: &'a ModalSolution,
     ) -> Result<Self, ModalError> {
+        let (_, llt) = factor_shifted(k, m, None)?;
+        Self::sharing(k, m, modal, Arc::new(llt))
+    }
+
+    /// As [`DeflatedModes::new`] with the factor `llt` of another model of the same DOFs as
+    /// the preconditioner (its K' minus sigma M', positive definite): the derivatives are those
+    /// of (K, M) all the same, in more iterations the more the two models differ. For models
+    /// that differ in a joint only (a mode solved at its own frequency), no factorisation.
+    pub fn sharing(
+        k: SparseColMatRef<'a, usize, f64>,
+        m: SparseColMatRef<'a, usize, f64>,
+        modal: &'a ModalSolution,
+        llt: Arc<SparseLlt>,
+    ) -> Result<Self, ModalError> {
         let n = k.nrows();
         if k.ncols() != n || m.nrows() != n || m.ncols() != n {
             return Err(ModalError::ShapeMismatch {
@@ -71,23 +87,20 @@ impl<'a> DeflatedModes<'a> {
                 m: (m.nrows(), m.ncols()),
             });
         }
-        if modal.dof_count() != n {
+        if modal.dof_count() != n || llt.dof_count() != n {
             return Err(ModalError::VectorLength {
-                len: modal.dof_count(),
+                len: if modal.dof_count() != n {
+                    modal.dof_count()
+                } else {
+                    llt.dof_count()
+                },
                 dofs: n,
             });
         }
-        let (_, llt) = factor_shifted(k, m, None)?;
         let y = modal.vectors();
         let mut my = Mat::zeros(n, modal.len());
-        let mut column = vec![0.0; n];
         for t in 0..modal.len() {
-            let yt: Vec<f64> = y.col(t).iter().copied().collect();
-            sparse_mul(m, &yt, &mut column);
-            my.col_mut(t)
-                .iter_mut()
-                .zip(&column)
-                .for_each(|(a, b)| *a = *b);
+            sparse_mul(m, y.col_as_slice(t), my.col_as_slice_mut(t));
         }
         Ok(DeflatedModes {
             k,
@@ -98,62 +111,32 @@ impl<'a> DeflatedModes<'a> {
         })
     }
 
-    /// The derivatives of pair `s` for each parameter's (dK, dM) in `params` (indices below N).
+    /// The factor, to share with [`DeflatedModes::sharing`].
+    pub fn factor(&self) -> Arc<SparseLlt> {
+        Arc::clone(&self.llt)
+    }
+
+    /// The derivatives of the pairs `modes` (indices into the computed pairs), each for every
+    /// parameter's (dK, dM) in `params` (indices below N): `[mode][parameter]`. All of them
+    /// iterate together, their solves in blocks.
     pub fn derivatives(
         &self,
-        s: usize,
+        modes: &[usize],
         params: &[(&SparseSym, &SparseSym)],
-    ) -> Result<Vec<EigenDerivative>, ModalError> {
-        let (n, count) = (self.modal.dof_count(), self.modal.len());
-        if s >= count {
-            return Err(ModalError::CountOutOfRange {
-                count: s + 1,
-                dofs: count,
-            });
-        }
-        for &(i, j, _) in params
-            .iter()
-            .flat_map(|(dk, dm)| dk.entries().iter().chain(dm.entries()))
-        {
-            if i.max(j) >= n {
-                return Err(ModalError::VectorLength {
-                    len: i.max(j) + 1,
-                    dofs: n,
-                });
-            }
-        }
-        let lambda = self.modal.values();
-        let ls = lambda[s];
-        if let Some(t) = (0..count).find(|&t| {
-            t != s && (lambda[t] - ls).abs() <= SIMPLE_GAP * lambda[t].abs().max(ls.abs())
-        }) {
-            return Err(ModalError::RepeatedEigenvalue {
-                lambda: ls,
-                other: lambda[t],
-            });
-        }
-        let y = self.modal.vectors();
-        let ys: Vec<f64> = y.col(s).iter().copied().collect();
+    ) -> Result<Vec<Vec<EigenDerivative>>, ModalError> {
+        self.check(modes, params)?;
+        let (lambda, y) = (self.modal.values(), self.modal.vectors());
         let p = params.len();
-        // g per parameter, and y_s^T dM y_s.
-        let mut g = Mat::zeros(n, p);
-        let mut y_dm_y = vec![0.0; p];
-        let (mut dky, mut dmy) = (vec![0.0; n], vec![0.0; n]);
-        for (c, (dk, dm)) in params.iter().enumerate() {
-            dky.iter_mut().for_each(|v| *v = 0.0);
-            dmy.iter_mut().for_each(|v| *v = 0.0);
-            dk.apply(&ys, &mut dky);
-            dm.apply(&ys, &mut dmy);
-            y_dm_y[c] = dot(&ys, &dmy);
-            for (i, gi) in g.col_mut(c).iter_mut().enumerate() {
-                *gi = dky[i] - ls * dmy[i];
-            }
-        }
+        let columns: Vec<(usize, usize)> = modes
+            .iter()
+            .flat_map(|&s| (0..p).map(move |j| (s, j)))
+            .collect();
+        let (g, y_dm_y) = forcing(y, lambda, &columns, params);
         if !g.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
             return Err(ModalError::NonFinite);
         }
         // Y_T^T g: d lambda_s and the computed pairs' share.
-        let mut coefficients = Mat::zeros(count, p);
+        let mut coefficients = Mat::zeros(self.modal.len(), columns.len());
         matmul(
             coefficients.as_mut(),
             Accum::Replace,
@@ -174,19 +157,16 @@ impl<'a> DeflatedModes<'a> {
         );
         b.col_iter_mut()
             .for_each(|c| c.iter_mut().for_each(|v| *v = -*v));
-        let rest = self.rest(ls, b, s)?;
+        let mut vectors = self.rest(&columns, b)?;
         // d y_s = Y_T a + r.
-        let mut a = Mat::zeros(count, p);
-        for c in 0..p {
-            for t in 0..count {
-                a[(t, c)] = if t == s {
-                    -0.5 * y_dm_y[c]
-                } else {
-                    coefficients[(t, c)] / (ls - lambda[t])
-                };
+        let a = Mat::from_fn(self.modal.len(), columns.len(), |t, c| {
+            let s = columns[c].0;
+            if t == s {
+                -0.5 * y_dm_y[c]
+            } else {
+                coefficients[(t, c)] / (lambda[s] - lambda[t])
             }
-        }
-        let mut vectors = rest;
+        });
         matmul(
             vectors.as_mut(),
             Accum::Add,
@@ -195,18 +175,58 @@ impl<'a> DeflatedModes<'a> {
             1.0,
             Par::Seq,
         );
-        Ok((0..p)
-            .map(|c| EigenDerivative {
-                value: coefficients[(s, c)],
-                vector: vectors.col(c).iter().copied().collect(),
-            })
+        let derivative = |c: usize| EigenDerivative {
+            value: coefficients[(columns[c].0, c)],
+            vector: vectors.col_as_slice(c).to_vec(),
+        };
+        Ok((0..modes.len())
+            .map(|k| (k * p..(k + 1) * p).map(derivative).collect())
             .collect())
     }
 
+    /// The modes computed and simple, the parameters' indices below N.
+    fn check(
+        &self,
+        modes: &[usize],
+        params: &[(&SparseSym, &SparseSym)],
+    ) -> Result<(), ModalError> {
+        let (n, count) = (self.modal.dof_count(), self.modal.len());
+        let entries = params
+            .iter()
+            .flat_map(|(dk, dm)| dk.entries().iter().chain(dm.entries()));
+        if let Some(&(i, j, _)) = entries.clone().find(|e| e.0.max(e.1) >= n) {
+            return Err(ModalError::VectorLength {
+                len: i.max(j) + 1,
+                dofs: n,
+            });
+        }
+        let lambda = self.modal.values();
+        for &s in modes {
+            if s >= count {
+                return Err(ModalError::CountOutOfRange {
+                    count: s + 1,
+                    dofs: count,
+                });
+            }
+            let ls = lambda[s];
+            if let Some(t) = (0..count).find(|&t| {
+                t != s && (lambda[t] - ls).abs() <= SIMPLE_GAP * lambda[t].abs().max(ls.abs())
+            }) {
+                return Err(ModalError::RepeatedEigenvalue {
+                    lambda: ls,
+                    other: lambda[t],
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The solution r of (K - lambda_s M) r = b, Y_T^T M r = 0, for every column of `b`
-    /// (each in the range of P^T), by projected preconditioned conjugate gradients.
-    fn rest(&self, ls: f64, b: Mat<f64>, s: usize) -> Result<Mat<f64>, ModalError> {
+    /// (each in the range of P^T; column c of mode `columns[c].0`), by projected
+    /// preconditioned conjugate gradients.
+    fn rest(&self, columns: &[(usize, usize)], b: Mat<f64>) -> Result<Mat<f64>, ModalError> {
         let (n, p) = (b.nrows(), b.ncols());
+        let shift: Vec<f64> = columns.iter().map(|c| self.modal.values()[c.0]).collect();
         let mut x = Mat::<f64>::zeros(n, p);
         let mut residual = b;
         let mut direction = self.preconditioned(&residual);
@@ -223,10 +243,12 @@ impl<'a> DeflatedModes<'a> {
                 let d = direction.col_as_slice(c);
                 sparse_mul(self.k, d, &mut q);
                 sparse_mul(self.m, d, &mut mq);
-                q.iter_mut().zip(&mq).for_each(|(a, b)| *a -= ls * b);
+                q.iter_mut().zip(&mq).for_each(|(a, b)| *a -= shift[c] * b);
                 let curvature = dot(d, &q);
                 if curvature.is_nan() || curvature <= 0.0 {
-                    return Err(ModalError::PairMissing { mode: s + 1 });
+                    return Err(ModalError::PairMissing {
+                        mode: columns[c].0 + 1,
+                    });
                 }
                 let alpha = rz[c] / curvature;
                 for (xi, di) in x.col_as_slice_mut(c).iter_mut().zip(d) {
@@ -257,12 +279,12 @@ impl<'a> DeflatedModes<'a> {
                 }
             }
         }
-        let worst = (0..p)
+        let (c, worst) = (0..p)
             .filter(|&c| !done[c])
-            .map(|c| (rz[c] / start[c]).sqrt())
-            .fold(0.0, f64::max);
+            .map(|c| (c, (rz[c] / start[c]).sqrt()))
+            .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
         Err(ModalError::DerivativeNotConverged {
-            mode: s + 1,
+            mode: columns[c].0 + 1,
             iterations: MAX_ITERATIONS,
             reduction: worst,
         })
@@ -292,6 +314,32 @@ impl<'a> DeflatedModes<'a> {
         );
         z
     }
+}
+
+/// g = (dK - lambda_s dM) y_s of every column (mode s, parameter j) and y_s^T dM y_s.
+fn forcing(
+    y: &Mat<f64>,
+    lambda: &[f64],
+    columns: &[(usize, usize)],
+    params: &[(&SparseSym, &SparseSym)],
+) -> (Mat<f64>, Vec<f64>) {
+    let n = y.nrows();
+    let mut g = Mat::zeros(n, columns.len());
+    let mut y_dm_y = vec![0.0; columns.len()];
+    let (mut dky, mut dmy) = (vec![0.0; n], vec![0.0; n]);
+    for (c, &(s, j)) in columns.iter().enumerate() {
+        let (dk, dm) = params[j];
+        let ys = y.col_as_slice(s);
+        dky.fill(0.0);
+        dmy.fill(0.0);
+        dk.apply(ys, &mut dky);
+        dm.apply(ys, &mut dmy);
+        y_dm_y[c] = dot(ys, &dmy);
+        for ((gi, k), m) in g.col_as_slice_mut(c).iter_mut().zip(&dky).zip(&dmy) {
+            *gi = k - lambda[s] * m;
+        }
+    }
+    (g, y_dm_y)
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -368,7 +416,7 @@ mod tests {
             let deflated =
                 DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &nominal).unwrap();
             for s in [2, 3, 6] {
-                let d = &deflated.derivatives(s, &[(dk, dm)]).unwrap()[0];
+                let d = &deflated.derivatives(&[s], &[(dk, dm)]).unwrap()[0][0];
                 let fd = (plus.values()[s] - minus.values()[s]) / (2.0 * h);
                 assert!(
                     (d.value - fd).abs() < 1e-6 * d.value.abs(),
@@ -405,7 +453,10 @@ mod tests {
         let zero = SparseSym::zero();
         let both = [(&dk2, &zero), (&zero, &point_mass)];
         for s in 2..8 {
-            for (d, (dk, dm)) in deflated.derivatives(s, &both).unwrap().iter().zip(both) {
+            for (d, (dk, dm)) in deflated.derivatives(&[s], &both).unwrap()[0]
+                .iter()
+                .zip(both)
+            {
                 let (value, vector) = eigen_derivative(&dense, s, dk, dm);
                 assert!(
                     (d.value - value).abs() < 1e-12 * value.abs(),
@@ -439,7 +490,7 @@ mod tests {
             let y: Vec<f64> = sol.vectors().col(s).iter().copied().collect();
             let nelson =
                 NelsonMode::new(mats.k.as_faer(), mats.m.as_faer(), sol.values()[s], &y).unwrap();
-            let ours = deflated.derivatives(s, &both).unwrap();
+            let ours = deflated.derivatives(&[s], &both).unwrap().remove(0);
             for (d, (dk, dm)) in ours.iter().zip(both) {
                 let reference = nelson.derivative(dk, dm).unwrap();
                 assert!(
@@ -476,18 +527,18 @@ mod tests {
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &gapped).unwrap();
         // Pair 3 (index 3 of the full solution) is missing below the pair at index 4.
         assert_eq!(
-            deflated.derivatives(4, &[(&dk2, &zero)]).err(),
+            deflated.derivatives(&[4], &[(&dk2, &zero)]).err(),
             Some(ModalError::PairMissing { mode: 5 })
         );
         assert!(matches!(
-            deflated.derivatives(7, &[(&dk2, &zero)]),
+            deflated.derivatives(&[7], &[(&dk2, &zero)]),
             Err(ModalError::CountOutOfRange { .. })
         ));
         let mut repeated = full.clone();
         repeated.values[3] = repeated.values[4] * (1.0 + 1e-12);
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &repeated).unwrap();
         assert!(matches!(
-            deflated.derivatives(4, &[(&dk2, &zero)]),
+            deflated.derivatives(&[4], &[(&dk2, &zero)]),
             Err(ModalError::RepeatedEigenvalue { .. })
         ));
     }

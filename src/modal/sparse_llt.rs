@@ -139,6 +139,11 @@ impl SparseLlt {
     pub fn factor_entries(&self) -> usize {
         self.values.len()
     }
+
+    /// N.
+    pub fn dof_count(&self) -> usize {
+        self.symbolic.nrows()
+    }
 }
 
 /// The symbolic analysis of the lower triangle of `a` under `ordering` (Amd or Natural).

@@ -171,6 +171,8 @@ impl<'a> Problem<'a> {
         let (_, alpha) = self.law(x);
         let mut jac = Mat::zeros(state.residual.len(), x.len());
         let mut row = 0;
+        // One factor for every mode: their models differ in the joint only.
+        let mut shared = None;
         for (r, (m, sv)) in self.measured.modes().iter().zip(&state.modes).enumerate() {
             let s = self.pairing.model_index[r];
             let sign = model_sign(&sv.modal, s, m);
@@ -180,12 +182,15 @@ impl<'a> Problem<'a> {
             let params = sv.structure.identified();
             let pairs: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
             let mats = sv.structure.assemble();
-            let dy: Vec<Vec<f64>> = ModeDerivatives::new(&mats, &sv.modal)
-                .of(s, &pairs)
+            let derivatives = ModeDerivatives::sharing(&mats, &sv.modal, shared.take());
+            let dy: Vec<Vec<f64>> = derivatives
+                .of(&[s], &pairs)
+                .remove(0)
                 .iter()
                 .zip(&params)
                 .map(|((_, d), p)| m.points.iter().map(|o| p.value * o.read(d)).collect())
                 .collect();
+            shared = derivatives.factor();
             let g = &sv.sensitivity;
             let denominator = 1.0 - g.iter().zip(&alpha).map(|(g, a)| g * a).sum::<f64>();
             for col in 0..at {
