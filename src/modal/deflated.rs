@@ -32,6 +32,7 @@ use std::sync::Arc;
 use faer::{Accum, Mat, Par};
 
 use super::nelson::EigenDerivative;
+use super::refine::mul_columns;
 use super::shift::factor_shifted;
 use super::sparse_llt::SparseLlt;
 use super::{ModalError, ModalSolution, sparse_mul};
@@ -233,17 +234,19 @@ impl<'a> DeflatedModes<'a> {
         let mut rz: Vec<f64> = (0..p).map(|c| col_dot(&residual, &direction, c)).collect();
         let start: Vec<f64> = rz.clone();
         let mut done: Vec<bool> = rz.iter().map(|&v| v <= 0.0).collect();
-        let mut q = vec![0.0; n];
-        let mut mq = vec![0.0; n];
         for _ in 0..MAX_ITERATIONS {
             if done.iter().all(|&d| d) {
                 return Ok(x);
             }
+            // Every column's product, the converged ones too: blocks of four columns on
+            // rayon's threads.
+            let (kd, _) = mul_columns(self.k, &direction, false);
+            let (md, _) = mul_columns(self.m, &direction, false);
             for c in (0..p).filter(|&c| !done[c]) {
                 let d = direction.col_as_slice(c);
-                sparse_mul(self.k, d, &mut q);
-                sparse_mul(self.m, d, &mut mq);
-                q.iter_mut().zip(&mq).for_each(|(a, b)| *a -= shift[c] * b);
+                let q: Vec<f64> = (kd.col_as_slice(c).iter().zip(md.col_as_slice(c)))
+                    .map(|(k, m)| k - shift[c] * m)
+                    .collect();
                 let curvature = dot(d, &q);
                 if curvature.is_nan() || curvature <= 0.0 {
                     return Err(ModalError::PairMissing {

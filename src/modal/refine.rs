@@ -76,7 +76,7 @@ pub const FLOOR_FACTOR: f64 = 10.0;
 /// A Q, the products accurate ([`super::accurate::accurate_mul`], four columns a pass, with || |A| |q_j| ||
 /// of every column) or plain (no bounds), the blocks of four columns on rayon's threads, each
 /// written straight into its columns of the product.
-fn mul_columns(
+pub(super) fn mul_columns(
     a: SparseColMatRef<'_, usize, f64>,
     q: &Mat<f64>,
     accurate: bool,
