@@ -359,36 +359,16 @@ fn col_dot(a: &Mat<f64>, b: &Mat<f64>, c: usize) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    //! Against two computations that share no code with the deflated conjugate gradients:
-    //! central differences of the sparse eigensolution of the perturbed model, and the modal
+    //! Against three computations that share no code with the deflated conjugate gradients:
+    //! central differences of the sparse eigensolution of the perturbed model, the modal
     //! expansion over every pair of the dense solution
-    //! ([`crate::diagnose::sensitivity::eigen_derivative`]).
+    //! ([`crate::diagnose::sensitivity::eigen_derivative`]), and Nelson's method (an LU of
+    //! K - lambda M with a DOF pinned).
     use super::*;
     use crate::diagnose::sensitivity::eigen_derivative;
     use crate::modal::nelson::NelsonMode;
-    use crate::model::chain::{Chain, Joint};
-    use crate::model::fixtures::steel_bar;
-    use crate::structure::{Matrices, Structure};
-
-    fn chain(elements: usize) -> Structure {
-        Chain::free(
-            vec![steel_bar(0.2, elements), steel_bar(0.3, elements)],
-            vec![Joint::identified(1e7, 1e4)],
-        )
-        .build()
-    }
-
-    /// k2 of the joint, and a point mass on the joint's first w DOF.
-    fn params(structure: &Structure) -> (SparseSym, SparseSym) {
-        let k2 = structure.identified()[1].clone();
-        let joint_w = (0..structure.dof_count())
-            .find(|&i| k2.stiffness.entries().iter().any(|e| e.0 == i))
-            .unwrap()
-            - 1;
-        let mut point_mass = SparseSym::zero();
-        point_mass.add(joint_w, joint_w, 1.0);
-        (k2.stiffness, point_mass)
-    }
+    use crate::model::fixtures::{free_two_bars as chain, k2_and_point_mass as params};
+    use crate::structure::Matrices;
 
     fn largest(v: &[f64]) -> f64 {
         v.iter().fold(0.0_f64, |a, b| a.max(b.abs()))

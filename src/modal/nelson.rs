@@ -170,29 +170,15 @@ mod tests {
     //! method.
     use super::*;
     use crate::modal::ModalSolution;
-    use crate::model::chain::{Chain, Joint};
-    use crate::model::fixtures::steel_bar;
+    use crate::model::fixtures::{free_two_bars as chain, k2_and_point_mass};
     use crate::structure::{Matrices, Structure};
-
-    fn chain(elements: usize) -> Structure {
-        Chain::free(
-            vec![steel_bar(0.2, elements), steel_bar(0.3, elements)],
-            vec![Joint::identified(1e7, 1e4)],
-        )
-        .build()
-    }
 
     /// Checks modes `modes` of `structure` for k2 of the joint and a point mass of 0.3 kg on
     /// the joint's first w DOF; `tol_value`, `tol_vector` relative to the derivative's size.
     fn check(structure: &Structure, modes: &[usize], tol_value: f64, tol_vector: f64) {
         let count = modes.iter().max().unwrap() + 1;
-        let k2 = structure.identified()[1].clone();
-        let joint_w = (0..structure.dof_count())
-            .find(|&i| k2.stiffness.entries().iter().any(|e| e.0 == i))
-            .unwrap()
-            - 1;
-        let mut point_mass = SparseSym::zero();
-        point_mass.add(joint_w, joint_w, 1.0);
+        let k2 = &structure.identified()[1];
+        let (dk2, point_mass) = k2_and_point_mass(structure);
         let base = structure.assemble();
         let with = |dk: &SparseSym, dm: &SparseSym, p: f64| {
             let mats: Matrices = base.plus(&[(dk, dm, p)]);
@@ -201,7 +187,7 @@ mod tests {
         let zero = SparseSym::zero();
         let p0 = 0.3;
         for (dk, dm, h, at) in [
-            (&k2.stiffness, &zero, 1e-3 * k2.value, 0.0),
+            (&dk2, &zero, 1e-3 * k2.value, 0.0),
             (&zero, &point_mass, 1e-3 * p0, p0),
         ] {
             let nominal = with(dk, dm, at);

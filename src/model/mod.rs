@@ -66,7 +66,7 @@ pub fn chain_from_toml(text: &str, file: &Path) -> Result<Chain, InputError> {
 /// tests and benchmarks.
 pub mod fixtures {
     use super::{Beam, Chain, Joint};
-    use crate::structure::{Section, Structure};
+    use crate::structure::{Section, SparseSym, Structure};
 
     /// A steel bar 60 mm wide and 40 mm high.
     pub fn steel_bar(length: f64, elements: usize) -> Beam {
@@ -93,5 +93,28 @@ pub mod fixtures {
     /// The structure of [`paper_chain`].
     pub fn paper_model(k1: f64, k2: f64) -> Structure {
         paper_chain(k1, k2).build()
+    }
+
+    /// Two free steel bars of 0.2 and 0.3 m, `elements` elements each, joined by the paper's
+    /// joint (k1 = 1e7, k2 = 1e4 identified): the test model of the eigenpair derivatives.
+    pub fn free_two_bars(elements: usize) -> Structure {
+        Chain::free(
+            vec![steel_bar(0.2, elements), steel_bar(0.3, elements)],
+            vec![Joint::identified(1e7, 1e4)],
+        )
+        .build()
+    }
+
+    /// Of a model of [`free_two_bars`]: dK/dk2 of its joint, and dM of a point mass on the
+    /// joint's first w DOF (the DOF before k2's first).
+    pub fn k2_and_point_mass(structure: &Structure) -> (SparseSym, SparseSym) {
+        let k2 = structure.identified()[1].clone();
+        let joint_w = (0..structure.dof_count())
+            .find(|&i| k2.stiffness.entries().iter().any(|e| e.0 == i))
+            .expect("k2 couples DOFs")
+            - 1;
+        let mut point_mass = SparseSym::zero();
+        point_mass.add(joint_w, joint_w, 1.0);
+        (k2.stiffness, point_mass)
     }
 }
