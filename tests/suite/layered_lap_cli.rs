@@ -144,3 +144,35 @@ fn overlaps_longer_than_the_beams_or_not_positive_are_refused() {
         assert!(!json.exists(), "nothing is written");
     }
 }
+
+/// The diagnosis of a sparse model (the 284-DOF chain, its layered lap more) is the same to
+/// the bit on one, two and three threads, terminal output and JSON report: its candidates are
+/// fitted in parallel, and its eigensolutions and eigenpair derivatives split their work into
+/// blocks that do not depend on the number of threads.
+#[test]
+fn the_diagnosis_is_the_same_on_any_number_of_threads() {
+    let dir = scratch("layered-lap", "threads");
+    let model = dir.join("model.toml");
+    std::fs::write(&model, with_overlap("uniform", "0.12")).unwrap();
+    let measured = format!("{FIXTURES}/uniform/measured.csv");
+    let run = |threads: &str| {
+        let json = dir.join(format!("report-{threads}.json"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointid"))
+            .env("RAYON_NUM_THREADS", threads)
+            .args(["diagnose", "--model", s(&model), "--measured", &measured])
+            .args(["--shape-noise", "0.01", "--json", s(&json)])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        (out.stdout, std::fs::read(&json).unwrap())
+    };
+    let one = run("1");
+    for threads in ["2", "3"] {
+        assert!(run(threads) == one, "{threads} threads differ from one");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
