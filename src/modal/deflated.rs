@@ -23,12 +23,12 @@
 //! (P = I - Y_T Y_T^T M), preconditioned by P (K - sigma M)^-1 P^T: the preconditioned
 //! eigenvalues (lambda_t - lambda_s) / (lambda_t - sigma) lie in (0, 1) and crowd at 1 for the
 //! high modes, so few iterations are needed unless the first pair above T is close to
-//! lambda_s. The parameters of one mode iterate together, their solves one block.
+//! lambda_s. Every mode and parameter asked for iterates together, their solves one block.
+
+use std::sync::Arc;
 
 use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
-use std::sync::Arc;
-
 use faer::{Accum, Mat, Par};
 
 use super::nelson::EigenDerivative;
@@ -42,7 +42,7 @@ use crate::structure::SparseSym;
 /// factor.
 pub const TOLERANCE: f64 = 1e-11;
 
-/// Largest number of conjugate-gradient iterations per mode.
+/// Largest number of conjugate-gradient iterations of one [`DeflatedModes::derivatives`].
 pub const MAX_ITERATIONS: usize = 300;
 
 /// Two eigenvalues closer than this, relative to the larger, are one repeated eigenvalue:
