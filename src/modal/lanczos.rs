@@ -19,7 +19,10 @@
 //!    `sigma = -1e-4 * mean_i(K_ii / M_ii) / N^2`, a unit-free fraction of the stiffness/mass
 //!    scale of the mesh (see [`LanczosSettings::shift`] for its reasons and limits); if the factorisation meets a
 //!    non-positive pivot (round-off on a near-singular K), |sigma| is multiplied by 100 and the
-//!    factorisation repeated, at most [`SHIFT_ATTEMPTS`] times.
+//!    factorisation repeated, at most [`SHIFT_ATTEMPTS`] times. M is checked positive
+//!    definite by its own factorisation. Repeated solves of one structure share what does
+//!    not change ([`super::memo`]): the symbolic analyses of a pattern, and the check of an M
+//!    already found definite.
 //! 2. Lanczos on OP = (K - sigma M)^-1 M, which is self-adjoint in the M-inner product
 //!    <a, b> = a^T M b and has the eigenvalues theta = 1 / (lambda - sigma) > 0: the lowest
 //!    lambda are the largest theta, well separated. Every new vector is M-orthogonalised
@@ -106,6 +109,7 @@ use faer::Mat;
 use faer::sparse::SparseColMatRef;
 
 use super::krylov::{Krylov, dot};
+use super::memo::CHECKED_MASS;
 use super::refine::{FLOOR_FACTOR, Refined, refine};
 use super::residual::Residual;
 pub use super::shift::{SHIFT_ATTEMPTS, default_shift};
@@ -214,9 +218,11 @@ pub fn lowest_modes(
     // thread (1.0 s of that lap's 4.8 s of factorisations); with one thread, before it.
     let (mass_definite, shifted) = beside(
         || {
-            lower_sum(m, None)
-                .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), Ordering::Amd))
-                .is_some()
+            CHECKED_MASS.is_definite(m, || {
+                lower_sum(m, None)
+                    .and_then(|lower| SparseLlt::from_lower(lower.as_ref(), Ordering::Amd))
+                    .is_some()
+            })
         },
         || factor_shifted(k, m, settings.shift),
     );

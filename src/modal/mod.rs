@@ -25,6 +25,7 @@ pub mod deflated;
 pub mod elastic;
 mod krylov;
 pub mod lanczos;
+pub mod memo;
 pub mod nelson;
 mod pencil;
 pub mod refine;

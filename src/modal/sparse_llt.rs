@@ -7,7 +7,10 @@
 //! (the "banded path": no fill outside it). Measured on the lap of 23,958 DOFs
 //! (`bench/lap-solid.toml`): 3.65e6 factor entries in the DOF order, 4.17e6 by minimum
 //! degree; the factorisation takes 0.04-0.07 s, 3-8% of the solve. Several right-hand sides
-//! are solved as blocks on rayon's threads ([`SparseLlt::solve_columns_in_place`]).
+//! are solved as blocks on rayon's threads ([`SparseLlt::solve_columns_in_place`]). The
+//! symbolic analysis of a pattern factorised before is taken from [`super::memo`].
+
+use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -18,6 +21,8 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Conj, MatMut, Par, Side};
+
+use super::memo::ANALYSES;
 
 /// Columns solved together by [`SparseLlt::solve_columns_in_place`]. Measured per column on
 /// the factor of the 212k-DOF lap (1.3e8 entries): 0.138 s alone, 0.034 s in a block of 4,
@@ -42,7 +47,8 @@ pub enum Ordering {
 
 /// L L^T = P A P^T of a symmetric positive definite A.
 pub struct SparseLlt {
-    symbolic: SymbolicCholesky<usize>,
+    /// Shared with the factorisations of the same pattern ([`super::memo`]).
+    symbolic: Arc<SymbolicCholesky<usize>>,
     values: Vec<f64>,
     workspace: MemBuffer,
 }
@@ -66,22 +72,15 @@ impl SparseLlt {
 
     /// Factorises the matrix whose lower triangle is stored in `a` (the upper one is ignored).
     pub fn from_lower(a: SparseColMatRef<'_, usize, f64>, ordering: Ordering) -> Option<Self> {
-        let symbolic = match ordering {
-            Ordering::Fewest => {
-                // The two analyses on two threads where there are.
-                let (amd, natural) = super::beside(
-                    || symbolic_of(a, Ordering::Amd),
-                    || symbolic_of(a, Ordering::Natural),
-                );
-                let (amd, natural) = (amd?, natural?);
-                if natural.len_val() < amd.len_val() {
-                    natural
-                } else {
-                    amd
-                }
-            }
-            one => symbolic_of(a, one)?,
-        };
+        let symbolic = ANALYSES.of(a.symbolic(), ordering, || analysis(a, ordering))?;
+        Self::numeric(a, symbolic)
+    }
+
+    /// The numeric factorisation of `a` on its analysis `symbolic`.
+    fn numeric(
+        a: SparseColMatRef<'_, usize, f64>,
+        symbolic: Arc<SymbolicCholesky<usize>>,
+    ) -> Option<Self> {
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let mut scratch = MemBuffer::try_new(
@@ -143,6 +142,29 @@ impl SparseLlt {
     /// N.
     pub fn dof_count(&self) -> usize {
         self.symbolic.nrows()
+    }
+}
+
+/// The symbolic analysis of the lower triangle of `a` under `ordering`.
+fn analysis(
+    a: SparseColMatRef<'_, usize, f64>,
+    ordering: Ordering,
+) -> Option<SymbolicCholesky<usize>> {
+    match ordering {
+        Ordering::Fewest => {
+            // The two analyses on two threads where there are.
+            let (amd, natural) = super::beside(
+                || symbolic_of(a, Ordering::Amd),
+                || symbolic_of(a, Ordering::Natural),
+            );
+            let (amd, natural) = (amd?, natural?);
+            Some(if natural.len_val() < amd.len_val() {
+                natural
+            } else {
+                amd
+            })
+        }
+        one => symbolic_of(a, one),
     }
 }
 
@@ -210,6 +232,31 @@ mod tests {
             }
         }
         (n, lower)
+    }
+
+    /// A factor on a kept analysis ([`super::super::memo`]) solves to the same bits as one on
+    /// an analysis made afresh, under each ordering: the analysis depends on the pattern
+    /// alone.
+    #[test]
+    fn a_kept_analysis_factorises_to_the_same_bits_as_a_fresh_one() {
+        let (n, lower) = grid(9);
+        let a = SparseColMat::try_new_from_triplets(n, n, &lower).unwrap();
+        let rhs: Vec<f64> = (0..n).map(|i| ((i * 13) % 7) as f64 - 3.0).collect();
+        for ordering in [Ordering::Amd, Ordering::Natural, Ordering::Fewest] {
+            let solve = |mut llt: SparseLlt| {
+                let mut x = rhs.clone();
+                llt.solve_in_place(&mut x);
+                x.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            };
+            let fresh = Arc::new(analysis(a.as_ref(), ordering).unwrap());
+            let reference = solve(SparseLlt::numeric(a.as_ref(), fresh).unwrap());
+            // Twice: the second one finds the first one's analysis kept (unless tests running
+            // beside this one pushed it out: the same bits either way).
+            for _ in 0..2 {
+                let llt = SparseLlt::from_lower(a.as_ref(), ordering).unwrap();
+                assert_eq!(solve(llt), reference, "{ordering:?}");
+            }
+        }
     }
 
     /// Columns solved together differ in their last bits from columns solved alone (faer
