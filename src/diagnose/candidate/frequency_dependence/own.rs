@@ -95,10 +95,19 @@ pub fn solve(
 ) -> Result<Solved, FitError> {
     let mut u = start_hz.ln();
     let mut last = f64::INFINITY;
+    // The last step's joint and solution: with every alpha 0 the joint does not move with u,
+    // and the step that confirms the solution would solve the same model again.
+    let mut previous: Option<(Vec<f64>, Structure, ModalSolution)> = None;
     for _ in 0..MAX_ITERATIONS {
-        let structure = nominal.with_values(&law.values(u));
-        let mats = structure.assemble();
-        let modal = ModalSolution::lowest_of(&mats, count.max(s + 1))?;
+        let values = law.values(u);
+        let (structure, modal) = match previous.take() {
+            Some((at, structure, modal)) if at == values => (structure, modal),
+            _ => {
+                let structure = nominal.with_values(&values);
+                let modal = ModalSolution::lowest_of(&structure.assemble(), count.max(s + 1))?;
+                (structure, modal)
+            }
+        };
         if s >= modal.len() || modal.values()[s] <= 0.0 {
             break;
         }
@@ -118,6 +127,7 @@ pub fn solve(
         if !step.is_finite() {
             break;
         }
+        previous = Some((values, structure, modal));
         u += step.clamp(-MAX_STEP, MAX_STEP);
     }
     Err(FitError::NotSelfConsistent {
