@@ -13,9 +13,12 @@
 //! entry and bit for bit, one found positive definite. Results are the same bits with or
 //! without what is kept. Both are looked up by full comparison, never by a hash.
 //!
-//! Kept: the last [`CAPACITY`] patterns with their analyses and the last mass matrix, copies
-//! of their index arrays (and M's values): on the 212k lap about 0.2 GB, beside a solve's
-//! 3-4 GB. Shared by every thread; each is computed outside the lock.
+//! Kept: the last [`CAPACITY`] patterns with their analyses (the factor's structure: its
+//! supernodes' row indices, a fraction of its values) and the last [`MASS_CAPACITY`] mass
+//! matrices found definite, as copies of their index arrays (and M's values): on the 212k
+//! lap about 0.2 GB, beside a solve's 3-4 GB. Shared by every thread; an analysis or a check
+//! runs outside the lock, and of two threads that made the same one, the second takes the
+//! first one's.
 
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -27,9 +30,52 @@ use super::sparse_llt::Ordering;
 /// Patterns kept: K - sigma M and M of two structures solved in turn.
 pub const CAPACITY: usize = 4;
 
-/// The analyses of the last patterns factorised, the most recent first.
+/// Mass matrices kept: those of two structures solved in turn (a candidate's alternative
+/// model beside the nominal one).
+pub const MASS_CAPACITY: usize = 2;
+
+/// The last items used, the most recent first, at most `capacity`.
+struct Recent<T> {
+    items: Mutex<Vec<T>>,
+    capacity: usize,
+}
+
+impl<T> Recent<T> {
+    const fn new(capacity: usize) -> Self {
+        Recent {
+            items: Mutex::new(Vec::new()),
+            capacity,
+        }
+    }
+
+    /// `read` of the first item `matches` accepts, which becomes the most recent.
+    fn find<R>(&self, matches: impl Fn(&T) -> bool, read: impl FnOnce(&T) -> R) -> Option<R> {
+        let mut items = self.items.lock().unwrap_or_else(PoisonError::into_inner);
+        let at = items.iter().position(matches)?;
+        let item = items.remove(at);
+        let out = read(&item);
+        items.insert(0, item);
+        Some(out)
+    }
+
+    /// Keeps `item` as the most recent, unless an item `matches` accepts is kept already
+    /// (another thread made it meanwhile): then `read` of that one. The least recent item
+    /// beyond the capacity is let go.
+    fn keep<R>(&self, item: T, matches: impl Fn(&T) -> bool, read: impl Fn(&T) -> R) -> R {
+        let mut items = self.items.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(there) = items.iter().find(|i| matches(i)) {
+            return read(there);
+        }
+        let out = read(&item);
+        items.insert(0, item);
+        items.truncate(self.capacity);
+        out
+    }
+}
+
+/// The analyses of the last patterns factorised.
 pub struct Analyses {
-    kept: Mutex<Vec<Analysis>>,
+    kept: Recent<Analysis>,
 }
 
 struct Analysis {
@@ -39,8 +85,8 @@ struct Analysis {
 }
 
 /// The compressed columns of a pattern with every column's entries contiguous.
-#[derive(PartialEq)]
 struct Pattern {
+    nrows: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
 }
@@ -49,13 +95,17 @@ impl Pattern {
     /// `None` for a pattern with gaps between its columns' entries (never made here).
     fn of(a: SymbolicSparseColMatRef<'_, usize>) -> Option<Pattern> {
         a.col_nnz().is_none().then(|| Pattern {
+            nrows: a.nrows(),
             col_ptr: a.col_ptr().to_vec(),
             row_idx: a.row_idx().to_vec(),
         })
     }
 
     fn is(&self, a: SymbolicSparseColMatRef<'_, usize>) -> bool {
-        a.col_nnz().is_none() && self.col_ptr == a.col_ptr() && self.row_idx == a.row_idx()
+        a.col_nnz().is_none()
+            && self.nrows == a.nrows()
+            && self.col_ptr == a.col_ptr()
+            && self.row_idx == a.row_idx()
     }
 }
 
@@ -63,7 +113,7 @@ impl Analyses {
     /// Nothing kept yet.
     pub const fn new() -> Analyses {
         Analyses {
-            kept: Mutex::new(Vec::new()),
+            kept: Recent::new(CAPACITY),
         }
     }
 
@@ -74,38 +124,33 @@ impl Analyses {
         ordering: Ordering,
         analyse: impl FnOnce() -> Option<SymbolicCholesky<usize>>,
     ) -> Option<Arc<SymbolicCholesky<usize>>> {
-        {
-            let mut kept = self.kept.lock().unwrap_or_else(PoisonError::into_inner);
-            if let Some(at) = kept
-                .iter()
-                .position(|k| k.ordering == ordering && k.pattern.is(a))
-            {
-                let hit = kept.remove(at);
-                let symbolic = Arc::clone(&hit.symbolic);
-                kept.insert(0, hit);
-                return Some(symbolic);
-            }
+        let matches = |k: &Analysis| k.ordering == ordering && k.pattern.is(a);
+        let symbolic = |k: &Analysis| Arc::clone(&k.symbolic);
+        if let Some(kept) = self.kept.find(matches, symbolic) {
+            return Some(kept);
         }
-        let symbolic = Arc::new(analyse()?);
-        if let Some(pattern) = Pattern::of(a) {
-            let mut kept = self.kept.lock().unwrap_or_else(PoisonError::into_inner);
-            kept.insert(
-                0,
-                Analysis {
-                    ordering,
-                    pattern,
-                    symbolic: Arc::clone(&symbolic),
-                },
-            );
-            kept.truncate(CAPACITY);
-        }
-        Some(symbolic)
+        let made = Arc::new(analyse()?);
+        let Some(pattern) = Pattern::of(a) else {
+            return Some(made);
+        };
+        let analysis = Analysis {
+            ordering,
+            pattern,
+            symbolic: made,
+        };
+        Some(self.kept.keep(analysis, matches, symbolic))
     }
 
     /// Whether the analysis of `a` under `ordering` is kept.
-    pub fn holds(&self, a: SymbolicSparseColMatRef<'_, usize>, ordering: Ordering) -> bool {
-        let kept = self.kept.lock().unwrap_or_else(PoisonError::into_inner);
-        kept.iter()
+    #[cfg(test)]
+    fn holds(&self, a: SymbolicSparseColMatRef<'_, usize>, ordering: Ordering) -> bool {
+        let items = self
+            .kept
+            .items
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        items
+            .iter()
             .any(|k| k.ordering == ordering && k.pattern.is(a))
     }
 }
@@ -116,20 +161,20 @@ impl Default for Analyses {
     }
 }
 
-/// The last mass matrix found positive definite.
+/// The last mass matrices found positive definite.
 pub struct CheckedMass {
-    kept: Mutex<Option<(Pattern, Vec<f64>)>>,
+    kept: Recent<(Pattern, Vec<f64>)>,
 }
 
 impl CheckedMass {
     /// Nothing kept yet.
     pub const fn new() -> CheckedMass {
         CheckedMass {
-            kept: Mutex::new(None),
+            kept: Recent::new(MASS_CAPACITY),
         }
     }
 
-    /// Whether `m` is positive definite: true at once when it equals the kept matrix bit for
+    /// Whether `m` is positive definite: true at once when it equals a kept matrix bit for
     /// bit, else `check(m)`, whose `true` keeps `m`.
     pub fn is_definite(
         &self,
@@ -144,19 +189,12 @@ impl CheckedMass {
                     .zip(m.val())
                     .all(|(a, b)| a.to_bits() == b.to_bits())
         };
-        if self
-            .kept
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .as_ref()
-            .is_some_and(same)
-        {
+        if self.kept.find(same, |_| ()).is_some() {
             return true;
         }
         let definite = check();
         if let (true, Some(pattern)) = (definite, Pattern::of(m.symbolic())) {
-            *self.kept.lock().unwrap_or_else(PoisonError::into_inner) =
-                Some((pattern, m.val().to_vec()));
+            self.kept.keep((pattern, m.val().to_vec()), same, |_| ());
         }
         definite
     }
@@ -191,6 +229,21 @@ mod tests {
             if i + 1 < n {
                 t.push(Triplet::new(i + 1, i, -1.0));
                 t.push(Triplet::new(i, i + 1, -1.0));
+            }
+        }
+        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    /// The lower triangle of a tridiagonal matrix, or (`moved`) the same with column 0's
+    /// entry below the diagonal moved from row 1 to row 2: the same column pointers and
+    /// values, other row indices.
+    fn lower(n: usize, moved: bool) -> SparseColMat<usize, f64> {
+        let mut t = Vec::new();
+        for j in 0..n {
+            t.push(Triplet::new(j, j, 4.0));
+            if j + 1 < n {
+                let below = if moved && j == 0 { 2 } else { j + 1 };
+                t.push(Triplet::new(below, j, -1.0));
             }
         }
         SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
@@ -240,6 +293,16 @@ mod tests {
         let c = tridiagonal(7, 4.0);
         assert!(memo.of(c.symbolic(), Ordering::Amd, || None).is_none());
         assert!(!memo.holds(c.symbolic(), Ordering::Amd));
+        // Same column pointers, other row indices: another pattern.
+        let (d, e) = (lower(12, false), lower(12, true));
+        assert_eq!(d.symbolic().col_ptr(), e.symbolic().col_ptr());
+        let before = made.get();
+        let (at_d, at_e) = (of(&d, Ordering::Amd), of(&e, Ordering::Amd));
+        assert_eq!(made.get(), before + 2);
+        assert!(!Arc::ptr_eq(&at_d, &at_e));
+        assert!(Arc::ptr_eq(&at_d, &of(&d, Ordering::Amd)));
+        assert!(Arc::ptr_eq(&at_e, &of(&e, Ordering::Amd)));
+        assert_eq!(made.get(), before + 2);
     }
 
     /// The check of a mass matrix is skipped only for the matrix found definite last, bit for
@@ -269,5 +332,9 @@ mod tests {
         assert_eq!(checks.get(), 2);
         assert!(!check(&tridiagonal(21, 4.0), false));
         assert_eq!(checks.get(), 3);
+        // Same column pointers and values, other row indices: checked.
+        assert!(check(&lower(12, false), true));
+        assert!(!check(&lower(12, true), false));
+        assert_eq!(checks.get(), 5);
     }
 }
