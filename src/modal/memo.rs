@@ -25,8 +25,6 @@ use std::sync::{Arc, Mutex, PoisonError};
 use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
-use super::sparse_llt::Ordering;
-
 /// Patterns kept: K - sigma M and M of two structures solved in turn.
 pub const CAPACITY: usize = 4;
 
@@ -73,13 +71,13 @@ impl<T> Recent<T> {
     }
 }
 
-/// The analyses of the last patterns factorised.
-pub struct Analyses {
-    kept: Recent<Analysis>,
+/// The analyses of the last patterns factorised, each under an ordering `O`.
+pub struct Analyses<O> {
+    kept: Recent<Analysis<O>>,
 }
 
-struct Analysis {
-    ordering: Ordering,
+struct Analysis<O> {
+    ordering: O,
     pattern: Pattern,
     symbolic: Arc<SymbolicCholesky<usize>>,
 }
@@ -109,9 +107,9 @@ impl Pattern {
     }
 }
 
-impl Analyses {
+impl<O: PartialEq + Copy> Analyses<O> {
     /// Nothing kept yet.
-    pub const fn new() -> Analyses {
+    pub const fn new() -> Analyses<O> {
         Analyses {
             kept: Recent::new(CAPACITY),
         }
@@ -121,11 +119,11 @@ impl Analyses {
     pub fn of(
         &self,
         a: SymbolicSparseColMatRef<'_, usize>,
-        ordering: Ordering,
+        ordering: O,
         analyse: impl FnOnce() -> Option<SymbolicCholesky<usize>>,
     ) -> Option<Arc<SymbolicCholesky<usize>>> {
-        let matches = |k: &Analysis| k.ordering == ordering && k.pattern.is(a);
-        let symbolic = |k: &Analysis| Arc::clone(&k.symbolic);
+        let matches = move |k: &Analysis<O>| k.ordering == ordering && k.pattern.is(a);
+        let symbolic = |k: &Analysis<O>| Arc::clone(&k.symbolic);
         if let Some(kept) = self.kept.find(matches, symbolic) {
             return Some(kept);
         }
@@ -143,7 +141,7 @@ impl Analyses {
 
     /// Whether the analysis of `a` under `ordering` is kept.
     #[cfg(test)]
-    fn holds(&self, a: SymbolicSparseColMatRef<'_, usize>, ordering: Ordering) -> bool {
+    fn holds(&self, a: SymbolicSparseColMatRef<'_, usize>, ordering: O) -> bool {
         let items = self
             .kept
             .items
@@ -155,7 +153,7 @@ impl Analyses {
     }
 }
 
-impl Default for Analyses {
+impl<O: PartialEq + Copy> Default for Analyses<O> {
     fn default() -> Self {
         Analyses::new()
     }
@@ -205,9 +203,6 @@ impl Default for CheckedMass {
         CheckedMass::new()
     }
 }
-
-/// The analyses every factorisation of [`super::sparse_llt`] shares.
-pub static ANALYSES: Analyses = Analyses::new();
 
 /// The mass matrix every sparse eigensolution's check shares.
 pub static CHECKED_MASS: CheckedMass = CheckedMass::new();
@@ -264,7 +259,7 @@ mod tests {
     /// [`CAPACITY`] patterns, the least recently used first.
     #[test]
     fn analyses_are_kept_per_pattern_and_ordering() {
-        let memo = Analyses::new();
+        let memo = Analyses::<&str>::new();
         let made = Cell::new(0);
         let of = |a: &SparseColMat<usize, f64>, ordering| {
             memo.of(a.symbolic(), ordering, || {
@@ -274,34 +269,34 @@ mod tests {
             .unwrap()
         };
         let (a, b) = (tridiagonal(30, 4.0), tridiagonal(30, 9.0));
-        let first = of(&a, Ordering::Amd);
-        assert!(Arc::ptr_eq(&first, &of(&b, Ordering::Amd)));
+        let first = of(&a, "amd");
+        assert!(Arc::ptr_eq(&first, &of(&b, "amd")));
         assert_eq!(made.get(), 1);
-        of(&a, Ordering::Fewest);
+        of(&a, "fewest");
         assert_eq!(made.get(), 2);
         // CAPACITY - 1 more patterns push out the least recently used: (a, Fewest) goes
         // first, (a, Amd) is used again in between and stays.
         for n in 31..31 + CAPACITY - 2 {
-            of(&tridiagonal(n, 4.0), Ordering::Amd);
+            of(&tridiagonal(n, 4.0), "amd");
         }
-        assert!(memo.holds(a.symbolic(), Ordering::Fewest));
-        of(&a, Ordering::Amd);
-        of(&tridiagonal(99, 4.0), Ordering::Amd);
-        assert!(memo.holds(a.symbolic(), Ordering::Amd));
-        assert!(!memo.holds(a.symbolic(), Ordering::Fewest));
+        assert!(memo.holds(a.symbolic(), "fewest"));
+        of(&a, "amd");
+        of(&tridiagonal(99, 4.0), "amd");
+        assert!(memo.holds(a.symbolic(), "amd"));
+        assert!(!memo.holds(a.symbolic(), "fewest"));
         // A failed analysis is not kept.
         let c = tridiagonal(7, 4.0);
-        assert!(memo.of(c.symbolic(), Ordering::Amd, || None).is_none());
-        assert!(!memo.holds(c.symbolic(), Ordering::Amd));
+        assert!(memo.of(c.symbolic(), "amd", || None).is_none());
+        assert!(!memo.holds(c.symbolic(), "amd"));
         // Same column pointers, other row indices: another pattern.
         let (d, e) = (lower(12, false), lower(12, true));
         assert_eq!(d.symbolic().col_ptr(), e.symbolic().col_ptr());
         let before = made.get();
-        let (at_d, at_e) = (of(&d, Ordering::Amd), of(&e, Ordering::Amd));
+        let (at_d, at_e) = (of(&d, "amd"), of(&e, "amd"));
         assert_eq!(made.get(), before + 2);
         assert!(!Arc::ptr_eq(&at_d, &at_e));
-        assert!(Arc::ptr_eq(&at_d, &of(&d, Ordering::Amd)));
-        assert!(Arc::ptr_eq(&at_e, &of(&e, Ordering::Amd)));
+        assert!(Arc::ptr_eq(&at_d, &of(&d, "amd")));
+        assert!(Arc::ptr_eq(&at_e, &of(&e, "amd")));
         assert_eq!(made.get(), before + 2);
     }
 
