@@ -3,10 +3,12 @@
 //! definite.
 //!
 //! Why: diagnose solves one structure's eigenproblem hundreds of times with other joint
-//! values (the frequency-dependence fit about 700 times on the 212k-DOF lap), and K - sigma M
-//! keeps its pattern, M its values. Measured on that lap at one thread, of a 9.5 s solve: the
-//! analyses of K - sigma M (minimum degree and the DOF order, [`super::sparse_llt`]) 0.69 s,
-//! the check of M 1.1 s (its analysis 0.31 s, its factorisation 0.81 s).
+//! values (the frequency-dependence fit 635 times on the 23,958-DOF lap), and K - sigma M
+//! keeps its pattern, M its values. Measured on the 212,562-DOF lap at one thread, of a 9.5 s
+//! solve: the analyses of K - sigma M (minimum degree and the DOF order,
+//! [`super::sparse_llt`]) 0.69 s, the check of M 1.1 s (its analysis 0.31 s, its
+//! factorisation 0.81 s). The 24k lap's diagnose takes 226 s with these kept, 250 s without
+//! (docs/benchmarks.md).
 //!
 //! Exactness: an analysis is a function of the pattern and the ordering alone, so a kept one
 //! is the one that would be computed; a mass matrix is skipped only when it equals, entry for
@@ -15,10 +17,10 @@
 //!
 //! Kept: the last [`CAPACITY`] patterns with their analyses (the factor's structure: its
 //! supernodes' row indices, a fraction of its values) and the last [`MASS_CAPACITY`] mass
-//! matrices found definite, as copies of their index arrays (and M's values): on the 212k
-//! lap about 0.2 GB, beside a solve's 3-4 GB. Shared by every thread; an analysis or a check
-//! runs outside the lock, and of two threads that made the same one, the second takes the
-//! first one's.
+//! matrices found definite, as copies of their index arrays (and M's values): the 24k lap's
+//! diagnose peaks 0.1 GB higher with them (0.76 GB). Shared by every thread; an analysis or
+//! a check runs outside the lock, and of two threads that made the same one, the second
+//! takes the first one's.
 
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -274,8 +276,8 @@ mod tests {
         assert_eq!(made.get(), 1);
         of(&a, "fewest");
         assert_eq!(made.get(), 2);
-        // CAPACITY - 1 more patterns push out the least recently used: (a, Fewest) goes
-        // first, (a, Amd) is used again in between and stays.
+        // CAPACITY - 2 more patterns fill the memo; one after them pushes out the least
+        // recently used, (a, fewest), while (a, amd), used again in between, stays.
         for n in 31..31 + CAPACITY - 2 {
             of(&tridiagonal(n, 4.0), "amd");
         }
