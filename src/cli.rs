@@ -439,6 +439,10 @@ pub struct DiagnoseArgs {
     /// Also search the candidates of the extended tier (listed from the registry).
     #[arg(long, help = extended_help())]
     pub extended: bool,
+    /// No log of the diagnosis's steps on stderr (a run that ends within 2 s logs nothing
+    /// anyway).
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// simulate's `--effect` help: every name it accepts, from the registries.

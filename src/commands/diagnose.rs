@@ -1,11 +1,17 @@
 //! `jointid diagnose`: calibrate, trace the residual to a missing effect, report.
 
+use std::sync::{Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
-use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, diagnose};
+use jointid::diagnose::{
+    DiagnoseSettings, Noise, PairingRule, Pass, Step, Watch, diagnose_watched,
+};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
+use jointid::output::diagnose_log;
 use jointid::output::diagnose_page::diagnose_page;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::guard::model_inputs;
@@ -60,7 +66,14 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     } else {
         measured
     };
-    let report = diagnose(&model, &measured, settings)
+    let log = Log::new(HOLD, PACE, |line: &str| eprintln!("{line}"));
+    let tell = |pass: Pass, step: &Step| log.tell(pass, step);
+    let watch = if args.quiet {
+        Watch::silent()
+    } else {
+        Watch::new(&tell)
+    };
+    let report = diagnose_watched(&model, &measured, settings, watch)
         .with_context(|| format!("{}", args.measured.display()))?;
     let mut staged = Vec::new();
     if let Some(path) = &args.json {
@@ -84,4 +97,145 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     commit_all(staged)?;
     out::write_text(&mut std::io::stdout().lock(), &report)?;
     Ok(())
+}
+
+/// How long the log holds its lines back: a run that ends sooner logs nothing.
+const HOLD: Duration = Duration::from_secs(2);
+/// Least time between two logged iterations of a fit: a long fit shows it is moving, a quick
+/// one does not fill the log.
+const PACE: Duration = Duration::from_secs(10);
+
+/// The log of the diagnosis's steps (module `jointid::output::diagnose_log`), each line given
+/// to `write`: held back for the first `hold`, then every line as its step finishes; an
+/// iteration of a fit only when `pace` has passed since the last line.
+struct Log<W> {
+    start: Instant,
+    hold: Duration,
+    pace: Duration,
+    lines: Mutex<Lines>,
+    write: W,
+}
+
+/// What the log has done so far.
+struct Lines {
+    /// The lines held back, until the first step after the hold writes them.
+    held: Option<Vec<String>>,
+    /// When the last line was logged (held or written).
+    last: Option<Duration>,
+}
+
+impl<W: Fn(&str)> Log<W> {
+    fn new(hold: Duration, pace: Duration, write: W) -> Self {
+        Log {
+            start: Instant::now(),
+            hold,
+            pace,
+            lines: Mutex::new(Lines {
+                held: Some(Vec::new()),
+                last: None,
+            }),
+            write,
+        }
+    }
+
+    fn tell(&self, pass: Pass, step: &Step) {
+        let elapsed = self.start.elapsed();
+        let mut lines = self.lines.lock().unwrap_or_else(PoisonError::into_inner);
+        let soon = lines.last.is_some_and(|t| elapsed < t + self.pace);
+        if matches!(step, Step::Iteration { .. }) && soon {
+            return;
+        }
+        lines.last = Some(elapsed);
+        let line = diagnose_log::line(elapsed.as_secs_f64(), pass, step);
+        match lines.held.as_mut() {
+            Some(held) if elapsed < self.hold => held.push(line),
+            _ => {
+                for earlier in lines.held.take().into_iter().flatten() {
+                    (self.write)(&earlier);
+                }
+                (self.write)(&line);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn steps<W: Fn(&str)>(log: &Log<W>) {
+        log.tell(
+            Pass::Stated,
+            &Step::Calibrated {
+                chi2: 2.0,
+                iterations: 4,
+            },
+        );
+        log.tell(
+            Pass::Working,
+            &Step::Noise {
+                frequency: 1e-3,
+                shape: 1e-2,
+            },
+        );
+    }
+
+    /// Within the hold nothing is written; past it, the held lines first, in order; an
+    /// iteration within the pace of the last line is left out.
+    #[test]
+    fn the_log_holds_its_lines_back_then_writes_them_in_order() {
+        let written = Mutex::new(Vec::new());
+        let write = |l: &str| written.lock().unwrap().push(l.to_string());
+        let hour = Duration::from_secs(3600);
+        steps(&Log::new(hour, Duration::ZERO, write));
+        assert!(written.lock().unwrap().is_empty());
+        let log = Log::new(Duration::from_millis(20), hour, write);
+        steps(&log);
+        std::thread::sleep(Duration::from_millis(30));
+        // An iteration within the pace is left out, a fit is not.
+        log.tell(
+            Pass::Working,
+            &Step::Iteration {
+                candidate: "frequency_dependence",
+                variant: "one alpha",
+                iteration: 1,
+                chi2: 3.0,
+            },
+        );
+        log.tell(
+            Pass::Working,
+            &Step::Fitted {
+                candidate: "joint_mass",
+                outcome: Ok(1.0),
+            },
+        );
+        let lines = written.lock().unwrap();
+        let ends: Vec<&str> = lines
+            .iter()
+            .map(|l| &l[l.find("] ").unwrap() + 2..])
+            .collect();
+        assert_eq!(
+            ends,
+            [
+                "stated noise: joint calibrated: chi^2 2.0 after 4 iterations",
+                "working noise: estimated: frequency 1.000e-3, shape 1.000e-2",
+                "working noise: joint_mass fitted: chi^2 1.0",
+            ]
+        );
+        drop(lines);
+        let paced = Log::new(Duration::ZERO, Duration::ZERO, write);
+        for iteration in [1, 2] {
+            let chi2 = 3.0;
+            paced.tell(
+                Pass::Stated,
+                &Step::Iteration {
+                    candidate: "frequency_dependence",
+                    variant: "one alpha",
+                    iteration,
+                    chi2,
+                },
+            );
+        }
+        assert_eq!(written.lock().unwrap().len(), 5);
+    }
 }

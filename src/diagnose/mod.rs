@@ -41,6 +41,7 @@ pub mod decide;
 pub mod fit;
 pub mod noise;
 pub mod pairing;
+pub mod progress;
 pub mod report;
 pub mod score;
 pub mod sensitivity;
@@ -53,6 +54,7 @@ pub use decide::{ALPHA, AMBIGUITY_MARGIN, FIT_ALPHA, TREND_SIGMAS};
 pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
+pub use progress::{Pass, Step, Watch};
 pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
 pub use settings::DiagnoseSettings;
 pub use whiteness::Whiteness;
@@ -115,6 +117,16 @@ pub fn diagnose(
     measured: &MeasuredModes,
     settings: DiagnoseSettings,
 ) -> Result<Report, DiagnoseError> {
+    diagnose_watched(model, measured, settings, Watch::silent())
+}
+
+/// As [`diagnose`], every step told to `watch` as it finishes ([`progress`]).
+pub fn diagnose_watched(
+    model: &Structure,
+    measured: &MeasuredModes,
+    settings: DiagnoseSettings,
+    watch: Watch,
+) -> Result<Report, DiagnoseError> {
     settings.check()?;
     let ctx = calibrate::prepare(model, measured, &settings)?;
     let library = candidate::library(&ctx, settings.extended);
@@ -128,12 +140,17 @@ pub fn diagnose(
         measured_std: measured.has_std(),
     };
     let first_base = fit::fit(&ctx, measured, &stated, &[])?;
+    watch.tell(&Step::Calibrated {
+        chi2: first_base.chi2,
+        iterations: first_base.iterations,
+    });
     let first_stage = Stage {
         ctx: &ctx,
         measured,
         calibration: &stated,
         base: &first_base,
         estimate: None,
+        watch,
     };
     let first = candidate::fit_all(&library, &first_stage, None);
     let estimate = if stated.measured_std {
@@ -149,11 +166,21 @@ pub fn diagnose(
         shape_floor: estimate.working_floor,
         measured_std: stated.measured_std,
     };
+    let watch = watch.during(Pass::Working);
+    watch.tell(&Step::Noise {
+        frequency: working.noise.frequency,
+        shape: working.noise.shape,
+    });
     let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base)?;
+    watch.tell(&Step::Calibrated {
+        chi2: calibrated.base.chi2,
+        iterations: calibrated.base.iterations,
+    });
     let stage = Stage {
         calibration: &working,
         base: &calibrated.base,
         estimate: Some(&estimate),
+        watch,
         ..first_stage
     };
     let fits = candidate::fit_all(&library, &stage, Some(&first));

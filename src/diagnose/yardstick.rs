@@ -23,10 +23,11 @@
 //! verdict where the effect lies outside the library; an effect of the library, which fits,
 //! is judged under its own residual scale.
 
-use super::candidate::{Stage, Tried};
+use super::candidate::{Stage, Tried, tell_fitted};
 use super::decide::FIT_ALPHA;
 use super::fit::{self, Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use super::noise::{LARGEST_FACTOR, NoiseEstimate, estimate};
+use super::progress::Pass;
 use super::report::Verdict;
 use super::whiteness;
 
@@ -123,9 +124,12 @@ fn refitted(first: &[Tried], stage: &Stage, i: Option<usize>, e: &NoiseEstimate)
         calibration: &calibration,
         base: &base,
         estimate: Some(e),
+        watch: stage.watch.during(Pass::NoiseCheck),
         ..*stage
     };
-    let fit = candidate.fit(&stage, Some(earlier)).ok()?;
+    let fit = candidate.fit(&stage, Some(earlier));
+    tell_fitted(&stage.watch, candidate.as_ref(), &fit);
+    let fit = fit.ok()?;
     Some(Leaves {
         residuals: fit.residuals,
         unknowns: fit.unknowns,

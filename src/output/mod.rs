@@ -11,6 +11,7 @@ pub mod amplitude;
 pub mod atomic;
 pub mod catalogue;
 pub mod diagnose;
+pub mod diagnose_log;
 pub mod diagnose_page;
 pub mod diagnose_plots;
 pub mod guard;

@@ -233,7 +233,9 @@ mod tests {
         // An irregular pattern and values (a small LCG, no shared generator).
         let mut seed = 12345u64;
         let mut draw = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
         let mut entries = Vec::new();

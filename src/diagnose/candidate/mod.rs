@@ -34,6 +34,7 @@ pub use scan::Scan;
 
 use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
 use super::noise::NoiseEstimate;
+use super::progress::{Step, Watch};
 use super::report::Verdict;
 use crate::measured::MeasuredModes;
 pub use crate::model::effects::Tier;
@@ -54,6 +55,8 @@ pub struct Stage<'a> {
     /// The noise estimate whose working noise the calibration holds, when it does (None:
     /// the stated noise, taken as known).
     pub estimate: Option<&'a NoiseEstimate>,
+    /// Where the steps of the fits go.
+    pub watch: Watch<'a>,
 }
 
 impl Stage<'_> {
@@ -248,7 +251,7 @@ pub fn catalogue(extra: &[(&'static str, &'static str)]) -> Vec<Entry> {
 }
 
 /// Fits every candidate of `library` on `stage` (in parallel), each from its fit in
-/// `earlier` when that succeeded.
+/// `earlier` when that succeeded; each fit told to the stage's watch as it finishes.
 pub fn fit_all(
     library: &[Arc<dyn Candidate>],
     stage: &Stage,
@@ -260,9 +263,23 @@ pub fn fit_all(
         .enumerate()
         .map(|(i, c)| {
             let from = earlier.and_then(|e| e[i].1.as_ref().ok());
-            (c.clone(), c.fit(stage, from))
+            let fit = c.fit(stage, from);
+            tell_fitted(&stage.watch, c.as_ref(), &fit);
+            (c.clone(), fit)
         })
         .collect()
+}
+
+/// Tells `watch` that `candidate` was fitted: `fit`'s chi^2, or why it has none.
+pub(crate) fn tell_fitted(
+    watch: &Watch,
+    candidate: &dyn Candidate,
+    fit: &Result<Fit, CandidateError>,
+) {
+    watch.tell(&Step::Fitted {
+        candidate: candidate.name(),
+        outcome: fit.as_ref().map(|f| f.chi2).map_err(|e| e.to_string()),
+    });
 }
 
 /// Why the fitted theta of `effect` is not a physical explanation, if it is not: a negative

@@ -31,6 +31,7 @@ pub use problem::ALPHA_MAX;
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
 use crate::diagnose::decide::ALPHA;
 use crate::diagnose::fit::{self, Estimate, FitError, Fitted, OwnModel, RANGE_FACTOR};
+use crate::diagnose::progress::Iterations;
 use crate::diagnose::report::Verdict;
 use crate::modal::ModalSolution;
 use crate::model::effects::{Configured, EffectContext};
@@ -171,7 +172,16 @@ fn fit_variant(
         x.extend(&base.scales);
         x
     });
-    let solution = fit::solver().minimise(&problem, x)?;
+    let mut told = Iterations {
+        watch: stage.watch,
+        candidate: NAME,
+        variant: if per_parameter {
+            "one alpha per parameter"
+        } else {
+            "one alpha"
+        },
+    };
+    let solution = fit::solver().minimise_observed(&problem, x, &mut told)?;
     if solution.termination == Termination::MaxIterations {
         return Err(FitError::NotConverged {
             effect: NAME.into(),

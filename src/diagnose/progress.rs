@@ -1,0 +1,168 @@
+//! What a running diagnosis tells a watcher, step by step: the command line's log of a long
+//! run (a diagnosis of a solid model of 2e5 DOFs takes hours). Plain data; the watcher
+//! formats it.
+//!
+//! Every step is told from the thread that made it: candidates are fitted in parallel, so a
+//! watcher is `Sync` and sees the steps of one pass in the order they finished.
+
+use std::fmt;
+
+/// The pass of the diagnosis a step belongs to (module docs of [`super`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pass {
+    /// Under the stated noise, to estimate the noise.
+    Stated,
+    /// The largest models refitted under a noise estimate, to check that they fit it.
+    NoiseCheck,
+    /// Under the working noise, to select.
+    Working,
+}
+
+/// One finished step.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Step<'a> {
+    /// The joint calibrated on every measured mode.
+    Calibrated {
+        /// chi^2 after the calibration.
+        chi2: f64,
+        /// Its iterations.
+        iterations: usize,
+    },
+    /// An iteration of a candidate's fit. Only the fits whose every evaluation solves the
+    /// structure once per measured mode tell them: the frequency-dependent joint.
+    Iteration {
+        /// The candidate.
+        candidate: &'a str,
+        /// Which of its fits (its variant).
+        variant: &'a str,
+        /// The iteration, from 1.
+        iteration: usize,
+        /// chi^2 after it.
+        chi2: f64,
+    },
+    /// A candidate fitted.
+    Fitted {
+        /// The candidate.
+        candidate: &'a str,
+        /// Its chi^2, or why it has none.
+        outcome: Result<f64, String>,
+    },
+    /// The noise estimated: the working noise of the selection (relative frequency
+    /// standard deviation, shape standard deviation).
+    Noise {
+        /// Of every measured frequency, relative.
+        frequency: f64,
+        /// Of every measured shape component.
+        shape: f64,
+    },
+}
+
+/// Where the steps of a diagnosis go, and the pass they belong to.
+#[derive(Clone, Copy)]
+pub struct Watch<'a> {
+    tell: &'a (dyn Fn(Pass, &Step) + Sync),
+    pass: Pass,
+}
+
+impl<'a> Watch<'a> {
+    /// Every step told to `tell`, from the first pass on.
+    pub fn new(tell: &'a (dyn Fn(Pass, &Step) + Sync)) -> Self {
+        Watch {
+            tell,
+            pass: Pass::Stated,
+        }
+    }
+
+    /// A watch that is told nothing.
+    pub fn silent() -> Watch<'static> {
+        Watch::new(&|_, _| {})
+    }
+
+    /// The same watch in pass `pass`.
+    pub fn during(self, pass: Pass) -> Self {
+        Watch { pass, ..self }
+    }
+
+    /// Tells `step`.
+    pub fn tell(&self, step: &Step) {
+        (self.tell)(self.pass, step);
+    }
+}
+
+impl fmt::Debug for Watch<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Watch").field("pass", &self.pass).finish()
+    }
+}
+
+/// An observer of a candidate's Levenberg-Marquardt iterations that tells each one.
+pub struct Iterations<'a> {
+    /// Where they go.
+    pub watch: Watch<'a>,
+    /// The candidate.
+    pub candidate: &'a str,
+    /// Its variant.
+    pub variant: &'a str,
+}
+
+impl crate::optim::Observer for Iterations<'_> {
+    fn observe(&mut self, progress: &crate::optim::Progress) {
+        self.watch.tell(&Step::Iteration {
+            candidate: self.candidate,
+            variant: self.variant,
+            iteration: progress.iteration,
+            chi2: progress.cost,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    #[test]
+    fn a_watch_tells_its_pass_with_every_step() {
+        let seen = Mutex::new(Vec::new());
+        let tell = |pass: Pass, step: &Step| {
+            seen.lock().unwrap().push(format!("{pass:?} {step:?}"));
+        };
+        let watch = Watch::new(&tell);
+        watch.tell(&Step::Calibrated {
+            chi2: 1.5,
+            iterations: 3,
+        });
+        let later = watch.during(Pass::Working);
+        later.tell(&Step::Noise {
+            frequency: 1e-3,
+            shape: 0.01,
+        });
+        let mut observer = Iterations {
+            watch: later,
+            candidate: "c",
+            variant: "v",
+        };
+        crate::optim::Observer::observe(
+            &mut observer,
+            &crate::optim::Progress {
+                iteration: 2,
+                cost: 4.0,
+                mu: 1e-3,
+                accepted: true,
+                trials: 1,
+            },
+        );
+        assert_eq!(
+            *seen.lock().unwrap(),
+            [
+                "Stated Calibrated { chi2: 1.5, iterations: 3 }",
+                "Working Noise { frequency: 0.001, shape: 0.01 }",
+                "Working Iteration { candidate: \"c\", variant: \"v\", iteration: 2, chi2: 4.0 }",
+            ]
+        );
+        Watch::silent().tell(&Step::Calibrated {
+            chi2: 0.0,
+            iterations: 0,
+        });
+    }
+}

@@ -1,0 +1,69 @@
+//! The lines of `jointid diagnose`'s log on stderr: one per step of the diagnosis
+//! ([`crate::diagnose::progress`]), behind the seconds since the start.
+
+use crate::diagnose::{Pass, Step};
+
+/// The line of `step` of pass `pass`, `seconds` into the run.
+pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
+    let pass = match pass {
+        Pass::Stated => "stated noise",
+        Pass::NoiseCheck => "noise check",
+        Pass::Working => "working noise",
+    };
+    let what = match step {
+        Step::Calibrated { chi2, iterations } => {
+            format!("joint calibrated: chi^2 {chi2:.1} after {iterations} iterations")
+        }
+        Step::Iteration {
+            candidate,
+            variant,
+            iteration,
+            chi2,
+        } => format!("{candidate} ({variant}) iteration {iteration}: chi^2 {chi2:.1}"),
+        Step::Fitted {
+            candidate,
+            outcome: Ok(chi2),
+        } => format!("{candidate} fitted: chi^2 {chi2:.1}"),
+        Step::Fitted {
+            candidate,
+            outcome: Err(reason),
+        } => format!("{candidate} not fitted: {reason}"),
+        Step::Noise { frequency, shape } => {
+            format!("estimated: frequency {frequency:.3e}, shape {shape:.3e}")
+        }
+    };
+    format!("diagnose [{seconds:8.1} s] {pass}: {what}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_line_names_the_time_the_pass_and_the_step() {
+        assert_eq!(
+            line(
+                12.345,
+                Pass::Working,
+                &Step::Iteration {
+                    candidate: "frequency_dependence",
+                    variant: "one alpha",
+                    iteration: 3,
+                    chi2: 212.44,
+                }
+            ),
+            "diagnose [    12.3 s] working noise: frequency_dependence (one alpha) iteration 3: chi^2 212.4"
+        );
+        assert_eq!(
+            line(
+                0.0,
+                Pass::NoiseCheck,
+                &Step::Fitted {
+                    candidate: "joint_mass",
+                    outcome: Err("did not converge".into()),
+                }
+            ),
+            "diagnose [     0.0 s] noise check: joint_mass not fitted: did not converge"
+        );
+    }
+}
