@@ -226,18 +226,13 @@ mod tests {
 
     /// The merge of `plus` against the sort of `from_entries` on the concatenated entries:
     /// the same pattern and the same bits, with positions new to the matrix, positions listed
-    /// several times within a term and across terms, and a diagonal left alone.
+    /// several times within a term and across terms, and a row and column the matrix lacked.
     #[test]
     fn plus_is_bitwise_the_assembly_of_all_entries_in_listed_order() {
         let n = 9;
-        // An irregular pattern and values (a small LCG, no shared generator).
-        let mut seed = 12345u64;
-        let mut draw = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        // An irregular pattern and values.
+        let mut rng = crate::random::TrialRng::new(7, 0, 0);
+        let mut draw = || 0.5 * (rng.symmetric_unit() + 1.0);
         let mut entries = Vec::new();
         for _ in 0..30 {
             let (i, j) = ((draw() * 8.0) as usize, (draw() * 8.0) as usize);
