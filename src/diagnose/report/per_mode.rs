@@ -6,6 +6,7 @@
 //! ([`crate::identify::frequency_only`]), the others held: the question is then still
 //! answered for any number of sensors.
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::diagnose::fit::{Fitted, Noise};
@@ -88,15 +89,16 @@ pub fn per_mode_corrections(
     } else {
         None
     };
-    let mut out = Vec::new();
-    for (r, m) in measured.modes().iter().enumerate() {
+    // Modes in parallel: each may solve its structure several times (its own model, the
+    // frequency-only identification's Newton steps).
+    let correct = |(r, m): (usize, &crate::measured::MeasuredMode)| -> Vec<ModeCorrection> {
         let own = if shared.is_none() {
             identifier_of(r)
         } else {
             None
         };
         let Some(identifier) = shared.as_ref().or(own.as_ref()) else {
-            continue;
+            return Vec::new();
         };
         let params = fitted.structure_of(r).identified();
         let values: Vec<f64> = params.iter().map(|p| p.value).collect();
@@ -116,8 +118,7 @@ pub fn per_mode_corrections(
                 Choice::MostSensitive,
             )
         {
-            out.extend(from_frequency(m, &params, &f));
-            continue;
+            return from_frequency(m, &params, &f);
         }
         // A mode paired beyond the basis (fewer sensors than the mode's index) has no
         // per-mode system: its correction is absent, not a panic.
@@ -141,21 +142,30 @@ pub fn per_mode_corrections(
                     noise.frequency * noise.frequency,
                 ))
             });
-        for (i, p) in params.iter().enumerate() {
-            let relative = relatives.as_ref().map(|z| z[i]);
-            out.push(ModeCorrection {
-                mode: m.mode,
-                frequency_hz: m.frequency_hz,
-                param: p.name.clone(),
-                relative,
-                correction: relative.map(|z| z * p.value),
-                std: std.as_ref().map(|s| s[i]),
-                physical: relative.map(|z| 1.0 + z > 0.0),
-                source: Source::Shape,
-            });
-        }
-    }
-    out
+        params
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let relative = relatives.as_ref().map(|z| z[i]);
+                ModeCorrection {
+                    mode: m.mode,
+                    frequency_hz: m.frequency_hz,
+                    param: p.name.clone(),
+                    relative,
+                    correction: relative.map(|z| z * p.value),
+                    std: std.as_ref().map(|s| s[i]),
+                    physical: relative.map(|z| 1.0 + z > 0.0),
+                    source: Source::Shape,
+                }
+            })
+            .collect()
+    };
+    measured
+        .modes()
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(correct)
+        .collect()
 }
 
 /// The corrections of mode `m` identified from its frequency alone (`f`): its one parameter,
