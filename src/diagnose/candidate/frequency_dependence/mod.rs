@@ -26,6 +26,8 @@
 mod own;
 mod problem;
 
+use rayon::prelude::*;
+
 pub use problem::ALPHA_MAX;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
@@ -251,14 +253,23 @@ fn finish(
         .sum::<f64>()
         / (alphas * alphas) as f64;
     let data = state.residual.len();
+    // The fit solved each mode for the pairs up to its own; the report's per-mode
+    // corrections project on the full basis.
     let own = state
         .modes
-        .into_iter()
-        .map(|sv| OwnModel {
-            structure: sv.structure,
-            modal: sv.modal,
+        .into_par_iter()
+        .map(|sv| {
+            let modal = if sv.modal.len() >= problem.count() {
+                sv.modal
+            } else {
+                ModalSolution::lowest_of(&sv.structure.assemble(), problem.count())?
+            };
+            Ok(OwnModel {
+                structure: sv.structure,
+                modal,
+            })
         })
-        .collect();
+        .collect::<Result<_, FitError>>()?;
     let fitted = Fitted {
         configured: Configured {
             ctx: problem.ctx.clone(),

@@ -47,7 +47,7 @@ pub struct Problem<'a> {
     pub(super) log_ref: f64,
     sigma_f: Vec<f64>,
     sigma: Vec<Vec<f64>>,
-    /// Eigenpairs computed per solve.
+    /// Eigenpairs of the final models (the fitted joint's and every mode's own).
     count: usize,
 }
 
@@ -98,7 +98,7 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// Eigenpairs computed per solve.
+    /// Eigenpairs of the final models (the fitted joint's and every mode's own).
     pub fn count(&self) -> usize {
         self.count
     }
@@ -136,14 +136,9 @@ impl<'a> Problem<'a> {
             .enumerate()
             .map(|(r, m)| {
                 let s = self.pairing.model_index[r];
-                own::solve(
-                    &self.ctx.structure,
-                    law,
-                    s,
-                    self.count,
-                    m.frequency_hz,
-                    m.mode,
-                )
+                // The pairs up to its own: its residuals, sensitivities and derivatives need
+                // no more (the final models get all `count`: `super::finish`).
+                own::solve(&self.ctx.structure, law, s, s + 1, m.frequency_hz, m.mode)
             })
             .collect::<Result<_, _>>()?;
         let at = self.joints() + self.alphas;
