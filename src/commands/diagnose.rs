@@ -73,8 +73,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     } else {
         Watch::new(&tell)
     };
-    let report = diagnose_watched(&model, &measured, settings, watch)
-        .with_context(|| format!("{}", args.measured.display()))?;
+    let report = diagnose_watched(&model, &measured, settings, watch);
+    log.end();
+    let report = report.with_context(|| format!("{}", args.measured.display()))?;
     let mut staged = Vec::new();
     if let Some(path) = &args.json {
         staged.push(
@@ -139,8 +140,9 @@ impl<W: Fn(&str)> Log<W> {
     }
 
     fn tell(&self, pass: Pass, step: &Step) {
-        let elapsed = self.start.elapsed();
         let mut lines = self.lines.lock().unwrap_or_else(PoisonError::into_inner);
+        // Under the lock: the times of the lines in their order.
+        let elapsed = self.start.elapsed();
         let soon = lines.last.is_some_and(|t| elapsed < t + self.pace);
         if matches!(step, Step::Iteration { .. }) && soon {
             return;
@@ -150,11 +152,24 @@ impl<W: Fn(&str)> Log<W> {
         match lines.held.as_mut() {
             Some(held) if elapsed < self.hold => held.push(line),
             _ => {
-                for earlier in lines.held.take().into_iter().flatten() {
-                    (self.write)(&earlier);
-                }
+                self.release(&mut lines);
                 (self.write)(&line);
             }
+        }
+    }
+
+    /// The end of the steps: the lines held back written if the run outlasted the hold.
+    fn end(&self) {
+        let mut lines = self.lines.lock().unwrap_or_else(PoisonError::into_inner);
+        if self.start.elapsed() >= self.hold {
+            self.release(&mut lines);
+        }
+    }
+
+    /// Writes the lines held back, and holds no more.
+    fn release(&self, lines: &mut Lines) {
+        for earlier in lines.held.take().into_iter().flatten() {
+            (self.write)(&earlier);
         }
     }
 }
@@ -173,22 +188,31 @@ mod tests {
         );
         log.tell(
             Pass::Working,
-            &Step::Noise {
-                frequency: 1e-3,
-                shape: 1e-2,
+            &Step::Fitted {
+                candidate: "sensor_mass",
+                outcome: Ok(3.0),
             },
         );
     }
 
-    /// Within the hold nothing is written; past it, the held lines first, in order; an
-    /// iteration within the pace of the last line is left out.
+    /// Within the hold nothing is written, past it the held lines first, in order (by the
+    /// next step or by the end); an iteration within the pace of the last line is left out.
     #[test]
     fn the_log_holds_its_lines_back_then_writes_them_in_order() {
         let written = Mutex::new(Vec::new());
         let write = |l: &str| written.lock().unwrap().push(l.to_string());
         let hour = Duration::from_secs(3600);
-        steps(&Log::new(hour, Duration::ZERO, write));
+        let held = Log::new(hour, Duration::ZERO, write);
+        steps(&held);
+        held.end();
         assert!(written.lock().unwrap().is_empty());
+        // A run that outlasts the hold after its last step: the end writes what was held.
+        let late = Log::new(Duration::from_millis(20), Duration::ZERO, write);
+        steps(&late);
+        std::thread::sleep(Duration::from_millis(30));
+        late.end();
+        assert_eq!(written.lock().unwrap().len(), 2);
+        written.lock().unwrap().clear();
         let log = Log::new(Duration::from_millis(20), hour, write);
         steps(&log);
         std::thread::sleep(Duration::from_millis(30));
@@ -218,7 +242,7 @@ mod tests {
             ends,
             [
                 "stated noise: joint calibrated: chi^2 2.0 after 4 iterations",
-                "working noise: estimated: frequency 1.000e-3, shape 1.000e-2",
+                "working noise: sensor_mass fitted: chi^2 3.0",
                 "working noise: joint_mass fitted: chi^2 1.0",
             ]
         );

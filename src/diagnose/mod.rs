@@ -167,10 +167,7 @@ pub fn diagnose_watched(
         measured_std: stated.measured_std,
     };
     let watch = watch.during(Pass::Working);
-    watch.tell(&Step::Noise {
-        frequency: working.noise.frequency,
-        shape: working.noise.shape,
-    });
+    watch.tell(&Step::Noise(&estimate));
     let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base)?;
     watch.tell(&Step::Calibrated {
         chi2: calibrated.base.chi2,

@@ -7,6 +7,8 @@
 
 use std::fmt;
 
+use super::noise::NoiseEstimate;
+
 /// The pass of the diagnosis a step belongs to (module docs of [`super`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pass {
@@ -19,7 +21,7 @@ pub enum Pass {
 }
 
 /// One finished step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub enum Step<'a> {
     /// The joint calibrated on every measured mode.
     Calibrated {
@@ -45,16 +47,11 @@ pub enum Step<'a> {
         /// The candidate.
         candidate: &'a str,
         /// Its chi^2, or why it has none.
-        outcome: Result<f64, String>,
+        outcome: Result<f64, &'a (dyn std::error::Error + Send + Sync)>,
     },
-    /// The noise estimated: the working noise of the selection (relative frequency
-    /// standard deviation, shape standard deviation).
-    Noise {
-        /// Of every measured frequency, relative.
-        frequency: f64,
-        /// Of every measured shape component.
-        shape: f64,
-    },
+    /// The working noise of the selection chosen: estimated, the stated one kept, or the
+    /// data's own standard errors.
+    Noise(&'a NoiseEstimate),
 }
 
 /// Where the steps of a diagnosis go, and the pass they belong to.
@@ -133,9 +130,9 @@ mod tests {
             iterations: 3,
         });
         let later = watch.during(Pass::Working);
-        later.tell(&Step::Noise {
-            frequency: 1e-3,
-            shape: 0.01,
+        later.tell(&Step::Fitted {
+            candidate: "joint_mass",
+            outcome: Ok(2.5),
         });
         let mut observer = Iterations {
             watch: later,
@@ -156,7 +153,7 @@ mod tests {
             *seen.lock().unwrap(),
             [
                 "Stated Calibrated { chi2: 1.5, iterations: 3 }",
-                "Working Noise { frequency: 0.001, shape: 0.01 }",
+                "Working Fitted { candidate: \"joint_mass\", outcome: Ok(2.5) }",
                 "Working Iteration { candidate: \"c\", variant: \"v\", iteration: 2, chi2: 4.0 }",
             ]
         );

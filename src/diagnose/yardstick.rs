@@ -27,7 +27,7 @@ use super::candidate::{Stage, Tried, tell_fitted};
 use super::decide::FIT_ALPHA;
 use super::fit::{self, Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals};
 use super::noise::{LARGEST_FACTOR, NoiseEstimate, estimate};
-use super::progress::Pass;
+use super::progress::{Pass, Step};
 use super::report::Verdict;
 use super::whiteness;
 
@@ -113,7 +113,12 @@ fn refitted(first: &[Tried], stage: &Stage, i: Option<usize>, e: &NoiseEstimate)
         shape_floor: e.working_floor,
         measured_std: false,
     };
+    let watch = stage.watch.during(Pass::NoiseCheck);
     let base = fit::refit(stage.ctx, stage.measured, &calibration, &[], stage.base).ok()?;
+    watch.tell(&Step::Calibrated {
+        chi2: base.chi2,
+        iterations: base.iterations,
+    });
     let Some((candidate, Ok(earlier))) = i.and_then(|i| first.get(i)) else {
         return Some(Leaves {
             residuals: residuals(&base, stage.measured),
@@ -124,7 +129,7 @@ fn refitted(first: &[Tried], stage: &Stage, i: Option<usize>, e: &NoiseEstimate)
         calibration: &calibration,
         base: &base,
         estimate: Some(e),
-        watch: stage.watch.during(Pass::NoiseCheck),
+        watch,
         ..*stage
     };
     let fit = candidate.fit(&stage, Some(earlier));

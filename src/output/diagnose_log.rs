@@ -28,8 +28,20 @@ pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
             candidate,
             outcome: Err(reason),
         } => format!("{candidate} not fitted: {reason}"),
-        Step::Noise { frequency, shape } => {
-            format!("estimated: frequency {frequency:.3e}, shape {shape:.3e}")
+        Step::Noise(e) => {
+            let (f, a) = (e.working.frequency, e.working.shape);
+            if e.from_data {
+                format!("the data's own standard errors (RMS frequency {f:.3e}, shape {a:.3e})")
+            } else if e.stated_kept {
+                format!(
+                    "the stated noise kept (frequency {f:.3e}, shape {a:.3e}): no model's residuals pass the checks"
+                )
+            } else {
+                format!(
+                    "estimated from the residuals of {}: frequency {f:.3e}, shape {a:.3e}",
+                    e.from_model
+                )
+            }
         }
     };
     format!("diagnose [{seconds:8.1} s] {pass}: {what}")
@@ -54,16 +66,19 @@ mod tests {
             ),
             "diagnose [    12.3 s] working noise: frequency_dependence (one alpha) iteration 3: chi^2 212.4"
         );
+        let why = crate::diagnose::candidate::CandidateError::Undetermined(
+            "the data do not determine it".into(),
+        );
         assert_eq!(
             line(
                 0.0,
                 Pass::NoiseCheck,
                 &Step::Fitted {
                     candidate: "joint_mass",
-                    outcome: Err("did not converge".into()),
+                    outcome: Err(&why),
                 }
             ),
-            "diagnose [     0.0 s] noise check: joint_mass not fitted: did not converge"
+            "diagnose [     0.0 s] noise check: joint_mass not fitted: the data do not determine it"
         );
     }
 }

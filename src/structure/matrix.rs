@@ -263,6 +263,17 @@ mod tests {
         assert_eq!(bits(x), bits(y));
         // Column 8 and row 8 were empty in `a`: the merge made them.
         assert!(a.diagonal()[8] == 0.0 && merged.diagonal()[8] != 0.0);
+        // A stored 1 given +1e16 then -1e16: 0 only when the stored value comes first, as
+        // listed (last, it would stay 1). A -0.0 at a new position: +0.0, summed from zero.
+        let one = SymMatrix::from_entries(2, &[(0, 0, 1.0)]);
+        let mut up = SparseSym::zero();
+        up.add(0, 0, 1e16);
+        up.add(1, 1, -0.0);
+        let mut down = SparseSym::zero();
+        down.add(0, 0, -1e16);
+        let summed = one.plus(&[(&up, 1.0), (&down, 1.0)]).to_dense();
+        assert_eq!(summed[(0, 0)].to_bits(), 0.0f64.to_bits());
+        assert_eq!(summed[(1, 1)].to_bits(), 0.0f64.to_bits());
         let none = a.plus(&[]);
         assert_eq!(bits(none.as_faer()), bits(a.as_faer()));
     }

@@ -278,7 +278,10 @@ pub(crate) fn tell_fitted(
 ) {
     watch.tell(&Step::Fitted {
         candidate: candidate.name(),
-        outcome: fit.as_ref().map(|f| f.chi2).map_err(|e| e.to_string()),
+        outcome: match fit {
+            Ok(f) => Ok(f.chi2),
+            Err(e) => Err(e),
+        },
     });
 }
 

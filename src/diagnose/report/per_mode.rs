@@ -4,7 +4,8 @@
 //! components cannot carry eq. (10)-(13) (fewer sensors than the basis, a rank-deficient
 //! S_r) gets the one parameter it is most sensitive to from its frequency alone
 //! ([`crate::identify::frequency_only`]), the others held: the question is then still
-//! answered for any number of sensors.
+//! answered for any number of sensors. The sub-basis of n pairs is solved again where the
+//! fitted model's solution holds fewer (a sparse model's fit computes the pairs it needs).
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -15,6 +16,7 @@ use crate::identify::frequency_only::{self, Choice};
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings, Weighting};
 use crate::measured::MeasuredModes;
+use crate::modal::ModalSolution;
 use crate::stats::chi2_sf;
 use crate::structure::{Structure, observe};
 
@@ -79,7 +81,17 @@ pub fn per_mode_corrections(
     let identifier_of = |r: usize| {
         let structure = fitted.structure_of(r);
         let params = structure.identified();
-        Identifier::new(fitted.modal_of(r), params, structure.rigid, settings).ok()
+        let modal = fitted.modal_of(r);
+        // The sub-basis of n pairs: a sparse solution may hold fewer (the pairs the fit
+        // needed), solved again for n.
+        let wider;
+        let modal = if modal.len() < settings.n && modal.len() < modal.dof_count() {
+            wider = ModalSolution::lowest_of(&structure.assemble(), settings.n).ok()?;
+            &wider
+        } else {
+            modal
+        };
+        Identifier::new(modal, params, structure.rigid, settings).ok()
     };
     let shared = if fitted.own.is_empty() {
         match identifier_of(0) {

@@ -26,8 +26,6 @@
 mod own;
 mod problem;
 
-use rayon::prelude::*;
-
 pub use problem::ALPHA_MAX;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
@@ -253,23 +251,14 @@ fn finish(
         .sum::<f64>()
         / (alphas * alphas) as f64;
     let data = state.residual.len();
-    // The fit solved each mode for the pairs up to its own; the report's per-mode
-    // corrections project on the full basis.
     let own = state
         .modes
-        .into_par_iter()
-        .map(|sv| {
-            let modal = if sv.modal.len() >= problem.count() {
-                sv.modal
-            } else {
-                ModalSolution::lowest_of(&sv.structure.assemble(), problem.count())?
-            };
-            Ok(OwnModel {
-                structure: sv.structure,
-                modal,
-            })
+        .into_iter()
+        .map(|sv| OwnModel {
+            structure: sv.structure,
+            modal: sv.modal,
         })
-        .collect::<Result<_, FitError>>()?;
+        .collect();
     let fitted = Fitted {
         configured: Configured {
             ctx: problem.ctx.clone(),

@@ -47,7 +47,7 @@ pub struct Problem<'a> {
     pub(super) log_ref: f64,
     sigma_f: Vec<f64>,
     sigma: Vec<Vec<f64>>,
-    /// Eigenpairs of the final models (the fitted joint's and every mode's own).
+    /// Eigenpairs of the fitted joint's model (at f_ref).
     count: usize,
 }
 
@@ -98,7 +98,7 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// Eigenpairs of the final models (the fitted joint's and every mode's own).
+    /// Eigenpairs of the fitted joint's model (at f_ref).
     pub fn count(&self) -> usize {
         self.count
     }
@@ -136,14 +136,24 @@ impl<'a> Problem<'a> {
             .enumerate()
             .map(|(r, m)| {
                 let s = self.pairing.model_index[r];
-                // The pairs up to its own: its residuals, sensitivities and derivatives need
-                // no more (the final models get all `count`: `super::finish`).
-                own::solve(&self.ctx.structure, law, s, s + 1, m.frequency_hz, m.mode)
+                // The pairs up to its own and one more: its residuals, sensitivities and
+                // derivatives need no more, the next pair tells a repeated eigenvalue (the
+                // per-mode corrections solve the basis they need).
+                own::solve(&self.ctx.structure, law, s, s + 2, m.frequency_hz, m.mode)
             })
             .collect::<Result<_, _>>()?;
+        Ok(State {
+            residual: self.residuals(x, &solved),
+            modes: solved,
+        })
+    }
+
+    /// The weighted residuals at x of every measured mode read from its solution in `solved`.
+    pub fn residuals(&self, x: &[f64], solved: &[Solved]) -> Vec<f64> {
+        let modes = self.measured.modes();
         let at = self.joints() + self.alphas;
         let mut residual = Vec::new();
-        for (r, (m, sv)) in modes.iter().zip(&solved).enumerate() {
+        for (r, (m, sv)) in modes.iter().zip(solved).enumerate() {
             let s = self.pairing.model_index[r];
             let f = sv.modal.frequency_hz(s);
             residual.push((f - m.frequency_hz) / (self.sigma_f[r] * m.frequency_hz));
@@ -153,10 +163,7 @@ impl<'a> Problem<'a> {
                 residual.push((x[at + r] * sign * p.read_column(y, s) - v) / sigma);
             }
         }
-        Ok(State {
-            modes: solved,
-            residual,
-        })
+        residual
     }
 
     /// d residual / dx at x of state `state` (module docs).
