@@ -149,7 +149,7 @@ impl<'a> Problem<'a> {
     }
 
     /// The weighted residuals at x of every measured mode read from its solution in `solved`.
-    pub fn residuals(&self, x: &[f64], solved: &[Solved]) -> Vec<f64> {
+    fn residuals(&self, x: &[f64], solved: &[Solved]) -> Vec<f64> {
         let modes = self.measured.modes();
         let at = self.joints() + self.alphas;
         let mut residual = Vec::new();
