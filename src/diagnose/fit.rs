@@ -206,8 +206,7 @@ pub struct Fitted {
 pub struct OwnModel {
     /// The structure, its joint evaluated for this mode.
     pub structure: Structure,
-    /// Its eigensolution: on a model solved sparsely, the pairs up to the mode's own and one
-    /// more.
+    /// Its eigensolution.
     pub modal: ModalSolution,
 }
 
