@@ -190,9 +190,8 @@ fn noisy_data_give_the_truth_within_three_standard_errors() {
 }
 
 /// The same recovery on a model the sparse solver takes (paper case I at four times the
-/// elements, 140 DOFs): each mode is solved for the pairs up to its own and one more, and
-/// the per-mode corrections solve the sub-basis of n pairs they need (n = 70 sensors here,
-/// more than any fit computes).
+/// elements, 140 DOFs): the per-mode corrections solve the sub-basis of n pairs they need
+/// (n = 70 sensors here, more than any fit computes; before, they were left out).
 #[test]
 fn a_shared_alpha_is_recovered_exactly_on_a_model_solved_sparsely() {
     let model = Chain::free(
