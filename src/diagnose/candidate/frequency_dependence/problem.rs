@@ -137,9 +137,9 @@ impl<'a> Problem<'a> {
             .map(|(r, m)| {
                 let s = self.pairing.model_index[r];
                 // All `count` pairs, though the residuals and sensitivities read pair s only:
-                // with s + 2 the 24k lap's diagnose took 382 s and 657 s of CPU against 341 s
-                // and 517 s, run one after the other (the cause not measured; likely the
-                // derivatives' deflated conjugate gradients, which then meet the pairs above).
+                // a build with s + 2 took 382 s and 657 s of CPU on the 24k lap's diagnose
+                // against 341 s and 517 s before, one after the other (docs/benchmarks.md; the
+                // cause not measured, likely the derivatives' deflated conjugate gradients).
                 own::solve(
                     &self.ctx.structure,
                     law,
