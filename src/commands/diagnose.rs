@@ -247,19 +247,19 @@ mod tests {
             ]
         );
         drop(lines);
+        // Without a pace every iteration is written: two more lines.
         let paced = Log::new(Duration::ZERO, Duration::ZERO, write);
         for iteration in [1, 2] {
-            let chi2 = 3.0;
             paced.tell(
                 Pass::Stated,
                 &Step::Iteration {
                     candidate: "frequency_dependence",
                     variant: "one alpha",
                     iteration,
-                    chi2,
+                    chi2: 3.0,
                 },
             );
         }
-        assert_eq!(written.lock().unwrap().len(), 5);
+        assert_eq!(written.lock().unwrap().len(), 3 + 2);
     }
 }

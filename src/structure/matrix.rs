@@ -29,10 +29,7 @@ impl SymMatrix {
         let mut last: Option<(usize, usize)> = None;
         for &e in &order {
             let (i, j, v) = entries[e];
-            assert!(
-                i < n && j < n,
-                "entry ({i}, {j}) outside a matrix of size {n}"
-            );
+            assert_inside(n, i, j);
             if last == Some((i, j)) {
                 *values.last_mut().expect("a value for the position") += v;
             } else {
@@ -65,10 +62,7 @@ impl SymMatrix {
             .flat_map(|(s, scale)| s.entries().iter().map(move |&(i, j, v)| (i, j, scale * v)))
             .collect();
         for &(i, j, _) in &added {
-            assert!(
-                i < n && j < n,
-                "entry ({i}, {j}) outside a matrix of size {n}"
-            );
+            assert_inside(n, i, j);
         }
         // Stable: entries of one position keep their listed order.
         added.sort_by_key(|&(i, j, _)| (j, i));
@@ -84,10 +78,8 @@ impl SymMatrix {
             loop {
                 let mine = own.clone().next().map(|k| row_idx[k]);
                 let theirs = next.peek().filter(|e| e.1 == j).map(|e| e.0);
-                let i = match (mine, theirs) {
-                    (None, None) => break,
-                    (Some(a), Some(b)) => a.min(b),
-                    (a, b) => a.or(b).expect("one of the two"),
+                let Some(i) = mine.into_iter().chain(theirs).min() else {
+                    break;
                 };
                 // Summed from zero in listed order, as `from_entries` does.
                 let mut v = 0.0;
@@ -185,6 +177,14 @@ impl SymMatrix {
             .map(|&(i, j, v)| (v - at(j, i)).abs())
             .fold(0.0, f64::max)
     }
+}
+
+/// Panics unless entry (i, j) lies inside a matrix of size n (the callers' contract).
+fn assert_inside(n: usize, i: usize, j: usize) {
+    assert!(
+        i < n && j < n,
+        "entry ({i}, {j}) outside a matrix of size {n}"
+    );
 }
 
 #[cfg(test)]

@@ -15,7 +15,7 @@ pub use crate::identify::frequency_only::Source;
 use crate::identify::frequency_only::{self, Choice};
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings, Weighting};
-use crate::measured::MeasuredModes;
+use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::ModalSolution;
 use crate::stats::chi2_sf;
 use crate::structure::{Structure, observe};
@@ -103,7 +103,7 @@ pub fn per_mode_corrections(
     };
     // Modes in parallel: each may solve its structure several times (its own model, the
     // frequency-only identification's Newton steps).
-    let correct = |(r, m): (usize, &crate::measured::MeasuredMode)| -> Vec<ModeCorrection> {
+    let correct = |(r, m): (usize, &MeasuredMode)| -> Vec<ModeCorrection> {
         let own = if shared.is_none() {
             identifier_of(r)
         } else {
@@ -183,7 +183,7 @@ pub fn per_mode_corrections(
 /// The corrections of mode `m` identified from its frequency alone (`f`): its one parameter,
 /// the others held.
 fn from_frequency(
-    m: &crate::measured::MeasuredMode,
+    m: &MeasuredMode,
     params: &[crate::structure::Parameter],
     f: &frequency_only::FrequencyOutcome,
 ) -> Vec<ModeCorrection> {

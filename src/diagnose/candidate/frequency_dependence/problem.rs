@@ -137,9 +137,7 @@ impl<'a> Problem<'a> {
             .map(|(r, m)| {
                 let s = self.pairing.model_index[r];
                 // All `count` pairs, though the residuals and sensitivities read pair s only:
-                // a build with s + 2 took 382 s and 657 s of CPU on the 24k lap's diagnose
-                // against 341 s and 517 s before, one after the other (docs/benchmarks.md; the
-                // cause not measured, likely the derivatives' deflated conjugate gradients).
+                // with s + 2 the 24k lap's diagnose was slower (docs/benchmarks.md).
                 own::solve(
                     &self.ctx.structure,
                     law,
@@ -150,18 +148,9 @@ impl<'a> Problem<'a> {
                 )
             })
             .collect::<Result<_, _>>()?;
-        Ok(State {
-            residual: self.residuals(x, &solved),
-            modes: solved,
-        })
-    }
-
-    /// The weighted residuals at x of every measured mode read from its solution in `solved`.
-    fn residuals(&self, x: &[f64], solved: &[Solved]) -> Vec<f64> {
-        let modes = self.measured.modes();
         let at = self.joints() + self.alphas;
         let mut residual = Vec::new();
-        for (r, (m, sv)) in modes.iter().zip(solved).enumerate() {
+        for (r, (m, sv)) in modes.iter().zip(&solved).enumerate() {
             let s = self.pairing.model_index[r];
             let f = sv.modal.frequency_hz(s);
             residual.push((f - m.frequency_hz) / (self.sigma_f[r] * m.frequency_hz));
@@ -171,7 +160,10 @@ impl<'a> Problem<'a> {
                 residual.push((x[at + r] * sign * p.read_column(y, s) - v) / sigma);
             }
         }
-        residual
+        Ok(State {
+            modes: solved,
+            residual,
+        })
     }
 
     /// d residual / dx at x of state `state` (module docs).
