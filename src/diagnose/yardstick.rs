@@ -2,10 +2,10 @@
 //! model that fits, never that of one that does not.
 //!
 //! The largest physical model fitted under the stated noise (the smallest chi^2, when below
-//! the joint-only fit's; else the joint-only fit) gives the noise estimate
-//! ([`super::noise::estimate`] of its residuals) when it is *adequate*: when its residuals,
-//! refitted under that estimate, pass the checks that do not stand on the noise level, each
-//! at [`FIT_ALPHA`]:
+//! the joint-only fit's by more than [`TIE`] of it; else the joint-only fit) gives the noise
+//! estimate ([`super::noise::estimate`] of its residuals) when it is *adequate*: when its
+//! residuals, refitted under that estimate, pass the checks that do not stand on the noise
+//! level, each at [`FIT_ALPHA`]:
 //! - the whiteness of its shape residuals along the structure ([`whiteness`]: smooth
 //!   residuals are misfit, whatever their size);
 //! - its frequency residuals against the frequency noise its own shape residuals imply (the
@@ -31,6 +31,12 @@ use super::progress::{Pass, Step};
 use super::report::Verdict;
 use super::whiteness;
 
+/// Relative chi^2 difference within which a candidate is the joint-only fit as far as the
+/// fits can tell (a candidate at the bound where it is the joint-only model, such as a mass of
+/// 0): two fits of one model end within the solver's decrement tolerance, 1e-8 of the cost,
+/// and which of two such ends is lower is the solver's path, not the data.
+pub const TIE: f64 = 1e-6;
+
 /// The name of the joint-only fit among the models.
 const JOINT_ONLY: &str = "joint only";
 
@@ -42,7 +48,7 @@ struct Leaves {
 
 /// The largest physical model of a stage: the candidate with the smallest chi^2 among those
 /// of `first` that have a static model of their own and a physical size, when below the
-/// joint-only fit `base`'s; else `base`. Its residual scale is the smallest any model reaches.
+/// joint-only fit `base`'s by more than [`TIE`] of it; else `base`. Its residual scale is the smallest any model reaches.
 /// The frequency-dependent joint is not one: its exponents act on every mode's frequency and
 /// fit a smooth trend of the frequencies with the mode whatever its cause, so that its
 /// residual scale would pass a static misfit as noise; it is judged under the yardstick of
@@ -65,7 +71,10 @@ pub fn largest<'a>(first: &'a [Tried], base: &'a Fitted) -> Largest<'a> {
         .filter(|(_, (candidate, _))| candidate.verdict() != Verdict::FrequencyDependent)
         .filter_map(|(i, (candidate, outcome))| {
             let fit = outcome.as_ref().ok().filter(|f| f.excluded.is_none())?;
-            let fitted = fit.model.as_ref().filter(|m| m.chi2 < base.chi2)?;
+            let fitted = fit
+                .model
+                .as_ref()
+                .filter(|m| m.chi2 < base.chi2 * (1.0 - TIE))?;
             Some(Largest {
                 index: Some(i),
                 name: candidate.name(),
@@ -161,5 +170,49 @@ fn stated_yardstick(check: NoiseEstimate, stated: Noise) -> NoiseEstimate {
         frequency_estimated: false,
         stated_kept: true,
         ..check
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnose::candidate::{Fit, registry};
+
+    /// A candidate whose chi^2 is below the joint-only fit's by less than [`TIE`] of it (the
+    /// same model to the solver's precision, as a mass at its bound 0) leaves the joint-only
+    /// fit the largest model; one below by more is the largest.
+    #[test]
+    fn a_candidate_tied_with_the_joint_only_fit_is_not_the_largest() {
+        let (measured, _, ctx, calibration) = crate::diagnose::fit::tests::fixture();
+        let base = fit::fit(&ctx, &measured, &calibration, &[]).unwrap();
+        let mass = registry()
+            .into_iter()
+            .find(|c| c.name() == "sensor_mass")
+            .unwrap();
+        let tried = |chi2: f64| -> Vec<Tried> {
+            let mut model = base.clone();
+            model.chi2 = chi2;
+            let fit = Fit {
+                parameters: Vec::new(),
+                size: (0.0, 1.0),
+                describe: String::new(),
+                chi2,
+                dof: model.dof - 1,
+                lrt: base.chi2 - chi2,
+                added: 1,
+                unknowns: model.estimates.len() + 1,
+                residuals: residuals(&model, &measured),
+                model: Some(model),
+                excluded: None,
+                profile: None,
+                members: Vec::new(),
+            };
+            vec![(mass.clone(), Ok(fit))]
+        };
+        let tied = tried(base.chi2 * (1.0 - 0.1 * TIE));
+        assert_eq!(largest(&tied, &base).name, JOINT_ONLY);
+        let lower = tried(base.chi2 * (1.0 - 10.0 * TIE));
+        let chosen = largest(&lower, &base);
+        assert_eq!((chosen.name, chosen.index), ("sensor_mass", Some(0)));
     }
 }

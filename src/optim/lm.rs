@@ -13,10 +13,13 @@
 //!    feasible side: a trial that cannot be projected, that the problem finds inadmissible
 //!    ([`Problem::admissible`]) or cannot evaluate ([`Problem::evaluate`] fails) is a step too
 //!    long, mu x [`GROW_REFUSED`]; a trial whose cost is not lower than the current (or not a
-//!    number), mu x [`GROW_REJECTED`]; an accepted trial becomes x and mu / [`SHRINK`] (not
-//!    below [`MU_MIN`]). A trial of equal cost is refused: where the evaluations' round-off
-//!    is all that is left, steps of vanishing length and equal cost could otherwise be taken
-//!    until the iteration limit (seen in a calibration, which then failed at its minimum);
+//!    number), mu x [`GROW_REJECTED`]; an accepted trial becomes x and mu / [`SHRINK`], or
+//!    mu / [`SHRINK_AGREEING`] when its cost fell by at least [`AGREEING`] of the fall the
+//!    linearised problem predicted (where the linearisation holds, damping only shortens
+//!    the steps; MINPACK's trust region doubles after such a step), not below [`MU_MIN`].
+//!    A trial of equal cost is refused: where the evaluations' round-off is all that is left,
+//!    steps of vanishing length and equal cost could otherwise be taken until the iteration
+//!    limit (seen in a calibration, which then failed at its minimum);
 //! 4. no trial accepted before mu reaches [`MU_MAX`]: no step lowers the cost, x is a minimum
 //!    (inside, on a bound, or at the edge of the evaluable region: [`Termination::NoDescent`]);
 //! 5. with a gain tolerance set: converged ([`Termination::SmallGain`]) when the accepted step
@@ -41,6 +44,11 @@ pub const MU_MIN: f64 = 1e-12;
 pub const MU_MAX: f64 = 1e12;
 /// Division of mu after an accepted step.
 pub const SHRINK: f64 = 3.0;
+/// Division of mu after an accepted step whose cost fell by at least [`AGREEING`] of what the
+/// linearised problem predicted.
+pub const SHRINK_AGREEING: f64 = 10.0;
+/// The ratio of actual to predicted fall above which the linearisation agrees.
+pub const AGREEING: f64 = 0.75;
 /// Multiplication of mu after a trial whose cost is too high.
 pub const GROW_REJECTED: f64 = 4.0;
 /// Multiplication of mu after a trial that could not be projected, was inadmissible or could
@@ -352,7 +360,9 @@ impl LevenbergMarquardt {
             };
             let value = problem.cost(&candidate);
             if value < cost {
-                *mu = (*mu / SHRINK).max(MU_MIN);
+                let agrees = cost - value >= AGREEING * sub.predicted(&s);
+                let shrink = if agrees { SHRINK_AGREEING } else { SHRINK };
+                *mu = (*mu / shrink).max(MU_MIN);
                 search.step = Some((trial, candidate, value));
                 return search;
             }

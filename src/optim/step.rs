@@ -146,6 +146,17 @@ impl Subproblem {
         }
     }
 
+    /// What step `s` removes from the cost of the linearised problem:
+    /// |g|^2 - |R s - g|^2 = g . (R s) 2 - |R s|^2.
+    pub fn predicted(&self, s: &[f64]) -> f64 {
+        (0..self.r.nrows())
+            .map(|i| {
+                let rs: f64 = (0..self.r.ncols()).map(|j| self.r[(i, j)] * s[j]).sum();
+                2.0 * self.g[i] * rs - rs * rs
+            })
+            .sum()
+    }
+
     /// The Gauss-Newton decrement (module docs): what a full step in the null space of the
     /// active constraints would remove from the cost of the linearised problem.
     pub fn decrement(&self) -> f64 {

@@ -273,6 +273,45 @@ fn a_linear_problem_is_solved_in_one_step() {
     assert!((solution.cost - 4.2).abs() < 1e-10, "{}", solution.cost);
 }
 
+/// A linear problem with nearly dependent columns from the default damping: the
+/// linearisation is exact, every step removes what it predicted, and mu falls by
+/// [`SHRINK_AGREEING`] after each until the damping no longer holds back the weak direction.
+#[test]
+fn where_the_linearisation_agrees_the_damping_falls_fast() {
+    // A = [[1, 1], [1, 1.001], [1, 1.002], [1, 1.003]]: cond(A) about 4e3, and Marquardt's
+    // damping of 1e-3 holds back its weak direction.
+    let problem = Given::new(
+        |x| {
+            [1.0, 2.0, 2.5, 4.0]
+                .iter()
+                .enumerate()
+                .map(|(i, b)| x[0] + x[1] * (1.0 + 1e-3 * i as f64) - b)
+                .collect()
+        },
+        |_| (0..4).map(|i| vec![1.0, 1.0 + 1e-3 * i as f64]).collect(),
+    );
+    let mut log = Log::default();
+    let solution = by_decrement(200)
+        .minimise_observed(&problem, vec![0.0, 0.0], &mut log)
+        .unwrap();
+    assert_eq!(solution.termination, Termination::Decrement);
+    let steps: Vec<&Progress> = log.0.iter().filter(|p| p.accepted).collect();
+    assert!(steps.len() >= 3, "{} steps", steps.len());
+    for pair in steps.windows(2) {
+        let ratio = pair[0].mu / pair[1].mu;
+        assert!(
+            (ratio / SHRINK_AGREEING - 1.0).abs() < 1e-12,
+            "mu fell by {ratio}"
+        );
+    }
+    // Seven steps; twelve when mu fell by SHRINK = 3 after each.
+    assert!(steps.len() <= 8, "{} steps", steps.len());
+    // The least-squares line through (1 + 1e-3 i, b_i) leaves (-0.05, -0.1, 0.35, -0.2):
+    // cost 0.175, reached to within the decrement tolerance (1e-8 of max(cost, 1)).
+    let excess = solution.cost - 0.175;
+    assert!((-1e-12..1e-8).contains(&excess), "{}", solution.cost);
+}
+
 /// r = (x0 + 1, x1 - 2) with x0 >= 0: the free minimum (-1, 2) is outside; the solver stops
 /// on the bound, x0 exactly 0, and converges along it.
 #[test]
