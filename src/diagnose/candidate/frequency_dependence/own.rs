@@ -125,7 +125,8 @@ pub struct Solved {
     pub structure: Structure,
     /// Its eigensolution.
     pub modal: ModalSolution,
-    /// The self-consistent ln f (the joint is evaluated within [`TOLERANCE`] of it).
+    /// The self-consistent ln f, u + delta (the joint is evaluated at u, within the
+    /// convergence test of it: module docs).
     pub log_frequency: f64,
     /// G_j = d ln F / d ln p_j at the solution.
     pub sensitivity: Vec<f64>,
