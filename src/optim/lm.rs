@@ -20,8 +20,11 @@
 //!    A trial of equal cost is refused: where the evaluations' round-off is all that is left,
 //!    steps of vanishing length and equal cost could otherwise be taken until the iteration
 //!    limit (seen in a calibration, which then failed at its minimum);
-//! 4. no trial accepted before mu reaches [`MU_MAX`]: no step lowers the cost, x is a minimum
-//!    (inside, on a bound, or at the edge of the evaluable region: [`Termination::NoDescent`]);
+//! 4. no trial accepted before mu reaches [`MU_MAX`], or, with a decrement tolerance set,
+//!    before the linearised problem predicts less than that tolerance's fall for the next
+//!    trial (after a failed one: such a step is not worth an evaluation): no step lowers the
+//!    cost, x is a minimum (inside, on a bound, or at the edge of the evaluable region:
+//!    [`Termination::NoDescent`]);
 //! 5. with a gain tolerance set: converged ([`Termination::SmallGain`]) when the accepted step
 //!    lowered the cost by less than tolerance * cost;
 //! 6. after the last allowed iteration: [`Termination::MaxIterations`] (not converged).
@@ -342,9 +345,17 @@ impl LevenbergMarquardt {
             trials: 0,
         };
         while *mu < MU_MAX {
+            let s = sub.step(*mu);
+            // After a failed trial, a step that could not remove the decrement tolerance is
+            // not worth an evaluation: no step worth trying lowers the cost.
+            if let Some(tolerance) = self.decrement
+                && search.trials > 0
+                && sub.predicted(&s) < tolerance * cost.max(1.0)
+            {
+                break;
+            }
             search.trials += 1;
             search.mu = *mu;
-            let s = sub.step(*mu);
             let trial = x.iter().zip(&s).map(|(a, b)| a + b).collect();
             let Some(trial) = bounds.project(trial) else {
                 *mu *= GROW_REFUSED;

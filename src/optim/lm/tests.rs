@@ -435,6 +435,22 @@ fn steps_of_equal_cost_are_refused() {
     assert_eq!(solution.x, [0.0]);
 }
 
+/// A cost that rises along the step its Jacobian promises (r = 1e-3 + |x|, J = 1 at x = 0):
+/// with a decrement tolerance the trials stop once the next one could not remove that
+/// tolerance's fall (1 - (mu / (1 + mu))^2 < 1e-2: mu past 198, 9 trials from 1e-3, not the 25
+/// up to [`MU_MAX`]), x unchanged.
+#[test]
+fn trials_stop_where_no_step_could_remove_the_tolerance() {
+    let problem = Given::new(|x| vec![1e-3 + x[0].abs()], |_| vec![vec![1.0]]);
+    let mut log = Log::default();
+    let solution = by_decrement(200)
+        .minimise_observed(&problem, vec![0.0], &mut log)
+        .unwrap();
+    assert_eq!(solution.termination, Termination::NoDescent);
+    assert_eq!(solution.x, [0.0]);
+    assert_eq!((log.0[0].trials, log.0[0].accepted), (9, false));
+}
+
 /// Three iterations are not enough for Rosenbrock's valley.
 #[test]
 fn the_iteration_limit_is_reported() {
