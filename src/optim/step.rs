@@ -147,13 +147,11 @@ impl Subproblem {
     }
 
     /// What step `s` removes from the cost of the linearised problem:
-    /// |g|^2 - |R s - g|^2 = g . (R s) 2 - |R s|^2.
+    /// |g|^2 - |R s - g|^2 = 2 g . (R s) - |R s|^2.
     pub fn predicted(&self, s: &[f64]) -> f64 {
-        (0..self.r.nrows())
-            .map(|i| {
-                let rs: f64 = (0..self.r.ncols()).map(|j| self.r[(i, j)] * s[j]).sum();
-                2.0 * self.g[i] * rs - rs * rs
-            })
+        self.times_r(s)
+            .zip(&self.g)
+            .map(|(rs, g)| 2.0 * g * rs - rs * rs)
             .sum()
     }
 
@@ -161,12 +159,12 @@ impl Subproblem {
     /// active constraints would remove from the cost of the linearised problem.
     pub fn decrement(&self) -> f64 {
         let s = self.step(REGULARISATION);
-        (0..self.r.nrows())
-            .map(|i| {
-                let rs: f64 = (0..self.r.ncols()).map(|j| self.r[(i, j)] * s[j]).sum();
-                self.g[i] * rs
-            })
-            .sum()
+        self.times_r(&s).zip(&self.g).map(|(rs, g)| g * rs).sum()
+    }
+
+    /// The rows of R s.
+    fn times_r<'s>(&'s self, s: &'s [f64]) -> impl Iterator<Item = f64> + 's {
+        (0..self.r.nrows()).map(|i| (0..self.r.ncols()).map(|j| self.r[(i, j)] * s[j]).sum())
     }
 }
 

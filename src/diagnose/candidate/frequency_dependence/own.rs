@@ -73,11 +73,6 @@ impl Law<'_> {
             .collect()
     }
 
-    /// sum_j G_j alpha_j for sensitivities `g`.
-    fn slope(&self, g: &[f64]) -> f64 {
-        g.iter().zip(self.alpha).map(|(g, a)| g * a).sum()
-    }
-
     /// The self-consistent ln f under this law predicted from `settled`, the mode's solution
     /// under another (module docs), the move at most [`MAX_STEP`]; none where it is not a
     /// number.
@@ -89,15 +84,20 @@ impl Law<'_> {
                 settled.sensitivity[j] * dq
             })
             .sum();
-        let du = moved / (1.0 - self.slope(&settled.sensitivity));
+        let du = moved / (1.0 - slope(&settled.sensitivity, self.alpha));
         du.is_finite()
             .then(|| settled.log_frequency + du.clamp(-MAX_STEP, MAX_STEP))
     }
 }
 
+/// sum_j G_j alpha_j, h'(u) + 1, for sensitivities `g` and exponents `alpha`.
+pub fn slope(g: &[f64], alpha: &[f64]) -> f64 {
+    g.iter().zip(alpha).map(|(g, a)| g * a).sum()
+}
+
 /// Where a mode settled: the law (its q0 and alpha) it was solved under, its self-consistent
 /// ln f and G_j there; the start of its next solve ([`Law::predict`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Settled {
     q0: Vec<f64>,
     alpha: Vec<f64>,
@@ -162,7 +162,7 @@ pub fn solve(
         }
         let h = modal.frequency_hz(s).ln() - u;
         let sensitivity = log_sensitivity(&structure, &modal, s);
-        let step = h / (1.0 - law.slope(&sensitivity));
+        let step = h / (1.0 - slope(&sensitivity, law.alpha));
         if !step.is_finite() {
             break;
         }

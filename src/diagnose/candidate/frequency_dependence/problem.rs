@@ -201,7 +201,7 @@ impl<'a> Problem<'a> {
                 .collect();
             shared = derivatives.factor();
             let g = &sv.sensitivity;
-            let denominator = 1.0 - g.iter().zip(&alpha).map(|(g, a)| g * a).sum::<f64>();
+            let denominator = 1.0 - own::slope(g, &alpha);
             for col in 0..at {
                 // d q_j / d theta at a fixed frequency.
                 let fixed: Vec<f64> = (0..joints)
