@@ -221,7 +221,7 @@ mod tests {
             Pass::Working,
             &Step::Iteration {
                 candidate: "frequency_dependence",
-                variant: "one alpha",
+                variant: Some("one alpha"),
                 iteration: 1,
                 chi2: 3.0,
             },
@@ -254,7 +254,7 @@ mod tests {
                 Pass::Stated,
                 &Step::Iteration {
                     candidate: "frequency_dependence",
-                    variant: "one alpha",
+                    variant: Some("one alpha"),
                     iteration,
                     chi2: 3.0,
                 },

@@ -10,6 +10,7 @@ use crate::identify::Identifier;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalSolution, check_elastic};
 use crate::model::effects::EffectContext;
+use crate::optim::Silent;
 use crate::structure::Structure;
 
 /// The effects' context of `model` measured as `measured`, after checking that the model has
@@ -64,16 +65,21 @@ pub struct Calibrated {
 }
 
 /// The joint calibrated under `calibration`, starting from `from` (an optimum of the same
-/// model under another calibration); refused when its chi^2 ends above the model as given's
-/// beyond round-off (the pairing changed on the way).
+/// model under another calibration), or `done`, that calibration made already; refused when
+/// its chi^2 ends above the model as given's beyond round-off (the pairing changed on the
+/// way).
 pub fn calibrate(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
     from: &Fitted,
+    done: Option<Fitted>,
 ) -> Result<Calibrated, DiagnoseError> {
     let initial = fit::as_given(ctx, measured, calibration)?;
-    let base = fit::refit(ctx, measured, calibration, &[], from)?;
+    let base = match done {
+        Some(base) => base,
+        None => fit::refit(ctx, measured, calibration, &[], from, &mut Silent)?,
+    };
     // Growth beyond round-off (relative, and absolute for data the model fits exactly).
     if base.chi2 > initial.chi2 * (1.0 + 1e-9) + 1e-9 * base.dof as f64 {
         return Err(DiagnoseError::ErrorGrew {

@@ -35,7 +35,7 @@ use super::sensitivity::ModeDerivatives;
 use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
-use crate::optim::{self, Bounds, LevenbergMarquardt, Termination};
+use crate::optim::{self, Bounds, LevenbergMarquardt, Observer, Progress, Termination};
 use crate::structure::{Matrices, Parameter, Structure};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
@@ -510,18 +510,19 @@ pub fn as_given(
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, calibration, &[], false, None)
+    run(ctx, measured, calibration, &[], None, None)
 }
 
 /// Fits the joints of `ctx.model` (and the parameters of `effects`, starting at zero) to the
-/// measured modes.
+/// measured modes, `observer` told every iteration (numbered on across the re-pairings).
 pub fn fit(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
+    observer: &mut dyn Observer,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, calibration, effects, true, None)
+    run(ctx, measured, calibration, effects, Some(observer), None)
 }
 
 /// As [`fit`], starting from `from`, an optimum of the same model under another calibration
@@ -532,23 +533,42 @@ pub fn refit(
     calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
     from: &Fitted,
+    observer: &mut dyn Observer,
 ) -> Result<Fitted, FitError> {
     run(
         ctx,
         measured,
         calibration,
         effects,
-        true,
+        Some(observer),
         Some(&from.solution),
     )
 }
 
+/// An observer told the iterations of one Levenberg-Marquardt run after `before` of earlier
+/// runs, numbered on from them.
+struct NumberedOn<'o> {
+    observer: &'o mut dyn Observer,
+    before: usize,
+}
+
+impl Observer for NumberedOn<'_> {
+    fn observe(&mut self, progress: &Progress) {
+        self.observer.observe(&Progress {
+            iteration: self.before + progress.iteration,
+            ..*progress
+        });
+    }
+}
+
+/// The fit of `effects` with the joints, from `from` or from zero; with no `observer`, the
+/// starting point evaluated, not iterated ([`as_given`]).
 fn run(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
     effects: &[Arc<dyn Effect>],
-    iterate: bool,
+    observer: Option<&mut dyn Observer>,
     from: Option<&[f64]>,
 ) -> Result<Fitted, FitError> {
     let problem = Problem::new(ctx, measured, calibration, effects);
@@ -575,11 +595,11 @@ fn run(
     if from.is_none() {
         initial_scales(&problem, &start_modal, &pairing, &mut x);
     }
-    if !iterate {
+    let Some(observer) = observer else {
         let eval = problem.evaluate(&x, &pairing)?;
         let dof = data - measured.modes().len();
         return Ok(finish(&problem, x, eval, pairing, 0, dof));
-    }
+    };
     let mut total_iterations = 0;
     let mut last_chi2 = f64::INFINITY;
     // Levenberg-Marquardt; once converged, re-pair with the fitted model and go on if the
@@ -590,7 +610,11 @@ fn run(
             problem: &problem,
             pairing: &pairing,
         };
-        let solution = solver.minimise(&fixed, x)?;
+        let mut numbered = NumberedOn {
+            observer: &mut *observer,
+            before: total_iterations,
+        };
+        let solution = solver.minimise_observed(&fixed, x, &mut numbered)?;
         if solution.termination == Termination::MaxIterations {
             return Err(FitError::NotConverged {
                 effect: name,
@@ -796,6 +820,45 @@ pub(crate) mod tests {
             measured_std: false,
         };
         (measured, nominal, ctx, calibration)
+    }
+
+    /// The observer of a fit sees every iteration once, numbered from 1 on to the fit's count,
+    /// the last at the fit's chi^2; a second Levenberg-Marquardt run (after a re-pairing)
+    /// numbers on from the first.
+    #[test]
+    fn a_fit_tells_its_iterations_numbered_on() {
+        struct Seen(Vec<(usize, f64)>);
+        impl Observer for Seen {
+            fn observe(&mut self, p: &Progress) {
+                self.0.push((p.iteration, p.cost));
+            }
+        }
+        let (measured, _, ctx, calibration) = fixture();
+        let mut seen = Seen(Vec::new());
+        let shear = [by_name("shear").unwrap()];
+        let fitted = fit(&ctx, &measured, &calibration, &shear, &mut seen).unwrap();
+        let numbers: Vec<usize> = seen.0.iter().map(|s| s.0).collect();
+        assert!(fitted.iterations > 1);
+        assert_eq!(numbers, (1..=fitted.iterations).collect::<Vec<_>>());
+        let last = seen.0.last().unwrap().1;
+        assert!(
+            (last - fitted.chi2).abs() <= 1e-9 * fitted.chi2,
+            "{last} vs {}",
+            fitted.chi2
+        );
+
+        let mut second = NumberedOn {
+            observer: &mut seen,
+            before: 4,
+        };
+        second.observe(&Progress {
+            iteration: 2,
+            cost: 7.0,
+            mu: 1e-3,
+            accepted: true,
+            trials: 1,
+        });
+        assert_eq!(seen.0.last(), Some(&(6, 7.0)));
     }
 
     /// The residual Jacobian (eigen-derivatives, chain rules of ln p and theta / scale, the

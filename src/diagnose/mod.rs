@@ -8,7 +8,8 @@
 //!    what the largest physical model that fits leaves (shape pseudo-residuals and levels;
 //!    [`yardstick`]: the stated noise kept when no model fits);
 //! 3. [`candidate`]: every candidate fitted again under the working noise (the registry of
-//!    candidates: effects of the model library, the frequency-dependent joint, scans);
+//!    candidates: effects of the model library, the frequency-dependent joint, scans), but
+//!    for the fits the noise check made under it already;
 //! 4. [`score`]: each fit judged: likelihood-ratio p-value, goodness of fit, lack of fit of
 //!    the frequencies, whiteness of the shape residuals ([`whiteness`]);
 //! 5. [`decide`]: the rules: multiple testing, what explains the data, the selection by
@@ -61,6 +62,7 @@ pub use whiteness::Whiteness;
 
 use crate::measured::MeasuredModes;
 use crate::modal::ModalError;
+use crate::optim::Silent;
 use crate::structure::Structure;
 use assemble::Findings;
 use candidate::Stage;
@@ -139,7 +141,7 @@ pub fn diagnose_watched(
         shape_floor: fit::SHAPE_FLOOR,
         measured_std: measured.has_std(),
     };
-    let first_base = fit::fit(&ctx, measured, &stated, &[])?;
+    let first_base = fit::fit(&ctx, measured, &stated, &[], &mut Silent)?;
     watch.tell(&Step::Calibrated {
         chi2: first_base.chi2,
         iterations: first_base.iterations,
@@ -152,12 +154,14 @@ pub fn diagnose_watched(
         estimate: None,
         watch,
     };
-    let first = candidate::fit_all(&library, &first_stage, None);
-    let estimate = if stated.measured_std {
+    let first = candidate::fit_all(&library, &first_stage, None, None);
+    let (estimate, checked) = if stated.measured_std {
         let largest = yardstick::largest(&first, &first_base);
-        noise::from_data(largest.name, largest.fitted, measured, &stated)
+        let estimate = noise::from_data(largest.name, largest.fitted, measured, &stated);
+        (estimate, None)
     } else {
-        yardstick::choose(&first, &first_stage)
+        let chosen = yardstick::choose(&first, &first_stage);
+        (chosen.estimate, chosen.checked)
     };
     // Under the working noise: the joint calibrated again, every candidate refitted, judged.
     let working = Calibration {
@@ -168,7 +172,12 @@ pub fn diagnose_watched(
     };
     let watch = watch.during(Pass::Working);
     watch.tell(&Step::Noise(&estimate));
-    let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base)?;
+    // The noise check's fits under the working calibration are this pass's own.
+    let (base_done, candidate_done) = match checked.filter(|c| c.calibration == working) {
+        Some(c) => (Some(c.base), c.candidate),
+        None => (None, None),
+    };
+    let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base, base_done)?;
     watch.tell(&Step::Calibrated {
         chi2: calibrated.base.chi2,
         iterations: calibrated.base.iterations,
@@ -180,7 +189,8 @@ pub fn diagnose_watched(
         watch,
         ..first_stage
     };
-    let fits = candidate::fit_all(&library, &stage, Some(&first));
+    let done = candidate_done.as_ref().map(|(i, fit)| (*i, fit));
+    let fits = candidate::fit_all(&library, &stage, Some(&first), done);
     let tried = candidate::hypotheses(&library, &ctx);
     let judge = Judge {
         estimate: &estimate,

@@ -19,7 +19,10 @@ pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
             variant,
             iteration,
             chi2,
-        } => format!("{candidate} ({variant}) iteration {iteration}: chi^2 {chi2:.1}"),
+        } => {
+            let variant = variant.map(|v| format!(" ({v})")).unwrap_or_default();
+            format!("{candidate}{variant} iteration {iteration}: chi^2 {chi2:.1}")
+        }
         Step::Fitted {
             candidate,
             outcome: Ok(chi2),
@@ -59,12 +62,25 @@ mod tests {
                 Pass::Working,
                 &Step::Iteration {
                     candidate: "frequency_dependence",
-                    variant: "one alpha",
+                    variant: Some("one alpha"),
                     iteration: 3,
                     chi2: 212.44,
                 }
             ),
             "diagnose [    12.3 s] working noise: frequency_dependence (one alpha) iteration 3: chi^2 212.4"
+        );
+        assert_eq!(
+            line(
+                1.0,
+                Pass::Stated,
+                &Step::Iteration {
+                    candidate: "sensor_mass",
+                    variant: None,
+                    iteration: 1,
+                    chi2: 9.96,
+                }
+            ),
+            "diagnose [     1.0 s] stated noise: sensor_mass iteration 1: chi^2 10.0"
         );
         let why = crate::diagnose::candidate::CandidateError::Undetermined(
             "the data do not determine it".into(),

@@ -6,6 +6,7 @@ use std::sync::Arc;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier, implausible};
 use crate::diagnose::fit::{self, Fitted};
+use crate::diagnose::progress::Iterations;
 use crate::model::effects::{Effect, EffectContext};
 
 /// An [`Effect`] as a candidate.
@@ -52,9 +53,14 @@ pub(super) fn fit_effect(
 ) -> Result<Fit, CandidateError> {
     let effects = std::slice::from_ref(effect);
     let (ctx, measured, calibration) = (stage.ctx, stage.measured, stage.calibration);
+    let mut told = Iterations {
+        watch: stage.watch,
+        candidate: effect.name(),
+        variant: None,
+    };
     let fitted = match from {
-        Some(from) => fit::refit(ctx, measured, calibration, effects, from)?,
-        None => fit::fit(ctx, measured, calibration, effects)?,
+        Some(from) => fit::refit(ctx, measured, calibration, effects, from, &mut told)?,
+        None => fit::fit(ctx, measured, calibration, effects, &mut told)?,
     };
     let joints = stage.base.estimates.len();
     let parameters = fitted.estimates[joints..].to_vec();

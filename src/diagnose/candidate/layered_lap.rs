@@ -32,6 +32,7 @@ use std::sync::Arc;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
 use crate::diagnose::fit::{self, Fitted};
+use crate::diagnose::progress::Iterations;
 use crate::model::chain::assembly::LAYERED_LAP;
 use crate::model::effects::EffectContext;
 use crate::structure::{Direction, Structure};
@@ -162,14 +163,19 @@ impl Candidate for LayeredLap {
             CandidateError::Undetermined("the model file gives no joint's overlap".into())
         })?;
         let (measured, calibration) = (stage.measured, stage.calibration);
+        let mut told = Iterations {
+            watch: stage.watch,
+            candidate: LAYERED_LAP,
+            variant: None,
+        };
         let fitted: Fitted = match earlier.and_then(|e| e.model.as_ref()) {
             Some(from) => {
                 let ctx = from.configured.ctx.clone();
-                fit::refit(&ctx, measured, calibration, &[], from)?
+                fit::refit(&ctx, measured, calibration, &[], from, &mut told)?
             }
             None => {
                 let ctx = start(stage, structure)?;
-                fit::fit(&ctx, measured, calibration, &[])?
+                fit::fit(&ctx, measured, calibration, &[], &mut told)?
             }
         };
         let laps = lap_parameters(&fitted.configured.structure);

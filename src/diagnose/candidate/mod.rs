@@ -251,11 +251,13 @@ pub fn catalogue(extra: &[(&'static str, &'static str)]) -> Vec<Entry> {
 }
 
 /// Fits every candidate of `library` on `stage` (in parallel), each from its fit in
-/// `earlier` when that succeeded; each fit told to the stage's watch as it finishes.
+/// `earlier` when that succeeded, but for the one `done` gives (its index, its fit on this
+/// stage, made already), taken as it is; each fit told to the stage's watch as it finishes.
 pub fn fit_all(
     library: &[Arc<dyn Candidate>],
     stage: &Stage,
     earlier: Option<&[Tried]>,
+    done: Option<(usize, &Fit)>,
 ) -> Vec<Tried> {
     use rayon::prelude::*;
     library
@@ -263,7 +265,10 @@ pub fn fit_all(
         .enumerate()
         .map(|(i, c)| {
             let from = earlier.and_then(|e| e[i].1.as_ref().ok());
-            let fit = c.fit(stage, from);
+            let fit = match done {
+                Some((j, fit)) if j == i => Ok(fit.clone()),
+                _ => c.fit(stage, from),
+            };
             tell_fitted(&stage.watch, c.as_ref(), &fit);
             (c.clone(), fit)
         })

@@ -175,11 +175,11 @@ fn fit_variant(
     let mut told = Iterations {
         watch: stage.watch,
         candidate: NAME,
-        variant: if per_parameter {
+        variant: Some(if per_parameter {
             "one alpha per parameter"
         } else {
             "one alpha"
-        },
+        }),
     };
     let solution = fit::solver().minimise_observed(&problem, x, &mut told)?;
     if solution.termination == Termination::MaxIterations {
