@@ -63,31 +63,39 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let planned = planned(identifier.as_ref(), modes, selection, args)?;
     // A fallback solves the model about seven times (minutes on a solid of 2e5 DOFs): the
     // modes in parallel, each one's result the same as alone.
-    let solved: Vec<Option<Result<FrequencyOutcome, FrequencyError>>> = planned
-        .par_iter()
+    let solved: Vec<Solved> = planned
+        .into_par_iter()
         .map(|(mode, plan)| {
-            plan.is_err().then(|| {
+            let solved = plan.map_err(|why| {
                 let f_std = mode
                     .frequency_std
                     .map(|s| s / mode.frequency_hz)
                     .or(args.frequency_noise);
                 let t = mode.mode - 1 + model.rigid;
-                frequency_only::identify(&model, t, mode.mode, mode.frequency_hz, f_std, choice)
-            })
+                let f = frequency_only::identify(
+                    &model,
+                    t,
+                    mode.mode,
+                    mode.frequency_hz,
+                    f_std,
+                    choice,
+                );
+                (why, f)
+            });
+            (mode, solved)
         })
         .collect();
     let mut rows = Vec::new();
     let mut outcomes = Vec::new();
     let mut fallbacks = Vec::new();
-    for ((mode, plan), solved) in planned.into_iter().zip(solved) {
-        let (why, solved) = match (plan, solved) {
-            (Ok(o), _) => {
+    for (mode, solved) in solved {
+        let (why, solved) = match solved {
+            Ok(o) => {
                 rows.extend(out::rows(std::slice::from_ref(&o), &params));
                 outcomes.push(o);
                 continue;
             }
-            (Err(why), Some(solved)) => (why, solved),
-            (Err(_), None) => unreachable!("every fallback was solved"),
+            Err(fallback) => fallback,
         };
         match solved {
             Ok(f) => {
@@ -119,6 +127,12 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     }
     report(args, &measured, &outcomes, &fallbacks, &params, &all, &rows)
 }
+
+/// A mode and its paper's outcome, or why it fell back to its frequency and what that gave.
+type Solved<'a> = (
+    &'a MeasuredMode,
+    Result<ModeOutcome, (Fallback, Result<FrequencyOutcome, FrequencyError>)>,
+);
 
 /// The paper's system on each mode's shape (`identifier`: None with --from-frequency), or why
 /// the mode falls back to its frequency alone; an error where the projection cannot be made.
