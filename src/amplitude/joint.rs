@@ -78,11 +78,6 @@ pub struct LevelError {
     pub selected_hz: f64,
 }
 
-/// The model mode (0-based, rigid-body modes counted) that measured mode `mode` pairs with.
-fn model_mode(model: &Structure, mode: usize) -> usize {
-    mode - 1 + model.rigid
-}
-
 /// The joint data of one mode (module docs); `param` indexes [`Structure::identified`].
 pub fn joint_data(
     model: &Structure,
@@ -90,7 +85,7 @@ pub fn joint_data(
     data: &ModeData,
 ) -> Result<JointData, AmplitudeError> {
     let p0 = model.identified()[param].value;
-    let t = model_mode(model, data.mode);
+    let t = model.model_mode(data.mode);
     let mut out = JointData {
         name: model.identified()[param].name.clone(),
         unit: model.identified()[param].unit,
@@ -165,7 +160,7 @@ fn frequency_at(
 ) -> Result<f64, AmplitudeError> {
     let mut s = model.clone();
     s.parameters[model.identified_indices()[param]].value = p;
-    let t = model_mode(model, mode);
+    let t = model.model_mode(mode);
     let modal = ModalSolution::lowest_of(&s.assemble(), t + 1).map_err(|e| {
         AmplitudeError::Joint(format!(
             "the model at {} = {p:e}: {e}",

@@ -71,10 +71,9 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                     .frequency_std
                     .map(|s| s / mode.frequency_hz)
                     .or(args.frequency_noise);
-                let t = mode.mode - 1 + model.rigid;
                 let f = frequency_only::identify(
                     &model,
-                    t,
+                    model.model_mode(mode.mode),
                     mode.mode,
                     mode.frequency_hz,
                     f_std,
@@ -113,11 +112,10 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                         outcomes.push(o);
                     }
                     _ => {
-                        let t = mode.mode - 1 + model.rigid;
                         rows.extend(out::unsolved_rows(
                             mode.mode,
                             mode.frequency_hz,
-                            modal.frequency_hz(t),
+                            modal.frequency_hz(model.model_mode(mode.mode)),
                             &all,
                         ));
                     }

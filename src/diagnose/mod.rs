@@ -163,7 +163,8 @@ pub fn diagnose_watched(
         let chosen = yardstick::choose(&first, &first_stage);
         (chosen.estimate, chosen.checked)
     };
-    // Under the working noise: the joint calibrated again, every candidate refitted, judged.
+    // Under the working noise: the joint calibrated again, every candidate refitted (but for
+    // the fits the noise check made under it), judged.
     let working = Calibration {
         noise: estimate.working,
         pairing: settings.pairing.clone(),

@@ -152,6 +152,12 @@ impl Structure {
         self.dofs.len()
     }
 
+    /// The model mode (0-based, rigid-body modes counted) that measured elastic mode `mode`
+    /// (from 1) pairs with by order.
+    pub fn model_mode(&self, mode: usize) -> usize {
+        mode - 1 + self.rigid
+    }
+
     /// The identified parameters, in model order (the columns of the sensitivity system).
     pub fn identified(&self) -> Vec<Parameter> {
         self.parameters
