@@ -104,7 +104,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
 const HOLD: Duration = Duration::from_secs(2);
 /// Least time between two logged iterations of a fit: a long fit shows it is moving, a quick
 /// one does not fill the log.
-const PACE: Duration = Duration::from_secs(10);
+const PACE: Duration = Duration::from_secs(0);
 
 /// The log of the diagnosis's steps (module `jointid::output::diagnose_log`), each line given
 /// to `write`: held back for the first `hold`, then every line as its step finishes; an
@@ -180,14 +180,14 @@ mod tests {
 
     fn steps<W: Fn(&str)>(log: &Log<W>) {
         log.tell(
-            Pass::Stated,
+            Pass::Calibration,
             &Step::Calibrated {
                 chi2: 2.0,
                 iterations: 4,
             },
         );
         log.tell(
-            Pass::Working,
+            Pass::Candidates,
             &Step::Fitted {
                 candidate: "sensor_mass",
                 outcome: Ok(3.0),
@@ -218,7 +218,7 @@ mod tests {
         std::thread::sleep(Duration::from_millis(30));
         // An iteration within the pace is left out, a fit is not.
         log.tell(
-            Pass::Working,
+            Pass::Candidates,
             &Step::Iteration {
                 candidate: "frequency_dependence",
                 variant: Some("one alpha"),
@@ -227,7 +227,7 @@ mod tests {
             },
         );
         log.tell(
-            Pass::Working,
+            Pass::Candidates,
             &Step::Fitted {
                 candidate: "joint_mass",
                 outcome: Ok(1.0),
@@ -241,9 +241,9 @@ mod tests {
         assert_eq!(
             ends,
             [
-                "stated noise: joint calibrated: chi^2 2.0 after 4 iterations",
-                "working noise: sensor_mass fitted: chi^2 3.0",
-                "working noise: joint_mass fitted: chi^2 1.0",
+                "calibration: joint calibrated: chi^2 2.0 after 4 iterations",
+                "candidates: sensor_mass fitted: deviance 3.0",
+                "candidates: joint_mass fitted: deviance 1.0",
             ]
         );
         drop(lines);
@@ -251,7 +251,7 @@ mod tests {
         let paced = Log::new(Duration::ZERO, Duration::ZERO, write);
         for iteration in [1, 2] {
             paced.tell(
-                Pass::Stated,
+                Pass::Calibration,
                 &Step::Iteration {
                     candidate: "frequency_dependence",
                     variant: Some("one alpha"),

@@ -1,6 +1,7 @@
 //! The last step of a diagnosis: the report assembled from the steps' findings: the verdict
 //! and the models before and after, the paper's per-mode corrections on both, their trend and
-//! the misfit's pattern and what remains of each mode where no model explains the data, the
+//! the misfit's pattern and what remains of each mode where no model explains the data, what
+//! remains beyond the measurement error with a partial explanation, the modes left out, the
 //! pairing remarks.
 
 use super::candidate::{Tier, registry};
@@ -8,8 +9,8 @@ use super::decide::{Decision, FIT_ALPHA, TREND_SIGMAS};
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
 use super::report::{
-    ErrorSummary, Remaining, Report, ResidualPattern, Verdict, flatness, per_mode_corrections,
-    remains,
+    ErrorSummary, LeftOut, Remainder, Remaining, Report, ResidualPattern, Verdict, flatness,
+    per_mode_corrections, remains,
 };
 use super::score::Scored;
 use crate::identify::Settings;
@@ -38,12 +39,15 @@ pub struct Findings<'a> {
     pub hypotheses: usize,
     /// The per-mode identification settings.
     pub per_mode: Settings,
+    /// The measured modes left out (no model mode resembles them).
+    pub left_out: Vec<LeftOut>,
 }
 
 /// The report of a diagnosis from its findings: the verdict and the models before and after,
 /// the per-mode corrections on both (under the stated noise when no model explains the data,
-/// whose residual is then not noise alone; the data's own errors when they carry them), their trend and the misfit's pattern when the
-/// verdict is `unexplained` or `frequency_dependent`, and the pairing remarks.
+/// whose residual is then not noise alone; the data's own errors when they carry them), their
+/// trend and the misfit's pattern when the verdict is `unexplained` or `frequency_dependent`,
+/// what remains when it is `partial`, and the pairing remarks.
 pub fn assemble(f: Findings) -> Report {
     let measured = f.measured;
     let noise = f.estimate.working;
@@ -51,7 +55,8 @@ pub fn assemble(f: Findings) -> Report {
     let best = decision.best.map(|b| &f.scored[b]);
     let after = best.and_then(|s| s.model.as_ref()).unwrap_or(f.base);
     let selected = best.map(|s| s.report.name.clone());
-    let yardstick = if decision.verdict == Verdict::Unexplained && !f.estimate.from_data {
+    let misfit_remains = matches!(decision.verdict, Verdict::Unexplained | Verdict::Partial);
+    let yardstick = if misfit_remains && !f.estimate.from_data {
         f.stated
     } else {
         noise
@@ -81,25 +86,43 @@ pub fn assemble(f: Findings) -> Report {
             .cloned()
             .collect();
     }
+    let before = ErrorSummary::of(f.base, measured, &f.estimate);
+    let after_summary = ErrorSummary::of(after, measured, &f.estimate);
+    let remainder = (decision.verdict == Verdict::Partial).then(|| {
+        remainder(
+            &f,
+            selected.as_deref().unwrap_or_default(),
+            after,
+            before.chi2,
+            &after_summary,
+        )
+    });
     Report {
         verdict: decision.verdict,
+        causes: selected
+            .as_deref()
+            .map(|s| s.split(" + ").map(str::to_string).collect())
+            .unwrap_or_default(),
         selected,
         contenders: decision
             .contenders
             .iter()
             .map(|&i| f.scored[i].report.name.clone())
             .collect(),
+        discrepancy: after.discrepancy,
+        remaining: remainder,
+        left_out: f.left_out.clone(),
         pattern,
         remains: remaining,
         trend,
-        criterion: f.criterion,
+        criterion: f.criterion.clone(),
         noise: f.stated,
         initial: ErrorSummary::of(f.initial, measured, &f.estimate),
-        before: ErrorSummary::of(f.base, measured, &f.estimate),
-        after: ErrorSummary::of(after, measured, &f.estimate),
+        before,
+        after: after_summary,
         warnings: pairing_remarks(f.base, measured),
-        noise_estimate: f.estimate,
-        candidates: f.scored.into_iter().map(|s| s.report).collect(),
+        noise_estimate: f.estimate.clone(),
+        candidates: f.scored.iter().map(|s| s.report.clone()).collect(),
         flatness_before,
         flatness_after: flatness(&per_mode_after),
         per_mode_before,
@@ -113,6 +136,51 @@ pub fn assemble(f: Findings) -> Report {
     }
 }
 
+/// What remains beyond the measurement error with the named model `after` (`name`): the
+/// share of the joint-only fit's chi^2 `before` it removes, the modes that still miss and
+/// where.
+fn remainder(
+    f: &Findings,
+    name: &str,
+    after: &Fitted,
+    before: f64,
+    summary: &ErrorSummary,
+) -> Remainder {
+    Remainder {
+        removed: if before > 0.0 {
+            1.0 - summary.chi2 / before
+        } else {
+            0.0
+        },
+        chi2: summary.chi2,
+        dof: summary.dof,
+        modes: remains(
+            &[(name, after)],
+            f.measured,
+            (&f.estimate, FIT_ALPHA),
+            extended_tried(f),
+        ),
+        pattern: ResidualPattern::of(
+            after,
+            f.measured,
+            f.estimate.working,
+            f.estimate.working_floor,
+        ),
+    }
+}
+
+/// Whether the extended library was searched.
+fn extended_tried(f: &Findings) -> bool {
+    let extended: Vec<&str> = registry()
+        .iter()
+        .filter(|c| c.tier() == Tier::Extended)
+        .map(|c| c.name())
+        .collect();
+    f.scored
+        .iter()
+        .any(|s| extended.contains(&s.report.name.as_str()))
+}
+
 /// What remains of every mode with the joint-only fit and with every candidate that has a
 /// physical model of its own.
 fn what_remains(f: &Findings) -> Vec<Remaining> {
@@ -122,20 +190,11 @@ fn what_remains(f: &Findings) -> Vec<Remaining> {
             Some((s.report.name.as_str(), s.model.as_ref().filter(|_| usable)?))
         }))
         .collect();
-    let extended: Vec<&str> = registry()
-        .iter()
-        .filter(|c| c.tier() == Tier::Extended)
-        .map(|c| c.name())
-        .collect();
-    let extended_tried = f
-        .scored
-        .iter()
-        .any(|s| extended.contains(&s.report.name.as_str()));
     remains(
         &models,
         f.measured,
         (&f.estimate, FIT_ALPHA),
-        extended_tried,
+        extended_tried(f),
     )
 }
 

@@ -1,10 +1,21 @@
 //! The first step of a diagnosis: the model checked against what a diagnosis needs, and the
-//! invariant joint calibrated on every measured mode (module `fit`).
+//! invariant joint calibrated on every measured mode (module `fit`) with its own discrepancy
+//! (module `discrepancy`).
+//!
+//! Pairing survives a poor starting model: a measured mode that no model mode resembles (the
+//! pairing's error) is set aside and the joint calibrated on the others; with the calibrated
+//! joint every mode set aside is paired again and, where it now has a partner, taken back
+//! and the joint calibrated again on all of them. A mode that still has none is left out of
+//! the diagnosis and reported with the reason. The diagnosis is refused only when fewer modes
+//! remain than the joint has parameters, with the first pairing error.
 
 use std::sync::Arc;
 
 use super::DiagnoseError;
-use super::fit::{self, Calibration, Fitted};
+use super::discrepancy;
+use super::fit::{self, Calibration, Discrepancy, FitError, Fitted};
+use super::pairing::{Unpaired, pair};
+use super::report::LeftOut;
 use super::settings::DiagnoseSettings;
 use crate::identify::Identifier;
 use crate::measured::MeasuredModes;
@@ -55,37 +66,131 @@ pub fn prepare(
     )))
 }
 
-/// The model as given and the invariant joint calibrated, under one calibration.
+/// The model as given and the invariant joint calibrated, on the modes kept.
 #[derive(Debug, Clone)]
 pub struct Calibrated {
-    /// The model as given, only the shape scales fitted.
+    /// The measured modes the diagnosis keeps.
+    pub measured: MeasuredModes,
+    /// The modes left out: no model mode resembles them.
+    pub left_out: Vec<LeftOut>,
+    /// The model as given, only the shape scales fitted (under the measurement error).
     pub initial: Fitted,
-    /// The joint calibrated on every mode, no effect.
+    /// The joint calibrated on every mode kept, no effect, with its own discrepancy.
     pub base: Fitted,
 }
 
-/// The joint calibrated under `calibration`, starting from `from` (an optimum of the same
-/// model under another calibration), or `done`, that calibration made already; refused when
-/// its chi^2 ends above the model as given's beyond round-off (the pairing changed on the
-/// way).
+/// The joint of `ctx` calibrated on `measured` under the measurement error `calibration`
+/// (module docs: modes without a partner set aside, paired again, left out); refused when
+/// its chi^2 under the measurement error ends above the model as given's beyond round-off
+/// (the pairing changed on the way).
 pub fn calibrate(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
-    from: &Fitted,
-    done: Option<Fitted>,
 ) -> Result<Calibrated, DiagnoseError> {
-    let initial = fit::as_given(ctx, measured, calibration)?;
-    let base = match done {
-        Some(base) => base,
-        None => fit::refit(ctx, measured, calibration, &[], from, &mut Silent)?,
+    let joints = ctx.structure.identified().len();
+    let mut kept = measured.clone();
+    let mut aside: Vec<LeftOut> = Vec::new();
+    let base = loop {
+        match joint_only(ctx, &kept, calibration, None) {
+            Ok(base) => break base,
+            Err(FitError::Unpaired(e)) => {
+                let Unpaired::NoPartner {
+                    mode, frequency_hz, ..
+                } = &e
+                else {
+                    return Err(FitError::Unpaired(e).into());
+                };
+                if kept.modes().len() <= joints.max(1) {
+                    return Err(FitError::Unpaired(e).into());
+                }
+                kept = without(&kept, *mode);
+                aside.push(LeftOut {
+                    mode: *mode,
+                    frequency_hz: *frequency_hz,
+                    reason: e.to_string(),
+                });
+            }
+            Err(e) => return Err(e.into()),
+        }
     };
+    // The modes set aside paired again with the calibrated joint: those that now have a
+    // partner are taken back.
+    let back: Vec<usize> = aside
+        .iter()
+        .map(|left| left.mode)
+        .filter(|&mode| {
+            let trial = with(&kept, measured, mode);
+            pair(&base.modal, &trial, ctx.structure.rigid, &calibration.pairing).is_ok()
+        })
+        .collect();
+    let (measured, base) = if back.is_empty() {
+        (kept, base)
+    } else {
+        let all = back.iter().fold(kept.clone(), |m, &r| with(&m, measured, r));
+        let joint_start = &base.solution[..joints];
+        match joint_only(ctx, &all, calibration, Some(joint_start)) {
+            Ok(again) => (all, again),
+            Err(_) => (kept, base),
+        }
+    };
+    let left_out = aside
+        .into_iter()
+        .filter(|left| measured.modes().iter().all(|m| m.mode != left.mode))
+        .collect();
+    let measurement = Calibration {
+        discrepancy: Discrepancy::default(),
+        ..calibration.clone()
+    };
+    let initial = fit::as_given(ctx, &measured, &measurement)?;
     // Growth beyond round-off (relative, and absolute for data the model fits exactly).
-    if base.chi2 > initial.chi2 * (1.0 + 1e-9) + 1e-9 * base.dof as f64 {
+    let grown = fit::chi2_of(&fit::residuals(&base, &measured), &measured, &measurement);
+    if grown > initial.chi2 * (1.0 + 1e-9) + 1e-9 * base.dof as f64 {
         return Err(DiagnoseError::ErrorGrew {
             before: initial.chi2,
-            after: base.chi2,
+            after: grown,
         });
     }
-    Ok(Calibrated { initial, base })
+    Ok(Calibrated {
+        measured,
+        left_out,
+        initial,
+        base,
+    })
+}
+
+/// The joint-only fit of `measured` with its own discrepancy, from the nominal joint or the
+/// joint unknowns `joint_start`.
+fn joint_only(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    joint_start: Option<&[f64]>,
+) -> Result<Fitted, FitError> {
+    discrepancy::fit_with(measured, calibration, Discrepancy::default(), |cal, from| {
+        match (from, joint_start) {
+            (Some(from), _) => fit::refit(ctx, measured, cal, &[], from, &mut Silent),
+            (None, Some(x0)) => fit::fit_from(ctx, measured, cal, &[], x0, &mut Silent),
+            (None, None) => fit::fit(ctx, measured, cal, &[], &mut Silent),
+        }
+    })
+}
+
+/// `measured` without mode `mode`.
+fn without(measured: &MeasuredModes, mode: usize) -> MeasuredModes {
+    MeasuredModes::new(
+        measured
+            .modes()
+            .iter()
+            .filter(|m| m.mode != mode)
+            .cloned()
+            .collect(),
+    )
+}
+
+/// `kept` with mode `mode` of `all` taken back.
+fn with(kept: &MeasuredModes, all: &MeasuredModes, mode: usize) -> MeasuredModes {
+    let mut modes = kept.modes().to_vec();
+    modes.extend(all.modes().iter().filter(|m| m.mode == mode).cloned());
+    MeasuredModes::new(modes)
 }

@@ -1,29 +1,38 @@
-//! The decision rules of a diagnosis, in one place: which candidates are significant, which
-//! models explain the data, which candidate is named, and when the data cannot tell two apart.
+//! The decision rules of a diagnosis, in one place: which explanation is best (relative, each
+//! model with its own discrepancy), whether it is adequate (absolute, against the measurement
+//! error), and the graded verdict.
 //!
-//! - **Multiple testing.** A candidate is significant when its likelihood-ratio p-value,
-//!   times the number of hypotheses tried (one per candidate, the members of
-//!   a scan: `super::candidate::hypotheses`), is below [`ALPHA`] (Bonferroni).
-//! - **Explains the data.** A model explains the data when P(F(dof, nu) > chi^2 / dof), its
-//!   frequencies alone and the whiteness of its shape residuals are all >= [`FIT_ALPHA`], and
-//!   the estimated noise is within `noise::LARGEST_FACTOR` of the stated ([`Judgement`]).
-//! - **Selection.** Among the significant candidates whose size is physical, the one with the
-//!   largest likelihood-ratio statistic; every other significant one less than
-//!   [`AMBIGUITY_MARGIN`] behind it in Akaike's information criterion contends with it
-//!   (AIC_c = chi^2_c + 2 k_c; Burnham & Anderson, "Model Selection and Multimodel
-//!   Inference", sec. 2.6) ([`select`]).
-//! - **Static first** ([`static_first`]): where a static candidate within the margin
-//!   explains the data, it is named before the frequency-dependent joint, which does not
-//!   contend with it.
-//! - **Verdict** ([`decide`]): no significant candidate and the joint-only fit explains the
-//!   data: `none`; the selected candidate explains the data: the verdict it names (`effect`,
-//!   or `frequency_dependent` for the frequency-dependent joint) when alone, `ambiguous` when
-//!   others contend; otherwise `unexplained`.
+//! - **Which is best.** Every model is fitted with its own discrepancy (module
+//!   `discrepancy`); D = deviance(extended model) - deviance(model) is the likelihood-ratio
+//!   statistic of the cause added, the discrepancy profiled out of both. Its p-value is
+//!   P(chi^2_k > D) where no discrepancy was estimated, and P(F(k, nu) > D / k) where one was
+//!   on nu degrees of freedom ([`lr_p_value`]). A cause is significant when that p-value, times
+//!   the hypotheses tried so far (one per candidate, the members of a scan, then every
+//!   addition the search tried: module `search`), is below [`ALPHA`] (Bonferroni).
+//! - **Clearly best** ([`select`]): among the significant causes whose size is physical, the
+//!   one with the largest D; every other less than [`AMBIGUITY_MARGIN`] behind it in Akaike's
+//!   criterion (deviance + 2 k; Burnham & Anderson, "Model Selection and Multimodel
+//!   Inference", sec. 2.6) contends with it. Where the frequency-dependent joint is the best
+//!   and a static cause contends, the static one is taken (what looks frequency-dependent to
+//!   the paper's per-mode method is often an unmodelled static effect) and the
+//!   frequency-dependent joint does not contend with a static best.
+//! - **Adequate** ([`Judgement::explains`]): the model's chi^2 under the measurement error (the
+//!   yardstick: module `yardstick`), its frequencies alone and the whiteness of its shape
+//!   residuals all pass at [`FIT_ALPHA`], the noise estimated within `noise::LARGEST_FACTOR`
+//!   of the stated.
+//! - **Verdict** ([`decide`]): no significant cause, and the joint-only fit adequate: `none`;
+//!   no significant cause otherwise: `unexplained`. A clearly best cause, extended by the
+//!   search with every further cause clearly best at its step: `effect` (or
+//!   `frequency_dependent`) when the model of all of them is adequate, `partial` when a misfit
+//!   beyond the measurement error remains. A best cause with contenders: `ambiguous` when it is
+//!   adequate, `unexplained` when not (several partial explanations the data cannot tell
+//!   apart).
 //!
-//! Layer: diagnose; pure functions of the candidates' reports.
+//! Layer: diagnose; pure functions.
 
-use super::noise::{LARGEST_FACTOR, NoiseEstimate};
+use super::noise::NoiseEstimate;
 use super::report::{CandidateReport, Verdict};
+use crate::stats::{chi2_sf, f_sf};
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -34,13 +43,81 @@ pub const AMBIGUITY_MARGIN: f64 = 6.0;
 /// A per-mode correction whose slope against frequency exceeds this many standard errors
 /// is reported as a trend (`Report::trend`; shown, not the test).
 pub const TREND_SIGMAS: f64 = 3.0;
+/// Most causes the search puts together.
+pub const MAX_CAUSES: usize = 3;
 
 /// A likelihood-ratio p-value adjusted for `tried` hypotheses (Bonferroni, at most 1).
 pub fn adjusted(p: f64, tried: usize) -> f64 {
     (p * tried as f64).min(1.0)
 }
 
-/// The lack-of-fit probabilities of one model.
+/// P-value of the likelihood-ratio statistic `lrt` of `k` added unknowns, the discrepancy of
+/// the larger model estimated on `dof` degrees of freedom (infinite: none estimated): the
+/// chi-square test, or the F test P(F(k, dof) > lrt / k).
+pub fn lr_p_value(lrt: f64, k: usize, dof: f64) -> f64 {
+    let k = k.max(1) as f64;
+    if dof.is_infinite() {
+        chi2_sf(lrt, k)
+    } else {
+        f_sf(lrt / k, k, dof)
+    }
+}
+
+/// What the relative rules read of one fitted cause.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rival {
+    /// Deviance of its model.
+    pub deviance: f64,
+    /// Its parameters (the information criterion's k).
+    pub parameters: usize,
+    /// Its likelihood-ratio statistic against the model it extends.
+    pub lrt: f64,
+    /// Its adjusted p-value.
+    pub adjusted: f64,
+    /// Whether it fitted to a physical size.
+    pub usable: bool,
+    /// Whether it is the frequency-dependent joint.
+    pub dependent: bool,
+}
+
+impl Rival {
+    fn aic(&self) -> f64 {
+        self.deviance + 2.0 * self.parameters as f64
+    }
+
+    fn significant(&self) -> bool {
+        self.usable && self.adjusted < ALPHA
+    }
+}
+
+/// The clearly best of `rivals` and those that contend with it (module docs; indices into
+/// `rivals`, the contenders best first); None when none is significant.
+pub fn select(rivals: &[Rival]) -> Option<(usize, Vec<usize>)> {
+    let mut significant: Vec<usize> = (0..rivals.len())
+        .filter(|&i| rivals[i].significant())
+        .collect();
+    significant.sort_by(|&a, &b| rivals[b].lrt.total_cmp(&rivals[a].lrt));
+    let &first = significant.first()?;
+    let within = |best: usize, i: usize| rivals[i].aic() - rivals[best].aic() < AMBIGUITY_MARGIN;
+    // Static first: a static cause within the margin of a frequency-dependent best is taken.
+    let best = if rivals[first].dependent {
+        significant
+            .iter()
+            .copied()
+            .find(|&i| !rivals[i].dependent && within(first, i))
+            .unwrap_or(first)
+    } else {
+        first
+    };
+    let close = significant
+        .into_iter()
+        .filter(|&i| i != best && within(best, i))
+        .filter(|&i| !(rivals[i].dependent && !rivals[best].dependent))
+        .collect();
+    Some((best, close))
+}
+
+/// The lack-of-fit probabilities of one model under the yardstick.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Judgement {
     /// P(F(dof, nu) > chi^2 / dof).
@@ -61,11 +138,23 @@ impl Judgement {
         }
     }
 
-    /// Whether the model explains the data, the noise estimated being `estimate`.
+    /// Whether the model explains the data within the measurement error, the noise estimated
+    /// being `estimate`.
     pub fn explains(&self, estimate: &NoiseEstimate) -> bool {
         let pass = |p: Option<f64>| p.is_some_and(|p| p >= FIT_ALPHA);
         estimate.plausible() && pass(self.fit) && pass(self.frequency) && pass(self.whiteness)
     }
+}
+
+/// The outcome of the search the verdict reads: the causes put together, best first
+/// (indices into the models), and the models that contend with the first.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Path {
+    /// The first cause, then the model of every further cause added (each index the model of
+    /// all the causes so far).
+    pub models: Vec<usize>,
+    /// The models that contend with the first.
+    pub contenders: Vec<usize>,
 }
 
 /// The outcome of the rules.
@@ -73,338 +162,199 @@ impl Judgement {
 pub struct Decision {
     /// The verdict.
     pub verdict: Verdict,
-    /// The candidate whose fit is the diagnosis's "after" (index into the candidates), when
-    /// the verdict is `effect`, `ambiguous` or `frequency_dependent`.
+    /// The model that is the diagnosis's "after" (index into the models), when a cause is
+    /// named (`effect`, `partial`, `ambiguous`, `frequency_dependent`).
     pub best: Option<usize>,
-    /// When `ambiguous`: the best, then every candidate within the margin of it.
+    /// The causes named, in the order the search added them (indices into the models: the
+    /// first cause's model, then each extension's).
+    pub causes: Vec<usize>,
+    /// When `ambiguous` (or `unexplained` with several partial explanations): the best, then
+    /// every model within the margin of it.
     pub contenders: Vec<usize>,
 }
 
-/// The verdict on `candidates` (with the verdict each names when selected alone, `names`)
-/// and the joint-only fit judged `base`, the noise estimated being `estimate`.
+/// The verdict on the search's `path`, `explains` saying which models are adequate,
+/// `base_explains` whether the joint-only fit is, `names` the verdict that names each model
+/// when it stands alone.
 pub fn decide(
-    candidates: &[CandidateReport],
+    path: &Path,
+    explains: impl Fn(usize) -> bool,
+    base_explains: bool,
     names: &[Verdict],
-    base: Judgement,
-    estimate: &NoiseEstimate,
 ) -> Decision {
     let alone = |verdict| Decision {
         verdict,
         best: None,
+        causes: Vec::new(),
         contenders: Vec::new(),
     };
-    let explains = |i: usize| Judgement::of(&candidates[i]).explains(estimate);
-    match select(candidates).map(|(b, close)| static_first(candidates, names, b, close, explains)) {
-        Some((b, close)) if explains(b) => {
-            if close.is_empty() {
-                Decision {
-                    verdict: names[b],
-                    best: Some(b),
-                    contenders: Vec::new(),
-                }
-            } else {
-                Decision {
-                    verdict: Verdict::Ambiguous,
-                    best: Some(b),
-                    contenders: std::iter::once(b).chain(close).collect(),
-                }
-            }
-        }
-        Some(_) => alone(Verdict::Unexplained),
-        None if base.explains(estimate) => alone(Verdict::None),
-        None => alone(Verdict::Unexplained),
-    }
-}
-
-/// The selection among fitted candidates: among the significant ones (adjusted p-value below
-/// [`ALPHA`]) whose size is plausible, the one with the largest likelihood-ratio statistic,
-/// and every other of them less than [`AMBIGUITY_MARGIN`] behind it in AIC (indices into
-/// `candidates`; `None` when no candidate is significant).
-pub fn select(candidates: &[CandidateReport]) -> Option<(usize, Vec<usize>)> {
-    let mut significant = significant(candidates);
-    significant.sort_by(|&a, &b| lrt(&candidates[b]).total_cmp(&lrt(&candidates[a])));
-    let (&best, rest) = significant.split_first()?;
-    let close = rest
-        .iter()
-        .copied()
-        .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
-        .collect();
-    Some((best, close))
-}
-
-/// The significant candidates whose size is plausible (indices into `candidates`).
-fn significant(candidates: &[CandidateReport]) -> Vec<usize> {
-    (0..candidates.len())
-        .filter(|&i| {
-            let c = &candidates[i];
-            c.error.is_none() && c.excluded.is_none() && c.criterion.is_some_and(|p| p < ALPHA)
-        })
-        .collect()
-}
-
-/// The selection `(b, close)` with a static explanation preferred to the frequency-dependent
-/// joint: when the best is the frequency-dependent joint and a static candidate within the
-/// margin explains the data, that one (the first, by likelihood ratio) is the best; and the
-/// frequency-dependent joint never contends with a static best. A joint that looks
-/// frequency-dependent is what the paper's per-mode method reads from any unmodelled static
-/// effect: where the data cannot tell them apart, the static physics is named.
-fn static_first(
-    candidates: &[CandidateReport],
-    names: &[Verdict],
-    b: usize,
-    close: Vec<usize>,
-    explains: impl Fn(usize) -> bool,
-) -> (usize, Vec<usize>) {
-    let dependent = |i: usize| names[i] == Verdict::FrequencyDependent;
-    let best = if dependent(b) {
-        close
-            .iter()
-            .copied()
-            .find(|&i| !dependent(i) && explains(i))
-            .unwrap_or(b)
-    } else {
-        b
+    let (Some(&first), Some(&last)) = (path.models.first(), path.models.last()) else {
+        return alone(if base_explains {
+            Verdict::None
+        } else {
+            Verdict::Unexplained
+        });
     };
-    if best == b && dependent(b) {
-        return (b, close);
+    if !path.contenders.is_empty() {
+        let contenders = std::iter::once(first)
+            .chain(path.contenders.iter().copied())
+            .collect();
+        return if explains(first) {
+            Decision {
+                verdict: Verdict::Ambiguous,
+                best: Some(first),
+                causes: vec![first],
+                contenders,
+            }
+        } else {
+            Decision {
+                contenders,
+                ..alone(Verdict::Unexplained)
+            }
+        };
     }
-    let mut close: Vec<usize> = significant(candidates)
-        .into_iter()
-        .filter(|&i| i != best && !dependent(i))
-        .filter(|&i| aic(&candidates[i]) - aic(&candidates[best]) < AMBIGUITY_MARGIN)
-        .collect();
-    close.sort_by(|&a, &b| lrt(&candidates[b]).total_cmp(&lrt(&candidates[a])));
-    (best, close)
+    let verdict = match (explains(last), path.models.len()) {
+        (true, 1) => names[first],
+        (true, _) => Verdict::Effect,
+        (false, _) => Verdict::Partial,
+    };
+    Decision {
+        verdict,
+        best: Some(last),
+        causes: path.models.clone(),
+        contenders: Vec::new(),
+    }
 }
 
-/// A candidate's likelihood-ratio statistic (0 when it has none).
-fn lrt(c: &CandidateReport) -> f64 {
-    c.lrt.unwrap_or(0.0)
-}
-
-/// Akaike's information criterion of a fitted candidate relative to the joint-only fit
-/// (AIC = chi^2 + 2 k with k its parameters; the joints' 2 p are common to all).
-fn aic(c: &CandidateReport) -> f64 {
-    let k = c.parameters.len();
-    c.chi2.unwrap_or(f64::INFINITY) + 2.0 * k as f64
-}
-
-/// The rule of the selection in words, for the report: the noise it stood on and the counts
-/// (`tried` hypotheses of `candidates` candidates).
+/// The rules in words, for the report: the yardstick of adequacy and the counts (`tried`
+/// hypotheses in all, of `candidates` candidates).
 pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> String {
     let count = if tried == candidates {
         format!("{tried} candidates")
     } else {
-        format!("{tried} hypotheses ({candidates} candidates, a scan counting each of its members)")
+        format!("{tried} hypotheses ({candidates} candidates, a scan counting each of its members, every combination tried counting one)")
     };
-    let noise = if estimate.from_data {
+    let yardstick = if estimate.from_data {
         "the data's own standard errors (known: chi^2 tests)".to_string()
     } else if estimate.stated_kept {
         format!(
-            "the stated noise ({:.0} degrees of freedom: F tests), no model's residuals passing the checks that do not stand on the noise level (whiteness along the structure, frequencies against the shapes' scale, within {LARGEST_FACTOR}x the stated)",
-            estimate.dof
+            "the stated noise ({:.0} degrees of freedom: F tests), no model's residuals passing the checks that do not stand on the noise level (whiteness along the structure, frequencies against the shapes' scale, within {}x the stated)",
+            estimate.dof,
+            super::noise::LARGEST_FACTOR
         )
     } else {
         format!(
-            "the noise estimated from the shape residuals of the largest model that fits ({}, {:.0} degrees of freedom: F tests)",
+            "the noise estimated from the shape residuals of the largest model ({}, {:.0} degrees of freedom: F tests)",
             estimate.from_model, estimate.dof
         )
     };
     format!(
-        "likelihood-ratio test under {noise}: a candidate is significant when its p-value times {count} is below {ALPHA}; a model explains the data when its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}; the best is named alone when every other significant candidate is {AMBIGUITY_MARGIN} or more behind it in AIC"
+        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
     )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::diagnose::fit::{Estimate, Noise};
-    use crate::stats::chi2_sf;
 
-    /// A fitted candidate with `k` parameters, chi^2 `chi2` against the joint-only 100.
-    fn fitted(name: &str, k: usize, chi2: f64) -> CandidateReport {
-        let lrt = 100.0 - chi2;
-        CandidateReport {
-            parameters: (0..k)
-                .map(|i| Estimate {
-                    name: format!("{name}.{i}"),
-                    unit: "",
-                    value: 1.0,
-                    se: 0.1,
-                })
-                .collect(),
-            size: Some(1.0),
-            size_se: Some(0.1),
-            chi2: Some(chi2),
-            dof: Some(50),
-            lrt: Some(lrt),
-            criterion: Some(adjusted(chi2_sf(lrt, k as f64), 3)),
-            fit_p_value: Some(0.5),
-            frequency_p_value: Some(0.5),
-            whiteness_p_value: Some(0.5),
-            error: None,
-            ..CandidateReport::failed(name, "", String::new())
+    fn rival(deviance: f64, parameters: usize) -> Rival {
+        let lrt = 100.0 - deviance;
+        Rival {
+            deviance,
+            parameters,
+            lrt,
+            adjusted: adjusted(chi2_sf(lrt, parameters as f64), 3),
+            usable: true,
+            dependent: false,
         }
     }
-
-    /// A noise estimate `factor` times the stated shape noise.
-    fn estimate(factor: f64) -> NoiseEstimate {
-        NoiseEstimate {
-            from_model: "joint only".into(),
-            shape: 0.02 * factor,
-            shape_floor_abs: 0.0,
-            frequency_check: 0.001,
-            dof: 100.0,
-            working: Noise {
-                frequency: 0.001,
-                shape: 0.02 * factor,
-            },
-            frequency_estimated: false,
-            working_floor: 0.01,
-            shape_factor: factor,
-            frequency_factor: 1.0,
-            from_differences: 0,
-            from_data: false,
-            stated_kept: false,
-            frequency_sigmas: None,
-            from_levels: 100,
-            frequency_values: 6,
-        }
-    }
-
-    const GOOD: Judgement = Judgement {
-        fit: Some(0.5),
-        frequency: Some(0.5),
-        whiteness: Some(0.5),
-    };
 
     #[test]
     fn the_best_is_selected_alone_only_with_a_lead_of_the_margin_in_aic() {
-        // Leads of 6.5 and 5.5 in chi^2 at equal k: effect, then ambiguous.
-        let clear = [
-            fitted("a", 1, 80.0),
-            fitted("b", 1, 50.0),
-            fitted("c", 1, 56.5),
-        ];
+        // Leads of 6.5 and 5.5 in deviance at equal k: alone, then with a contender.
+        let clear = [rival(80.0, 1), rival(50.0, 1), rival(56.5, 1)];
         assert_eq!(select(&clear), Some((1, Vec::new())));
-        let close = [
-            fitted("a", 1, 80.0),
-            fitted("b", 1, 50.0),
-            fitted("c", 1, 55.5),
-        ];
+        let close = [rival(80.0, 1), rival(50.0, 1), rival(55.5, 1)];
         assert_eq!(select(&close), Some((1, vec![2])));
-        // A lead of 9 in chi^2 with 2 more parameters is a lead of 5 in AIC: ambiguous, the
-        // one with the larger statistic first.
-        let penalised = [fitted("a", 3, 50.0), fitted("b", 1, 59.0)];
+        // A lead of 9 with 2 more parameters is a lead of 5 in AIC: the larger statistic
+        // first, the other contends.
+        let penalised = [rival(50.0, 3), rival(59.0, 1)];
         assert_eq!(select(&penalised), Some((0, vec![1])));
-        // A runner-up that is not significant does not contend: D = 5 < chi2_1 isf(0.01/2).
-        let weak = [fitted("a", 1, 95.0), fitted("b", 1, 99.0)];
+        // A runner-up that is not significant does not contend: D = 5 < chi2_1 isf(0.01 / 3).
+        let weak = [rival(95.0, 1), rival(99.0, 1)];
         assert_eq!(select(&weak), None);
     }
 
     #[test]
-    fn an_implausible_or_failed_candidate_is_not_selected_nor_contends() {
-        let mut heavy = fitted("heavy", 1, 40.0);
-        heavy.excluded = Some("heavier than the beams".into());
-        let mut failed = fitted("failed", 1, 41.0);
-        failed.error = Some("did not converge".into());
-        let candidates = [heavy, failed, fitted("light", 1, 50.0)];
-        assert_eq!(select(&candidates), Some((2, Vec::new())));
+    fn an_implausible_cause_is_not_selected_nor_contends() {
+        let mut heavy = rival(40.0, 1);
+        heavy.usable = false;
+        assert_eq!(select(&[heavy, rival(50.0, 1)]), Some((1, Vec::new())));
     }
 
-    /// Each lack-of-fit probability below FIT_ALPHA, a missing one, or a noise estimate beyond
-    /// LARGEST_FACTOR of the stated makes a model fail to explain the data.
+    /// A static cause within the margin of a frequency-dependent best is taken, and the
+    /// frequency-dependent joint does not contend with it; clearly ahead, the dependent one
+    /// is the best.
     #[test]
-    fn a_model_explains_the_data_only_when_every_test_passes() {
-        assert!(GOOD.explains(&estimate(1.0)));
-        assert!(GOOD.explains(&estimate(LARGEST_FACTOR)));
-        assert!(!GOOD.explains(&estimate(LARGEST_FACTOR * 1.01)));
-        let low = Some(0.999 * FIT_ALPHA);
-        for bad in [
-            Judgement { fit: low, ..GOOD },
-            Judgement {
-                frequency: low,
-                ..GOOD
-            },
-            Judgement {
-                whiteness: low,
-                ..GOOD
-            },
-            Judgement { fit: None, ..GOOD },
-        ] {
-            assert!(!bad.explains(&estimate(1.0)), "{bad:?}");
-        }
-        let edge = Some(FIT_ALPHA);
-        assert!(
-            Judgement {
-                fit: edge,
-                frequency: edge,
-                whiteness: edge
-            }
-            .explains(&estimate(1.0))
-        );
+    fn a_static_cause_comes_before_the_frequency_dependent_joint() {
+        let mut dependent = rival(50.0, 1);
+        dependent.dependent = true;
+        assert_eq!(select(&[dependent, rival(53.0, 1)]), Some((1, Vec::new())));
+        assert_eq!(select(&[dependent, rival(70.0, 1)]), Some((0, Vec::new())));
     }
 
-    /// The verdicts: none, effect, the candidate's own verdict, ambiguous (best first), and
-    /// unexplained when the best does not explain the data or nothing is significant and the
-    /// joint alone does not either.
+    /// Under an estimated discrepancy the test is F(k, nu): larger p than chi-square for the
+    /// same statistic, equal in the limit of many degrees of freedom.
+    #[test]
+    fn an_estimated_discrepancy_makes_the_test_an_f_test() {
+        let chi2 = lr_p_value(9.0, 1, f64::INFINITY);
+        assert!((chi2 - chi2_sf(9.0, 1.0)).abs() < 1e-15);
+        assert!(lr_p_value(9.0, 1, 5.0) > 3.0 * chi2);
+        assert!((lr_p_value(9.0, 1, 1e7) - chi2).abs() < 1e-5 * chi2);
+    }
+
     #[test]
     fn verdicts_follow_the_rules() {
-        let names = [
-            Verdict::Effect,
-            Verdict::FrequencyDependent,
-            Verdict::Effect,
-        ];
-        let weak = [
-            fitted("a", 1, 99.0),
-            fitted("b", 1, 98.0),
-            fitted("c", 1, 99.5),
-        ];
-        let e = estimate(1.0);
-        assert_eq!(decide(&weak, &names, GOOD, &e).verdict, Verdict::None);
-        let bad = Judgement {
-            fit: Some(1e-9),
-            ..GOOD
-        };
-        assert_eq!(decide(&weak, &names, bad, &e).verdict, Verdict::Unexplained);
-        let clear = [
-            fitted("a", 1, 50.0),
-            fitted("b", 1, 80.0),
-            fitted("c", 1, 99.0),
-        ];
-        let d = decide(&clear, &names, bad, &e);
-        assert_eq!((d.verdict, d.best), (Verdict::Effect, Some(0)));
-        let own = [
-            fitted("a", 1, 80.0),
-            fitted("b", 1, 50.0),
-            fitted("c", 1, 99.0),
-        ];
-        let d = decide(&own, &names, bad, &e);
-        assert_eq!((d.verdict, d.best), (Verdict::FrequencyDependent, Some(1)));
-        let close = [
-            fitted("a", 1, 52.0),
-            fitted("b", 1, 99.0),
-            fitted("c", 1, 50.0),
-        ];
-        let d = decide(&close, &names, GOOD, &e);
-        assert_eq!(d.verdict, Verdict::Ambiguous);
-        assert_eq!((d.best, d.contenders), (Some(2), vec![2, 0]));
-        let mut unfit = clear.clone();
-        unfit[0].whiteness_p_value = Some(1e-6);
-        let d = decide(&unfit, &names, GOOD, &e);
-        assert_eq!((d.verdict, d.best), (Verdict::Unexplained, None));
+        let names = [Verdict::Effect, Verdict::FrequencyDependent, Verdict::Effect];
+        let nothing = Path::default();
+        assert_eq!(decide(&nothing, |_| true, true, &names).verdict, Verdict::None);
         assert_eq!(
-            decide(&clear, &names, GOOD, &estimate(5.0)).verdict,
+            decide(&nothing, |_| true, false, &names).verdict,
             Verdict::Unexplained
         );
-    }
-
-    #[test]
-    fn the_criterion_counts_hypotheses_and_candidates() {
-        let e = estimate(1.0);
-        assert!(criterion(&e, 7, 7).contains("p-value times 7 candidates is below 0.01"));
-        assert!(criterion(&e, 40, 9).contains("times 40 hypotheses (9 candidates"));
-        assert_eq!(adjusted(0.2, 7), 1.0);
-        assert!((adjusted(0.001, 7) - 0.007).abs() < 1e-18);
+        let one = Path {
+            models: vec![0],
+            contenders: Vec::new(),
+        };
+        let d = decide(&one, |_| true, false, &names);
+        assert_eq!((d.verdict, d.best, d.causes), (Verdict::Effect, Some(0), vec![0]));
+        let d = decide(&one, |_| false, false, &names);
+        assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(0)));
+        let dependent = Path {
+            models: vec![1],
+            contenders: Vec::new(),
+        };
+        let d = decide(&dependent, |_| true, false, &names);
+        assert_eq!(d.verdict, Verdict::FrequencyDependent);
+        // Two causes together: effect when the model of both is adequate, partial when not.
+        let two = Path {
+            models: vec![0, 3],
+            contenders: Vec::new(),
+        };
+        let d = decide(&two, |i| i == 3, false, &names);
+        assert_eq!((d.verdict, d.best, d.causes), (Verdict::Effect, Some(3), vec![0, 3]));
+        let d = decide(&two, |_| false, false, &names);
+        assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(3)));
+        // Contenders: ambiguous when the best is adequate, unexplained when not.
+        let close = Path {
+            models: vec![2],
+            contenders: vec![0],
+        };
+        let d = decide(&close, |_| true, false, &names);
+        assert_eq!((d.verdict, d.best), (Verdict::Ambiguous, Some(2)));
+        assert_eq!(d.contenders, vec![2, 0]);
+        let d = decide(&close, |_| false, false, &names);
+        assert_eq!((d.verdict, d.best), (Verdict::Unexplained, None));
+        assert_eq!(d.contenders, vec![2, 0]);
     }
 }

@@ -1,32 +1,35 @@
-//! Diagnosis of measured data: calibrate the invariant joint on every measured mode, estimate
-//! the noise, try every candidate explanation of what the joint leaves, decide, and report
+//! Diagnosis of measured data: calibrate the invariant joint on every measured mode, search
+//! the candidate explanations of what it leaves (each with its own model discrepancy, causes
+//! added one after another), judge them against the measurement error, decide, and report
 //! before and after.
 //!
-//! The pipeline ([`diagnose`]), one step per module, each returning plain data:
-//! 1. [`calibrate`]: the model checked, the effects' context, the joint calibrated;
-//! 2. [`noise`]: every candidate fitted under the stated noise, and the noise estimated from
-//!    what the largest physical model that fits leaves (shape pseudo-residuals and levels;
-//!    [`yardstick`]: the stated noise kept when no model fits);
-//! 3. [`candidate`]: every candidate fitted again under the working noise (the registry of
-//!    candidates: effects of the model library, the frequency-dependent joint, scans), but
-//!    for the fits the noise check made under it already;
-//! 4. [`score`]: each fit judged: likelihood-ratio p-value, goodness of fit, lack of fit of
-//!    the frequencies, whiteness of the shape residuals ([`whiteness`]);
-//! 5. [`decide`]: the rules: multiple testing, what explains the data, the selection by
-//!    likelihood ratio and information criterion, the verdict;
-//! 6. [`assemble`]: the [`report`] assembled: errors before and after, the paper's per-mode
-//!    corrections, the misfit's pattern.
+//! The pipeline ([`diagnose`]), one step per module, each returning plain data, none
+//! re-entering an earlier one:
+//! 1. [`calibrate`]: the model checked, the effects' context, the joint calibrated with its own
+//!    discrepancy (modes without a partner set aside, paired again, left out);
+//! 2. [`search`]: every candidate fitted once with its own discrepancy ([`discrepancy`]), the
+//!    clearly best one, causes added one after another;
+//! 3. [`yardstick`]: the measurement error the models are judged against: the data's own
+//!    standard errors, or the noise estimated from the largest model's residuals ([`noise`])
+//!    when they pass the checks that do not stand on the noise level, else the stated noise;
+//! 4. [`score`]: each model judged against it: goodness of fit, lack of fit of the
+//!    frequencies, whiteness of the shape residuals ([`whiteness`]);
+//! 5. [`decide`]: the rules: which explanation is best (relative), whether it is adequate
+//!    (absolute), the graded verdict;
+//! 6. [`assemble`]: the [`report`] assembled: errors before and after, what remains, the
+//!    paper's per-mode corrections, the misfit's pattern.
 //!
 //! Beside them: [`settings`] (checked where set), [`pairing`] (MAC pairing of measured and
 //! model modes), [`sensitivity`] (eigenpair derivatives), [`fit`] (the weighted nonlinear
-//! least squares of a model on the data, on the solver of [`crate::optim`]), [`along`]
-//! (residuals in sensor order).
+//! least squares of a model on the data, on the solver of [`crate::optim`]; the joints' ranges
+//! and limits), [`along`] (residuals in sensor order), [`candidate`] (the registry of
+//! candidates and their combinations).
 //!
 //! The fits keep what of the plausible range is a linear inequality (non-negative masses and
 //! springs, a rotary inertia within its mass's largest gyration:
-//! `EffectParameter::non_negative`, `Effect::inequalities`); a candidate whose fitted size is
-//! still not physically plausible (`Effect::plausible`, `Effect::admissible`) is excluded,
-//! with the reason.
+//! `EffectParameter::non_negative`, `Effect::inequalities`; a joint stiffness between free and
+//! rigid); a candidate whose fitted size is still not physically plausible
+//! (`Effect::plausible`, `Effect::admissible`) is excluded, with the reason.
 //!
 //! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
 //! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
@@ -39,30 +42,36 @@ pub mod assemble;
 pub mod calibrate;
 pub mod candidate;
 pub mod decide;
+pub mod discrepancy;
 pub mod fit;
 pub mod noise;
 pub mod pairing;
 pub mod progress;
 pub mod report;
 pub mod score;
+pub mod search;
 pub mod sensitivity;
 pub mod settings;
 pub mod whiteness;
 pub mod yardstick;
 
 pub use candidate::{Candidate, Tier, catalogue, registry};
-pub use decide::{ALPHA, AMBIGUITY_MARGIN, FIT_ALPHA, TREND_SIGMAS};
-pub use fit::{Calibration, Estimate, FitError, Fitted, Noise, Residuals, residuals};
+pub use decide::{ALPHA, AMBIGUITY_MARGIN, FIT_ALPHA, MAX_CAUSES, TREND_SIGMAS};
+pub use fit::{
+    Calibration, Discrepancy, Estimate, FitError, Fitted, Limit, LimitKind, Noise, Residuals,
+    residuals,
+};
 pub use noise::NoiseEstimate;
 pub use pairing::PairingRule;
 pub use progress::{Pass, Step, Watch};
-pub use report::{CandidateReport, ErrorSummary, Report, ResidualPattern, Verdict};
+pub use report::{
+    CandidateReport, ErrorSummary, LeftOut, Remainder, Report, ResidualPattern, Verdict,
+};
 pub use settings::DiagnoseSettings;
 pub use whiteness::Whiteness;
 
 use crate::measured::MeasuredModes;
 use crate::modal::ModalError;
-use crate::optim::Silent;
 use crate::structure::Structure;
 use assemble::Findings;
 use candidate::Stage;
@@ -131,87 +140,49 @@ pub fn diagnose_watched(
 ) -> Result<Report, DiagnoseError> {
     settings.check()?;
     let ctx = calibrate::prepare(model, measured, &settings)?;
-    let library = candidate::library(&ctx, settings.extended);
-    // Under the stated noise: the largest physical model gives the noise estimate.
-    // Data with their own standard errors are weighed by them throughout; else by the
-    // stated noise first.
-    let stated = Calibration {
+    // The measurement error: the data's own standard errors where every mode carries them,
+    // else the stated noise; each fit adds its own discrepancy to it.
+    let calibration = Calibration {
         noise: settings.noise,
+        discrepancy: Discrepancy::default(),
         pairing: settings.pairing.clone(),
         shape_floor: fit::SHAPE_FLOOR,
         measured_std: measured.has_std(),
     };
-    let first_base = fit::fit(&ctx, measured, &stated, &[], &mut Silent)?;
-    watch.tell(&Step::Calibrated {
-        chi2: first_base.chi2,
-        iterations: first_base.iterations,
-    });
-    let first_stage = Stage {
-        ctx: &ctx,
-        measured,
-        calibration: &stated,
-        base: &first_base,
-        estimate: None,
-        watch,
-    };
-    let first = candidate::fit_all(&library, &first_stage, None, None);
-    let (estimate, checked) = if stated.measured_std {
-        let largest = yardstick::largest(&first, &first_base);
-        let estimate = noise::from_data(largest.name, largest.fitted, measured, &stated);
-        (estimate, None)
-    } else {
-        let chosen = yardstick::choose(&first, &first_stage);
-        (chosen.estimate, chosen.checked)
-    };
-    // Under the working noise: the joint calibrated again, every candidate refitted (but for
-    // the fits the noise check made under it), judged.
-    let working = Calibration {
-        noise: estimate.working,
-        pairing: settings.pairing.clone(),
-        shape_floor: estimate.working_floor,
-        measured_std: stated.measured_std,
-    };
-    let watch = watch.during(Pass::Working);
-    watch.tell(&Step::Noise(&estimate));
-    // The noise check's fits under the working calibration are this pass's own.
-    let (base_done, candidate_done) = match checked.filter(|c| c.calibration == working) {
-        Some(c) => (Some(c.base), c.candidate),
-        None => (None, None),
-    };
-    let calibrated = calibrate::calibrate(&ctx, measured, &working, &first_base, base_done)?;
+    let calibrated = calibrate::calibrate(&ctx, measured, &calibration)?;
     watch.tell(&Step::Calibrated {
         chi2: calibrated.base.chi2,
         iterations: calibrated.base.iterations,
     });
+    let measured = &calibrated.measured;
+    let library = candidate::library(&ctx, settings.extended);
     let stage = Stage {
-        calibration: &working,
+        ctx: &ctx,
+        measured,
+        calibration: &calibration,
         base: &calibrated.base,
-        estimate: Some(&estimate),
         watch,
-        ..first_stage
     };
-    let done = candidate_done.as_ref().map(|(i, fit)| (*i, fit));
-    let fits = candidate::fit_all(&library, &stage, Some(&first), done);
-    let tried = candidate::hypotheses(&library, &ctx);
+    let found = search::search(&library, &stage, candidate::hypotheses(&library, &ctx));
+    let estimate = yardstick::choose(&found, &calibrated.base, measured, &calibration);
+    watch.tell(&Step::Noise(&estimate));
     let judge = Judge {
         estimate: &estimate,
         measured,
-        tried,
     };
-    let scored = score::score(fits, &judge);
-    let reports: Vec<CandidateReport> = scored.iter().map(|s| s.report.clone()).collect();
+    let base_explains = judge
+        .of_model(&calibrated.base)
+        .explains(&estimate);
+    let (path, hypotheses) = (found.path.clone(), found.hypotheses);
+    let scored = score::score(found, &judge);
     let names: Vec<Verdict> = scored.iter().map(|s| s.verdict).collect();
-    let decision = decide::decide(
-        &reports,
-        &names,
-        judge.of_model(&calibrated.base),
-        &estimate,
-    );
+    let explains = |i: usize| decide::Judgement::of(&scored[i].report).explains(&estimate);
+    let decision = decide::decide(&path, explains, base_explains, &names);
     Ok(assemble::assemble(Findings {
         measured,
         stated: settings.noise,
-        criterion: decide::criterion(&estimate, tried, library.len()),
-        hypotheses: tried,
+        criterion: decide::criterion(&estimate, hypotheses, library.len()),
+        hypotheses,
         estimate,
         initial: &calibrated.initial,
         base: &calibrated.base,
@@ -220,6 +191,7 @@ pub fn diagnose_watched(
         per_mode: settings
             .per_mode
             .unwrap_or_else(|| report::default_settings(model, measured)),
+        left_out: calibrated.left_out.clone(),
     }))
 }
 
@@ -232,6 +204,7 @@ mod tests {
         let words: Vec<String> = [
             Verdict::None,
             Verdict::Effect,
+            Verdict::Partial,
             Verdict::Ambiguous,
             Verdict::Unexplained,
             Verdict::FrequencyDependent,
@@ -250,6 +223,7 @@ mod tests {
             [
                 "none",
                 "effect",
+                "partial",
                 "ambiguous",
                 "unexplained",
                 "frequency_dependent"

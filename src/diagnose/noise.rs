@@ -450,6 +450,18 @@ fn reweighted(rows: &[Row], mut a2: f64, mut b2: f64) -> (f64, f64) {
 pub const LARGEST_FACTOR: f64 = 4.0;
 
 impl NoiseEstimate {
+    /// The measurement error this yardstick weighs residuals by: the working noise and floor,
+    /// or the data's own standard errors; no discrepancy.
+    pub fn calibration(&self) -> Calibration {
+        Calibration {
+            noise: self.working,
+            discrepancy: Default::default(),
+            pairing: Default::default(),
+            shape_floor: self.working_floor,
+            measured_std: self.from_data,
+        }
+    }
+
     /// Whether the residual scale is one a user could have misjudged the noise by: within
     /// [`LARGEST_FACTOR`] of the stated. With the stated kept as the yardstick it is the
     /// largest model's, the smallest residual any model reaches: beyond the factor, no model

@@ -9,15 +9,15 @@ use std::fmt;
 
 use super::noise::NoiseEstimate;
 
-/// The pass of the diagnosis a step belongs to (module docs of [`super`]).
+/// The step of the diagnosis a step belongs to (module docs of [`super`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pass {
-    /// Under the stated noise, to estimate the noise.
-    Stated,
-    /// The largest models refitted under a noise estimate, to check that they fit it.
-    NoiseCheck,
-    /// Under the working noise, to select.
-    Working,
+    /// The joint calibrated.
+    Calibration,
+    /// Every candidate fitted alone.
+    Candidates,
+    /// Causes put together: the model of this many causes.
+    Together(usize),
 }
 
 /// One finished step.
@@ -45,11 +45,11 @@ pub enum Step<'a> {
     Fitted {
         /// The candidate.
         candidate: &'a str,
-        /// Its chi^2, or why it has none.
+        /// Its deviance, or why it has none.
         outcome: Result<f64, &'a (dyn std::error::Error + Send + Sync)>,
     },
-    /// The working noise of the selection chosen: estimated, the stated one kept, or the
-    /// data's own standard errors.
+    /// The yardstick of adequacy chosen: estimated, the stated noise kept, or the data's own
+    /// standard errors.
     Noise(&'a NoiseEstimate),
 }
 
@@ -65,7 +65,7 @@ impl<'a> Watch<'a> {
     pub fn new(tell: &'a (dyn Fn(Pass, &Step) + Sync)) -> Self {
         Watch {
             tell,
-            pass: Pass::Stated,
+            pass: Pass::Calibration,
         }
     }
 
@@ -128,7 +128,7 @@ mod tests {
             chi2: 1.5,
             iterations: 3,
         });
-        let later = watch.during(Pass::Working);
+        let later = watch.during(Pass::Candidates);
         later.tell(&Step::Fitted {
             candidate: "joint_mass",
             outcome: Ok(2.5),
@@ -151,9 +151,9 @@ mod tests {
         assert_eq!(
             *seen.lock().unwrap(),
             [
-                "Stated Calibrated { chi2: 1.5, iterations: 3 }",
-                "Working Fitted { candidate: \"joint_mass\", outcome: Ok(2.5) }",
-                "Working Iteration { candidate: \"c\", variant: Some(\"v\"), iteration: 2, chi2: 4.0 }",
+                "Calibration Calibrated { chi2: 1.5, iterations: 3 }",
+                "Candidates Fitted { candidate: \"joint_mass\", outcome: Ok(2.5) }",
+                "Candidates Iteration { candidate: \"c\", variant: Some(\"v\"), iteration: 2, chi2: 4.0 }",
             ]
         );
         Watch::silent().tell(&Step::Calibrated {

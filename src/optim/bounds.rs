@@ -1,9 +1,10 @@
-//! The feasible region of a least-squares problem's unknowns: linear inequalities c . x >= 0
-//! (in a calibration, a non-negative mass is c = e_i; a sensor whose radius of gyration stays
-//! within its bound is G^2 m - J >= 0), kept by the Levenberg-Marquardt iteration of module
+//! The feasible region of a least-squares problem's unknowns: linear inequalities c . x + d >= 0
+//! (in a calibration, a non-negative mass is c = e_i, d = 0; a sensor whose radius of gyration
+//! stays within its bound is G^2 m - J >= 0; a joint stiffness within its rigid limit is
+//! -x_j + ln(p_max / p_0) >= 0), kept by the Levenberg-Marquardt iteration of module
 //! [`super::lm`] by an active set:
 //!
-//! - a constraint is active at x when c . x <= 0 (to round-off) and the descent direction -g
+//! - a constraint is active at x when c . x + d <= 0 (to round-off) and the descent direction -g
 //!   of the cost / 2 leaves the feasible side (c . g > 0); the step is taken in the null space
 //!   of the active constraints, s = Z z with Z an orthonormal basis of that null space
 //!   ([`null_space`]; for coordinate constraints, the other coordinate vectors: this freezes
@@ -11,7 +12,7 @@
 //!   at the bound;
 //! - a trial point that violates a constraint is projected back onto the feasible side by
 //!   cyclic orthogonal projections onto the violated hyperplanes (for a coordinate constraint,
-//!   clamping at 0).
+//!   clamping at its bound -d / c).
 //!
 //! Fitting inside the plausible range, rather than fitting freely and excluding a fit that
 //! oversteps it, keeps an effect whose best plausible size lies on the bound: its fit there is
@@ -24,38 +25,57 @@ use faer::Mat;
 /// Largest number of passes of cyclic projections.
 const PROJECTION_PASSES: usize = 50;
 
-/// Linear inequalities sum_i c_i x_i >= 0 on the unknowns x (module docs).
+/// Linear inequalities sum_i c_i x_i + d >= 0 on the unknowns x (module docs).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Bounds {
     rows: Vec<Vec<(usize, f64)>>,
+    /// The offset d of each row.
+    offsets: Vec<f64>,
 }
 
 impl Bounds {
-    /// The inequalities, each as (unknown, coefficient) pairs.
+    /// The homogeneous inequalities sum_i c_i x_i >= 0, each as (unknown, coefficient) pairs.
     pub fn new(rows: Vec<Vec<(usize, f64)>>) -> Self {
-        Self { rows }
+        let offsets = vec![0.0; rows.len()];
+        Self { rows, offsets }
     }
 
-    fn value(row: &[(usize, f64)], x: &[f64]) -> f64 {
-        row.iter().map(|&(i, c)| c * x[i]).sum()
+    /// These inequalities and `lower <= x_i <= upper` (either side infinite: absent).
+    pub fn with_interval(mut self, i: usize, lower: f64, upper: f64) -> Self {
+        if lower.is_finite() {
+            self.rows.push(vec![(i, 1.0)]);
+            self.offsets.push(-lower);
+        }
+        if upper.is_finite() {
+            self.rows.push(vec![(i, -1.0)]);
+            self.offsets.push(upper);
+        }
+        self
+    }
+
+    fn value(row: &[(usize, f64)], d: f64, x: &[f64]) -> f64 {
+        row.iter().map(|&(i, c)| c * x[i]).sum::<f64>() + d
     }
 
     fn norm(row: &[(usize, f64)]) -> f64 {
         row.iter().map(|&(_, c)| c * c).sum::<f64>().sqrt()
     }
 
-    /// Whether constraint `row` holds at x, within round-off.
-    fn holds(row: &[(usize, f64)], x: &[f64]) -> bool {
+    /// Whether constraint `row` with offset `d` holds at x, within round-off.
+    fn holds(row: &[(usize, f64)], d: f64, x: &[f64]) -> bool {
         let scale = row
             .iter()
             .map(|&(i, c)| (c * x[i]).abs())
-            .fold(0.0, f64::max);
-        Self::value(row, x) >= -1e-12 * scale
+            .fold(d.abs(), f64::max);
+        Self::value(row, d, x) >= -1e-12 * scale
     }
 
     /// Whether every inequality holds at x (within round-off).
     pub fn feasible(&self, x: &[f64]) -> bool {
-        self.rows.iter().all(|row| Self::holds(row, x))
+        self.rows
+            .iter()
+            .zip(&self.offsets)
+            .all(|(row, &d)| Self::holds(row, d, x))
     }
 
     /// An orthonormal basis (columns of length n) of the constraints active at x under the
@@ -63,9 +83,9 @@ impl Bounds {
     pub fn active_basis(&self, x: &[f64], g: &[f64]) -> Vec<Vec<f64>> {
         let n = x.len();
         let mut basis: Vec<Vec<f64>> = Vec::new();
-        for row in &self.rows {
-            let at_bound = Self::value(row, x) <= 1e-12 * Self::norm(row);
-            if !at_bound || Self::value(row, g) <= 0.0 {
+        for (row, &d) in self.rows.iter().zip(&self.offsets) {
+            let at_bound = Self::value(row, d, x) <= 1e-12 * Self::norm(row).max(d.abs());
+            if !at_bound || Self::value(row, 0.0, g) <= 0.0 {
                 continue;
             }
             let mut v = vec![0.0; n];
@@ -96,12 +116,12 @@ impl Bounds {
             if self.feasible(&x) {
                 return Some(x);
             }
-            for row in &self.rows {
-                let value = Self::value(row, &x);
+            for (row, &d) in self.rows.iter().zip(&self.offsets) {
+                let value = Self::value(row, d, &x);
                 if value < 0.0 {
-                    if let [(i, _)] = row.as_slice() {
+                    if let [(i, c)] = row.as_slice() {
                         // A coordinate bound: clamp exactly.
-                        x[*i] = 0.0;
+                        x[*i] = -d / c;
                         continue;
                     }
                     let norm2: f64 = row.iter().map(|&(_, c)| c * c).sum();
@@ -193,6 +213,24 @@ mod tests {
         assert!(b.feasible(&q), "{q:?}");
         // A coordinate bound clamps exactly.
         assert_eq!(b.project(vec![0.5, -1.0]), Some(vec![0.5, 0.0]));
+    }
+
+    /// An interval on one unknown: feasible inside, clamped exactly onto the violated side,
+    /// active only where the descent leaves it.
+    #[test]
+    fn an_interval_clamps_to_its_ends_and_is_active_there() {
+        let b = Bounds::new(vec![vec![(1, 1.0)]]).with_interval(0, -2.0, 3.0);
+        assert!(b.feasible(&[-2.0, 0.0]) && b.feasible(&[3.0, 1.0]));
+        assert!(!b.feasible(&[3.5, 0.0]) && !b.feasible(&[-2.5, 0.0]));
+        assert_eq!(b.project(vec![7.0, 1.0]), Some(vec![3.0, 1.0]));
+        assert_eq!(b.project(vec![-9.0, -1.0]), Some(vec![-2.0, 0.0]));
+        // At the upper end, a gradient pushing further up (g < 0) activates it; down, not.
+        assert_eq!(b.active_basis(&[3.0, 1.0], &[-1.0, 0.0]).len(), 1);
+        assert!(b.active_basis(&[3.0, 1.0], &[1.0, 0.0]).is_empty());
+        assert!(b.active_basis(&[0.0, 1.0], &[-1.0, 0.0]).is_empty());
+        // Infinite ends are absent.
+        let open = Bounds::default().with_interval(0, f64::NEG_INFINITY, f64::INFINITY);
+        assert_eq!(open, Bounds::default());
     }
 
     #[test]

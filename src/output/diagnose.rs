@@ -3,8 +3,8 @@
 use std::io::{self, Write};
 
 use super::table::{plus_minus, sci, write_table};
-use crate::diagnose::Estimate;
 use crate::diagnose::noise::LARGEST_FACTOR;
+use crate::diagnose::{Estimate, LimitKind};
 use crate::diagnose::report::Profile;
 use crate::diagnose::report::{
     ErrorSummary, Flatness, Lacking, Misfit, ModeCorrection, Remaining, Source,
@@ -103,15 +103,23 @@ fn corrections(
 }
 
 /// The verdict of `r` in words: a sentence for the text report when `long`, else a title
-/// (the name of the selected candidate, `ambiguous (a, b)`, `none`, ...).
+/// (the name of the selected candidate, `partial (a)`, `ambiguous (a, b)`, `none`, ...).
 pub fn verdict_text(r: &Report, long: bool) -> String {
     let selected = r.selected.as_deref().unwrap_or("");
     let contenders = r.contenders.join(", ");
+    let removed = r
+        .remaining
+        .as_ref()
+        .map_or(String::new(), |m| format!("{:.0}%", 100.0 * m.removed));
     match (r.verdict, long) {
         (Verdict::None, false) => "none".into(),
-        (Verdict::None, true) => "none: the calibrated model explains the data within the noise (the working noise below)".into(),
+        (Verdict::None, true) => "none: the calibrated model explains the data within the measurement error (the yardstick below)".into(),
         (Verdict::Effect, false) => selected.into(),
         (Verdict::Effect, true) => format!("effect: {selected}"),
+        (Verdict::Partial, false) => format!("partial ({selected})"),
+        (Verdict::Partial, true) => format!(
+            "partial: {selected} is clearly the best explanation and removes {removed} of the calibrated joint's misfit, but a misfit beyond the measurement error remains (below)"
+        ),
         (Verdict::Ambiguous, false) => format!("ambiguous ({contenders})"),
         (Verdict::Ambiguous, true) => format!(
             "ambiguous: {contenders} explain the data about equally well (AIC within {AMBIGUITY_MARGIN} of the best); 'after' is the best, {selected}"
@@ -122,7 +130,10 @@ pub fn verdict_text(r: &Report, long: bool) -> String {
             alphas(r)
         ),
         (Verdict::Unexplained, false) => "unexplained".into(),
-        (Verdict::Unexplained, true) => "unexplained: the residual stays above the noise with every candidate (an effect outside the library)".into(),
+        (Verdict::Unexplained, true) if !r.contenders.is_empty() => format!(
+            "unexplained: {contenders} each explain part of the misfit about equally well (AIC within {AMBIGUITY_MARGIN}), and none brings it down to the measurement error (an effect outside the library, or several)"
+        ),
+        (Verdict::Unexplained, true) => "unexplained: no candidate is clearly better than the calibrated joint, and the joint alone leaves a misfit beyond the measurement error (an effect outside the library)".into(),
     }
 }
 
@@ -204,25 +215,74 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     Ok(())
 }
 
-/// The fitted parameters, each `name = value +- se unit`, or `not identifiable`.
+/// The fitted parameters, each `name = value +- se unit`, `not identifiable`, or at a limit
+/// with the bound the data set.
 fn write_parameters(out: &mut dyn Write, parameters: &[Estimate]) -> io::Result<()> {
     writeln!(out, "\nfitted parameters after:")?;
     for e in parameters {
-        writeln!(
-            out,
-            "  {} = {} {}",
-            e.name,
-            plus_minus(e.value, e.se),
-            e.unit
-        )?;
+        match e.limit {
+            Some(limit) => {
+                let (words, side) = match limit.kind {
+                    LimitKind::Rigid => ("rigid", ">="),
+                    LimitKind::Free => ("free", "<="),
+                };
+                writeln!(
+                    out,
+                    "  {} = {words}: the data cannot tell it from its {words} limit ({} {side} {} {} at 95%; the fit stopped at {})",
+                    e.name,
+                    e.name,
+                    sci(limit.bound),
+                    e.unit,
+                    sci(e.value)
+                )?;
+            }
+            None => writeln!(
+                out,
+                "  {} = {} {}",
+                e.name,
+                plus_minus(e.value, e.se),
+                e.unit
+            )?,
+        }
     }
     Ok(())
 }
 
-/// The verdict, with the trend and the misfit's pattern when there are.
+/// The verdict, with the trend and the misfit's pattern when there are, what remains with a
+/// partial explanation, and the modes left out.
 fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = verdict_text(r, true);
     writeln!(out, "verdict: {verdict}")?;
+    for l in &r.left_out {
+        writeln!(
+            out,
+            "  mode {} ({:.4} Hz) left out: {}",
+            l.mode, l.frequency_hz, l.reason
+        )?;
+    }
+    if let Some(m) = &r.remaining {
+        writeln!(
+            out,
+            "  remaining with {}: chi^2 {:.1}/{} under the measurement error (the joint calibrated: {:.1}/{}); its discrepancy: frequencies {:.3}%, shapes {:.3}% of the peak (standard deviations beyond the measurement error)",
+            r.selected.as_deref().unwrap_or(""),
+            m.chi2,
+            m.dof,
+            r.before.chi2,
+            r.before.dof,
+            100.0 * r.discrepancy.frequency,
+            100.0 * r.discrepancy.shape
+        )?;
+        write_pattern(out, &m.pattern)?;
+        if m.modes.is_empty() {
+            writeln!(
+                out,
+                "  no single mode stays beyond the measurement error: the misfit is spread over the modes"
+            )?;
+        }
+        for mode in &m.modes {
+            writeln!(out, "    {}", remaining_text(mode))?;
+        }
+    }
     for f in &r.trend {
         writeln!(
             out,
@@ -234,6 +294,16 @@ fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         )?;
     }
     if let Some(p) = &r.pattern {
+        write_pattern(out, p)?;
+        write_remains(out, &r.remains)?;
+    }
+    Ok(())
+}
+
+/// Where a misfit sits: its share in the frequencies, the modes that carry most, the stretches
+/// of the beams with the largest shape residuals.
+fn write_pattern(out: &mut dyn Write, p: &crate::diagnose::ResidualPattern) -> io::Result<()> {
+    {
         let modes: Vec<String> = p
             .modes
             .iter()
@@ -271,7 +341,6 @@ fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
             "  largest shape residuals along the beams (share of the shape chi^2): {}",
             regions.join("; ")
         )?;
-        write_remains(out, &r.remains)?;
     }
     Ok(())
 }
@@ -362,7 +431,7 @@ fn write_noise(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     }
     writeln!(
         out,
-        "noise estimated from the shape residuals of the largest model that fits ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); the selection used frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
+        "noise estimated from the shape residuals of the largest model that fits ({}): shape {:.3e} ({:.2}x stated), floor {:.3e} of the peak; frequencies alone {:.3e} ({:.2}x stated, a check); adequacy judged under frequency {:.3e}, shape {:.3e}, floor {:.3} of the peak",
         e.from_model,
         e.shape,
         e.shape_factor,
@@ -405,10 +474,11 @@ pub fn summary_rows(r: &Report) -> Vec<Vec<String>> {
 }
 
 /// The columns of [`candidate_rows`].
-pub const CANDIDATE_HEADERS: [&str; 8] = [
+pub const CANDIDATE_HEADERS: [&str; 9] = [
     "candidate",
     "size",
     "chi^2/dof",
+    "discr. f, s (%)",
     "LR stat",
     "p (adj.)",
     "P(fit)",
@@ -479,6 +549,9 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
             c.name.clone(),
             plus_minus(c.size.unwrap_or(0.0), c.size_se.unwrap_or(0.0)),
             format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
+            c.discrepancy
+                .map(|d| format!("{:.3}, {:.3}", 100.0 * d.frequency, 100.0 * d.shape))
+                .unwrap_or_default(),
             format!("{:.1}", c.lrt.unwrap_or(0.0)),
         ]
     };
@@ -499,6 +572,7 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
             Some(e) => vec![
                 c.name.clone(),
                 "fit failed".into(),
+                String::new(),
                 String::new(),
                 String::new(),
                 String::new(),
@@ -532,6 +606,7 @@ mod tests {
             unit: "N/m",
             value,
             se,
+            limit: None,
         };
         let mut out = Vec::new();
         write_parameters(&mut out, &[estimate(1e7, 2e5), estimate(0.0, f64::NAN)]).unwrap();

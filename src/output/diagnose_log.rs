@@ -6,9 +6,9 @@ use crate::diagnose::{Pass, Step};
 /// The line of `step` of pass `pass`, `seconds` into the run.
 pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
     let pass = match pass {
-        Pass::Stated => "stated noise",
-        Pass::NoiseCheck => "noise check",
-        Pass::Working => "working noise",
+        Pass::Calibration => "calibration".to_string(),
+        Pass::Candidates => "candidates".to_string(),
+        Pass::Together(n) => format!("{n} causes together"),
     };
     let what = match step {
         Step::Calibrated { chi2, iterations } => {
@@ -25,8 +25,8 @@ pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
         }
         Step::Fitted {
             candidate,
-            outcome: Ok(chi2),
-        } => format!("{candidate} fitted: chi^2 {chi2:.1}"),
+            outcome: Ok(deviance),
+        } => format!("{candidate} fitted: deviance {deviance:.1}"),
         Step::Fitted {
             candidate,
             outcome: Err(reason),
@@ -34,14 +34,16 @@ pub fn line(seconds: f64, pass: Pass, step: &Step) -> String {
         Step::Noise(e) => {
             let (f, a) = (e.working.frequency, e.working.shape);
             if e.from_data {
-                format!("the data's own standard errors (RMS frequency {f:.3e}, shape {a:.3e})")
+                format!(
+                    "yardstick: the data's own standard errors (RMS frequency {f:.3e}, shape {a:.3e})"
+                )
             } else if e.stated_kept {
                 format!(
-                    "the stated noise kept (frequency {f:.3e}, shape {a:.3e}): no model's residuals pass the checks"
+                    "yardstick: the stated noise kept (frequency {f:.3e}, shape {a:.3e}): no model's residuals pass the checks"
                 )
             } else {
                 format!(
-                    "estimated from the residuals of {}: frequency {f:.3e}, shape {a:.3e}",
+                    "yardstick estimated from the residuals of {}: frequency {f:.3e}, shape {a:.3e}",
                     e.from_model
                 )
             }
@@ -59,7 +61,7 @@ mod tests {
         assert_eq!(
             line(
                 12.345,
-                Pass::Working,
+                Pass::Candidates,
                 &Step::Iteration {
                     candidate: "frequency_dependence",
                     variant: Some("one alpha"),
@@ -67,12 +69,12 @@ mod tests {
                     chi2: 212.44,
                 }
             ),
-            "diagnose [    12.3 s] working noise: frequency_dependence (one alpha) iteration 3: chi^2 212.4"
+            "diagnose [    12.3 s] candidates: frequency_dependence (one alpha) iteration 3: chi^2 212.4"
         );
         assert_eq!(
             line(
                 1.0,
-                Pass::Stated,
+                Pass::Calibration,
                 &Step::Iteration {
                     candidate: "sensor_mass",
                     variant: None,
@@ -80,7 +82,7 @@ mod tests {
                     chi2: 9.96,
                 }
             ),
-            "diagnose [     1.0 s] stated noise: sensor_mass iteration 1: chi^2 10.0"
+            "diagnose [     1.0 s] calibration: sensor_mass iteration 1: chi^2 10.0"
         );
         let why = crate::diagnose::candidate::CandidateError::Undetermined(
             "the data do not determine it".into(),
@@ -88,13 +90,13 @@ mod tests {
         assert_eq!(
             line(
                 0.0,
-                Pass::NoiseCheck,
+                Pass::Together(2),
                 &Step::Fitted {
                     candidate: "joint_mass",
                     outcome: Err(&why),
                 }
             ),
-            "diagnose [     0.0 s] noise check: joint_mass not fitted: the data do not determine it"
+            "diagnose [     0.0 s] 2 causes together: joint_mass not fitted: the data do not determine it"
         );
     }
 }

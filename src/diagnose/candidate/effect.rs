@@ -1,11 +1,12 @@
 //! Any effect of the model library as a candidate: its parameters fitted with the joints'
-//! (module `fit`), the likelihood-ratio statistic against the joint-only fit, the size and its
-//! standard error, and whether the fitted size is physical.
+//! (module `fit`) and its own discrepancy (module `discrepancy`), the size and its standard
+//! error, and whether the fitted size is physical.
 
 use std::sync::Arc;
 
-use super::{Candidate, CandidateError, Fit, Stage, Tier, implausible};
-use crate::diagnose::fit::{self, Fitted};
+use super::{Candidate, CandidateError, Fit, Part, Stage, Tier, implausible};
+use crate::diagnose::discrepancy;
+use crate::diagnose::fit::{self, Calibration, Estimate, Fitted};
 use crate::diagnose::progress::Iterations;
 use crate::model::effects::{Effect, EffectContext};
 
@@ -39,34 +40,69 @@ impl Candidate for EffectCandidate {
         self.effect.applies(ctx)
     }
 
-    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
-        fit_effect(&self.effect, stage, earlier.and_then(|e| e.model.as_ref()))
+    fn part(&self) -> Option<Part> {
+        Some(Part::Effect(self.effect.clone()))
+    }
+
+    fn fit(&self, stage: &Stage) -> Result<Fit, CandidateError> {
+        fit_effect(&self.effect, stage, true)
     }
 }
 
-/// `effect` fitted with the joints on `stage`, from the optimum `from` of an earlier stage
-/// when given.
+/// `effect` fitted with the joints on `stage` from the joint-only optimum (the effect at
+/// zero), with its own discrepancy when `own_discrepancy` (else under the joint-only fit's:
+/// the members of a scan, ranked on one error model).
 pub(super) fn fit_effect(
     effect: &Arc<dyn Effect>,
     stage: &Stage,
-    from: Option<&Fitted>,
+    own_discrepancy: bool,
 ) -> Result<Fit, CandidateError> {
     let effects = std::slice::from_ref(effect);
-    let (ctx, measured, calibration) = (stage.ctx, stage.measured, stage.calibration);
+    let (ctx, measured) = (stage.ctx, stage.measured);
     let mut told = Iterations {
         watch: stage.watch,
         candidate: effect.name(),
         variant: None,
     };
-    let fitted = match from {
-        Some(from) => fit::refit(ctx, measured, calibration, effects, from, &mut told)?,
-        None => fit::fit(ctx, measured, calibration, effects, &mut told)?,
+    let x0 = fit::extended(stage.base, effect.parameters(ctx).len());
+    let fitted = if own_discrepancy {
+        discrepancy::fit_with(measured, stage.calibration, stage.start(), |cal, from| {
+            match from {
+                Some(from) => fit::refit(ctx, measured, cal, effects, from, &mut told),
+                None => fit::fit_from(ctx, measured, cal, effects, &x0, &mut told),
+            }
+        })?
+    } else {
+        let calibration = Calibration {
+            discrepancy: stage.start(),
+            ..stage.calibration.clone()
+        };
+        fit::fit_from(ctx, measured, &calibration, effects, &x0, &mut told)?
     };
     let joints = stage.base.estimates.len();
     let parameters = fitted.estimates[joints..].to_vec();
+    let (size, excluded) = judged(effect.as_ref(), ctx, &fitted, &parameters);
+    Ok(Fit::of_model(
+        measured,
+        fitted,
+        parameters,
+        size,
+        effect.describe().to_string(),
+        effect.parameters(ctx).len(),
+        excluded,
+    ))
+}
+
+/// The size of `effect` at its fitted `parameters` in `fitted` (the size's standard error by
+/// linear propagation of theirs), and why it is not physical if it is not.
+pub(super) fn judged(
+    effect: &dyn Effect,
+    ctx: &EffectContext,
+    fitted: &Fitted,
+    parameters: &[Estimate],
+) -> ((f64, f64), Option<String>) {
     let theta: Vec<f64> = parameters.iter().map(|e| e.value).collect();
     let size = effect.size_of_theta(ctx, &theta);
-    // Linear propagation of the parameters' standard errors to the size.
     let size_se = parameters
         .iter()
         .enumerate()
@@ -78,16 +114,6 @@ pub(super) fn fit_effect(
         })
         .sum::<f64>()
         .sqrt();
-    let excluded = implausible(effect.as_ref(), ctx, &fitted, &theta);
-    let added = parameters.len();
-    let describe = effect.describe().to_string();
-    Ok(Fit::of_model(
-        stage,
-        fitted,
-        parameters,
-        (size, size_se),
-        describe,
-        added,
-        excluded,
-    ))
+    let excluded = implausible(effect, ctx, fitted, &theta);
+    ((size, size_se), excluded)
 }

@@ -7,15 +7,16 @@
 //! full section right up to the free face where the other layer ends.
 //!
 //! The fit is the calibration's (module `fit`): x = ln(p / p_0) for every joint parameter (the
-//! laps' k_n, k_s, k_r and the other joints' k1, k2), the shape scales c_r, Levenberg-Marquardt.
+//! laps' k_n, k_s, k_r and the other joints' k1, k2), the shape scales c_r, Levenberg-Marquardt,
+//! with its own discrepancy (module `discrepancy`). A glued interface runs k_n, k_s to their
+//! rigid end and is reported there as a limit (module `fit`'s `limits`).
 //! The start p_0 of k_n, k_s, k_r is the best, by chi^2 with only the shape scales fitted, of a
 //! grid around their nominal values (the model file's, or else the interface's natural scales:
 //! [`crate::model::chain::Lap::shear_scale`] for k_s, 10^4 times
 //! [`crate::model::chain::Lap::normal_scale`] for k_n, bolted contact being stiff in
 //! compression, and the notch's bonded-limit stiffness for k_r): k_s at 10^-3 ... 10^3 of its
 //! nominal value, k_n at 10^-2, 1, 10^2 of its, k_r at 1 and 10 times its (a compliant
-//! interface makes the root stiffer than the bonded notch); every lap at the same factors. The
-//! refit of a later stage starts from the earlier optimum, on the same start.
+//! interface makes the root stiffer than the bonded notch); every lap at the same factors.
 //!
 //! A start, or a fit, that pairs a measured mode with an axial mode of the layers (the slip of
 //! a soft interface brings them down among the bending modes) is refused: a grid point is then
@@ -30,8 +31,9 @@
 
 use std::sync::Arc;
 
-use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::fit::{self, Fitted};
+use super::{Candidate, CandidateError, Fit, Part, Stage, Tier};
+use crate::diagnose::discrepancy;
+use crate::diagnose::fit::{self, Calibration, Fitted};
 use crate::diagnose::progress::Iterations;
 use crate::model::chain::assembly::LAYERED_LAP;
 use crate::model::effects::EffectContext;
@@ -91,7 +93,7 @@ fn context_at(stage: &Stage, structure: &Structure, factors: [f64; 3]) -> Arc<Ef
 /// The first measured mode (1-based) that `fitted` pairs with an axial mode of the layers
 /// (a model mode whose axial DOFs move more than its transverse ones: transverse sensors
 /// barely see it, and a MAC on a few of them may still resemble a bending mode).
-fn axial_pair(fitted: &Fitted) -> Option<usize> {
+pub(super) fn axial_pair(fitted: &Fitted) -> Option<usize> {
     let structure = &fitted.configured.structure;
     let y = fitted.modal.vectors();
     let share = |s: usize, d: Direction| -> f64 {
@@ -118,13 +120,17 @@ fn start(stage: &Stage, structure: &Structure) -> Result<Arc<EffectContext>, Can
     } else {
         &[1.0]
     };
+    let calibration = Calibration {
+        discrepancy: stage.start(),
+        ..stage.calibration.clone()
+    };
     let grid = NORMAL_FACTORS
         .iter()
         .flat_map(|&n| SHEAR_FACTORS.iter().map(move |&s| (n, s)))
         .flat_map(|(n, s)| roots.iter().map(move |&r| [n, s, r]));
     for factors in grid {
         let ctx = context_at(stage, structure, factors);
-        match fit::as_given(&ctx, stage.measured, stage.calibration) {
+        match fit::as_given(&ctx, stage.measured, &calibration) {
             Ok(f) if axial_pair(&f).is_none() && best.as_ref().is_none_or(|b| f.chi2 < b.0) => {
                 best = Some((f.chi2, ctx))
             }
@@ -158,26 +164,46 @@ impl Candidate for LayeredLap {
         alternative(ctx).is_some()
     }
 
-    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+    fn part(&self) -> Option<Part> {
+        Some(Part::Lap)
+    }
+
+    fn fit(&self, stage: &Stage) -> Result<Fit, CandidateError> {
         let structure = alternative(stage.ctx).ok_or_else(|| {
             CandidateError::Undetermined("the model file gives no joint's overlap".into())
         })?;
-        let (measured, calibration) = (stage.measured, stage.calibration);
+        let measured = stage.measured;
         let mut told = Iterations {
             watch: stage.watch,
             candidate: LAYERED_LAP,
             variant: None,
         };
-        let fitted: Fitted = match earlier.and_then(|e| e.model.as_ref()) {
-            Some(from) => {
-                let ctx = from.configured.ctx.clone();
-                fit::refit(&ctx, measured, calibration, &[], from, &mut told)?
+        let ctx = start(stage, structure)?;
+        let fitted = discrepancy::fit_with(measured, stage.calibration, stage.start(), |cal, from| {
+            match from {
+                Some(from) => fit::refit(&ctx, measured, cal, &[], from, &mut told),
+                None => fit::fit(&ctx, measured, cal, &[], &mut told),
             }
-            None => {
-                let ctx = start(stage, structure)?;
-                fit::fit(&ctx, measured, calibration, &[], &mut told)?
-            }
-        };
+        })?;
+        let (parameters, added, size) = summary(&fitted);
+        let excluded = axial_pair(&fitted)
+            .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"));
+        Ok(Fit::of_model(
+            measured,
+            fitted,
+            parameters,
+            size,
+            self.describe().to_string(),
+            added,
+            excluded,
+        ))
+    }
+}
+
+/// The laps' fitted parameters in `fitted` (k_n, k_s, k_r of each), the unknowns the laps add
+/// to the point joint's model (one for the overlap's given geometry, one per fitted k_r), and
+/// the size (k_s of the first lap) with its standard error.
+pub(super) fn summary(fitted: &Fitted) -> (Vec<fit::Estimate>, usize, (f64, f64)) {
         let laps = lap_parameters(&fitted.configured.structure);
         // The estimates are the identified parameters' in model order (a fixed k_n or k_s
         // has none).
@@ -201,17 +227,5 @@ impl Candidate for LayeredLap {
         let first_ks = laps.first().and_then(|l| l[1]);
         let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
         let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
-        let excluded = axial_pair(&fitted)
-            .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"));
-        let describe = self.describe().to_string();
-        Ok(Fit::of_model(
-            stage,
-            fitted,
-            parameters,
-            (size, size_se),
-            describe,
-            added,
-            excluded,
-        ))
-    }
+    (parameters, added, (size, size_se))
 }

@@ -1,15 +1,20 @@
 //! The candidate explanations a diagnosis tries, behind one trait.
 //!
-//! A [`Candidate`] is fitted on a [`Stage`] (the data, the effects' context, a calibration and
-//! the joint-only fit under it) and returns a [`Fit`]: its parameters, its chi^2, the
-//! likelihood-ratio statistic against the joint-only fit, its residuals and, when it has one,
-//! the refitted model that becomes the diagnosis's "after". Four kinds implement it:
+//! A [`Candidate`] is fitted on a [`Stage`] (the data, the effects' context, the measurement
+//! error and the joint-only fit) once, with its own model discrepancy (module
+//! `discrepancy`), and returns a [`Fit`]: its parameters, its deviance under its error model,
+//! its residuals and, when it has one, the fitted model that becomes the diagnosis's "after".
+//! Four kinds implement it:
 //! - [`EffectCandidate`]: any [`Effect`] of the model library, fitted with the joints;
 //! - [`FrequencyDependence`]: the paper's frequency-dependent joint, every mode solved with
 //!   the joint at its own frequency;
+//! - [`LayeredLap`]: the point joints whose overlap the model gives replaced by the lap;
 //! - [`Scan`]: a family of effects indexed by a coordinate (a position along the beams, the
-//!   length of a joint region), each member fitted, the best kept, with the profile of chi^2
-//!   along the coordinate.
+//!   length of a joint region), each member fitted, the best kept, with the profile of its
+//!   deviance along the coordinate.
+//!
+//! Effects and the layered lap also combine ([`Candidate::part`], module `combined`): the
+//! search adds causes one after another (module `search`).
 //!
 //! [`registry`] lists every candidate once, in report order, each with its [`Tier`]: the
 //! default library, the `--extended` one. A candidate is registered by one line there (an
@@ -18,6 +23,7 @@
 //! Layer: diagnose; imports the model (effects), measured data, modal solutions and the
 //! diagnosis's own fit, never output.
 
+mod combined;
 mod effect;
 pub mod frequency_dependence;
 mod layered_lap;
@@ -27,46 +33,39 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
+pub use combined::{Part, combine};
 pub use effect::EffectCandidate;
 pub use frequency_dependence::FrequencyDependence;
 pub use layered_lap::LayeredLap;
 pub use scan::Scan;
 
-use super::fit::{Calibration, Estimate, FitError, Fitted, Residuals};
-use super::noise::NoiseEstimate;
+use super::fit::{Calibration, Discrepancy, Estimate, FitError, Fitted, Residuals};
 use super::progress::{Step, Watch};
 use super::report::Verdict;
 use crate::measured::MeasuredModes;
 pub use crate::model::effects::Tier;
 use crate::model::effects::{self, Effect, EffectContext};
 
-/// What a candidate is fitted against: one stage of the diagnosis (under the stated noise
-/// first, to estimate the noise; then under the working noise, to select).
+/// What a candidate is fitted against.
 #[derive(Debug, Clone, Copy)]
 pub struct Stage<'a> {
     /// The nominal structure and the sensors.
     pub ctx: &'a Arc<EffectContext>,
     /// The measured modes.
     pub measured: &'a MeasuredModes,
-    /// The noise and the pairing of the stage.
+    /// The measurement error and the pairing (no discrepancy: each fit estimates its own).
     pub calibration: &'a Calibration,
-    /// The joint-only fit under that calibration: the model every candidate extends.
+    /// The joint-only fit: the model every candidate extends, and its discrepancy the start
+    /// of theirs.
     pub base: &'a Fitted,
-    /// The noise estimate whose working noise the calibration holds, when it does (None:
-    /// the stated noise, taken as known).
-    pub estimate: Option<&'a NoiseEstimate>,
     /// Where the steps of the fits go.
     pub watch: Watch<'a>,
 }
 
 impl Stage<'_> {
-    /// P-value of a likelihood-ratio statistic `lrt` of `k` more unknowns on this stage: F
-    /// under an estimated noise scale, chi-square under a known one (the selection's test).
-    pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
-        match self.estimate {
-            Some(e) => e.lrt_p_value(lrt, k),
-            None => crate::stats::chi2_sf(lrt, k.max(1) as f64),
-        }
+    /// The discrepancy a candidate's fit starts from: the joint-only fit's.
+    pub fn start(&self) -> Discrepancy {
+        self.base.discrepancy
     }
 }
 
@@ -79,13 +78,16 @@ pub struct Fit {
     pub size: (f64, f64),
     /// What the candidate is and what its size means.
     pub describe: String,
-    /// chi^2 of the model with the candidate.
-    pub chi2: f64,
-    /// Its degrees of freedom.
+    /// The deviance of the model with the candidate under its own error model (module
+    /// `discrepancy`).
+    pub deviance: f64,
+    /// The discrepancy estimated with it.
+    pub discrepancy: Discrepancy,
+    /// Degrees of freedom of that estimate (infinite: none estimated).
+    pub discrepancy_dof: f64,
+    /// Its degrees of freedom (data less unknowns).
     pub dof: usize,
-    /// The likelihood-ratio statistic chi^2(joint only) - chi^2(with the candidate), >= 0.
-    pub lrt: f64,
-    /// Unknowns the candidate adds to the joint-only fit: the degrees of freedom of the
+    /// Unknowns the candidate adds to the model it extends: the degrees of freedom of the
     /// likelihood-ratio test.
     pub added: usize,
     /// The model's unknowns besides the shape scales (joints and candidate): the lack of fit
@@ -93,24 +95,21 @@ pub struct Fit {
     pub unknowns: usize,
     /// The unweighted residuals of the model with the candidate.
     pub residuals: Residuals,
-    /// The refitted model, for a candidate that has one (the "after" of an `effect` verdict).
+    /// The fitted model, for a candidate that has one (the "after" when it is selected).
     pub model: Option<Fitted>,
     /// Why the fitted size is not a physical explanation, if it is not.
     pub excluded: Option<String>,
-    /// A scan's chi^2 along its coordinate.
+    /// A scan's deviance along its coordinate.
     pub profile: Option<super::report::Profile>,
-    /// A scan's member optima (None where a member failed): the starts of its refits on the
-    /// next stage.
-    pub members: Vec<Option<Fitted>>,
 }
 
 impl Fit {
-    /// The fit of a candidate whose refitted model is `fitted` on `stage`: its chi^2, degrees
-    /// of freedom, likelihood-ratio statistic against the joint-only fit and residuals, with
-    /// its own `parameters`, `size` (value, standard error), description, `added` unknowns and
-    /// reason for exclusion; no profile, no members.
+    /// The fit of a candidate whose fitted model is `fitted`: its deviance, discrepancy,
+    /// degrees of freedom and residuals on `measured`, with its own `parameters`, `size`
+    /// (value, standard error), description, `added` unknowns and reason for exclusion; no
+    /// profile.
     pub(crate) fn of_model(
-        stage: &Stage,
+        measured: &MeasuredModes,
         fitted: Fitted,
         parameters: Vec<Estimate>,
         size: (f64, f64),
@@ -121,17 +120,17 @@ impl Fit {
         Fit {
             size,
             describe,
-            chi2: fitted.chi2,
+            deviance: fitted.deviance,
+            discrepancy: fitted.discrepancy,
+            discrepancy_dof: fitted.discrepancy_dof,
             dof: fitted.dof,
-            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
             added,
             unknowns: fitted.estimates.len(),
-            residuals: super::fit::residuals(&fitted, stage.measured),
+            residuals: super::fit::residuals(&fitted, measured),
             excluded,
             parameters,
             model: Some(fitted),
             profile: None,
-            members: Vec::new(),
         }
     }
 }
@@ -172,8 +171,14 @@ pub trait Candidate: Send + Sync + std::fmt::Debug {
         Verdict::Effect
     }
 
-    /// Fits it on `stage`, from `earlier` (its fit on the previous stage) when given.
-    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError>;
+    /// What it adds to a model that another cause extends, when it combines with others
+    /// (module `combined`); None: it stands alone.
+    fn part(&self) -> Option<Part> {
+        None
+    }
+
+    /// Fits it on `stage`, with its own discrepancy.
+    fn fit(&self, stage: &Stage) -> Result<Fit, CandidateError>;
 }
 
 /// A candidate with the outcome of its fit on a stage.
@@ -250,41 +255,26 @@ pub fn catalogue(extra: &[(&'static str, &'static str)]) -> Vec<Entry> {
     candidates.chain(outside).chain(extra).collect()
 }
 
-/// Fits every candidate of `library` on `stage` (in parallel), each from its fit in
-/// `earlier` when that succeeded, but for the one `done` gives (its index, its fit on this
-/// stage, made already), taken as it is; each fit told to the stage's watch as it finishes.
-pub fn fit_all(
-    library: &[Arc<dyn Candidate>],
-    stage: &Stage,
-    earlier: Option<&[Tried]>,
-    done: Option<(usize, &Fit)>,
-) -> Vec<Tried> {
+/// Fits every candidate of `library` on `stage` (in parallel), each told to the stage's watch
+/// as it finishes.
+pub fn fit_all(library: &[Arc<dyn Candidate>], stage: &Stage) -> Vec<Tried> {
     use rayon::prelude::*;
     library
         .par_iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let from = earlier.and_then(|e| e[i].1.as_ref().ok());
-            let fit = match done {
-                Some((j, fit)) if j == i => Ok(fit.clone()),
-                _ => c.fit(stage, from),
-            };
-            tell_fitted(&stage.watch, c.as_ref(), &fit);
+        .map(|c| {
+            let fit = c.fit(stage);
+            tell_fitted(&stage.watch, c.name(), &fit);
             (c.clone(), fit)
         })
         .collect()
 }
 
 /// Tells `watch` that `candidate` was fitted: `fit`'s chi^2, or why it has none.
-pub(crate) fn tell_fitted(
-    watch: &Watch,
-    candidate: &dyn Candidate,
-    fit: &Result<Fit, CandidateError>,
-) {
+pub(crate) fn tell_fitted(watch: &Watch, name: &str, fit: &Result<Fit, CandidateError>) {
     watch.tell(&Step::Fitted {
-        candidate: candidate.name(),
+        candidate: name,
         outcome: match fit {
-            Ok(f) => Ok(f.chi2),
+            Ok(f) => Ok(f.deviance),
             Err(e) => Err(e),
         },
     });

@@ -1,10 +1,12 @@
 //! Scans: a family of effects indexed by one coordinate (a position along the beams, the
 //! length of a joint region), every member fitted with the joints and the best kept.
 //!
-//! The coordinate is estimated by its profile likelihood: chi^2 of the best fit at each member
-//! of the scan, minimised over the members. Its standard error is half the width of the set
-//! where chi^2 <= chi^2_min + 1 (the profile-likelihood interval of one standard deviation
-//! for a scale-free statistic), at least half the step to the neighbouring members, since the
+//! The coordinate is estimated by its profile likelihood: the deviance of the best fit at each
+//! member of the scan, every member under the joint-only fit's error model, minimised over the
+//! members; the best member is then fitted again with its own discrepancy (module
+//! `discrepancy`), and that is the candidate's fit. The coordinate's standard error is half the
+//! width of the set where the deviance <= its minimum + 1 (the profile-likelihood interval of
+//! one standard deviation), at least half the step to the neighbouring members, since the
 //! scan cannot resolve finer. The best of N members is the largest of N likelihood-ratio
 //! statistics: the selection counts a scan as N hypotheses
 //! ([`super::Candidate::hypotheses`]), and its information criterion counts the coordinate as
@@ -16,7 +18,7 @@ use rayon::prelude::*;
 
 use super::effect::fit_effect;
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::fit::{Estimate, Fitted};
+use crate::diagnose::fit::Estimate;
 use crate::diagnose::report::Profile;
 use crate::model::effects::{Effect, EffectContext, region_lengths, scan};
 
@@ -104,31 +106,20 @@ impl Candidate for Scan {
         !self.members(ctx).is_empty()
     }
 
-    /// Every member fitted on `stage` (in parallel), from its optimum on the earlier stage
-    /// when there is one; the best physical one kept.
-    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
+    /// Every member fitted on `stage` (in parallel) under the joint-only fit's error model;
+    /// the best physical one fitted again with its own discrepancy.
+    fn fit(&self, stage: &Stage) -> Result<Fit, CandidateError> {
         let members = self.members(stage.ctx);
-        let starts: Vec<Option<&Fitted>> = match earlier {
-            Some(e) if e.members.len() == members.len() => {
-                e.members.iter().map(Option::as_ref).collect()
-            }
-            _ => vec![None; members.len()],
-        };
         let outcomes: Vec<(f64, Result<Fit, CandidateError>)> = members
             .par_iter()
-            .zip(starts)
-            .map(|((x, e), from)| (*x, fit_effect(e, stage, from)))
+            .map(|(x, e)| (*x, fit_effect(e, stage, false)))
             .collect();
-        let optima: Vec<Option<Fitted>> = outcomes
-            .iter()
-            .map(|(_, f)| f.as_ref().ok().and_then(|f| f.model.clone()))
-            .collect();
-        // chi^2 of every member that fitted to a physical size.
+        // The deviance of every member that fitted to a physical size.
         let points: Vec<(f64, Option<f64>)> = outcomes
             .iter()
             .map(|(x, f)| {
                 let physical = f.as_ref().ok().filter(|f| f.excluded.is_none());
-                (*x, physical.map(|f| f.chi2))
+                (*x, physical.map(|f| f.deviance))
             })
             .collect();
         let mut fitted = Vec::new();
@@ -143,25 +134,23 @@ impl Candidate for Scan {
         }
         let best = (0..fitted.len())
             .filter(|&k| points[fitted[k].0].1.is_some())
-            .min_by(|&a, &b| fitted[a].1.chi2.total_cmp(&fitted[b].1.chi2));
+            .min_by(|&a, &b| fitted[a].1.deviance.total_cmp(&fitted[b].1.deviance));
         let Some(best) = best else {
             // No physical member: the best of those fitted (excluded, with its reason), or
             // why the members failed.
             let least = fitted
                 .into_iter()
-                .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2));
+                .min_by(|a, b| a.1.deviance.total_cmp(&b.1.deviance));
             return match (least, failure) {
-                (Some((_, fit)), _) => Ok(Fit {
-                    members: optima,
-                    ..fit
-                }),
+                (Some((_, fit)), _) => Ok(fit),
                 (None, Some(e)) => Err(e),
                 (None, None) => Err(CandidateError::Undetermined(
                     "the scan has no member".into(),
                 )),
             };
         };
-        let (best, mut fit) = fitted.swap_remove(best);
+        let (best, _) = fitted.swap_remove(best);
+        let mut fit = fit_effect(&members[best].1, stage, true)?;
         let profile = profile(self.coordinate, &points, best);
         let (lo, hi) = profile.interval;
         fit.parameters.push(Estimate {
@@ -169,6 +158,7 @@ impl Candidate for Scan {
             unit: self.coordinate.1,
             value: profile.best,
             se: (0.5 * (hi - lo)).max(half_step(&points, best)),
+            limit: None,
         });
         fit.describe = format!(
             "{}; best {} = {:.4} {} of {} scanned",
@@ -179,12 +169,11 @@ impl Candidate for Scan {
             points.len()
         );
         fit.profile = Some(profile);
-        fit.members = optima;
         Ok(fit)
     }
 }
 
-/// The profile of `points` (coordinate, chi^2) whose minimum is at `best`.
+/// The profile of `points` (coordinate, deviance) whose minimum is at `best`.
 fn profile(
     coordinate: (&str, &'static str),
     points: &[(f64, Option<f64>)],

@@ -18,7 +18,7 @@ pub use per_mode::{
 pub use remains::{Lacking, Misfit, Remaining, remains};
 pub use summary::{ErrorSummary, ModeError};
 
-use super::fit::{Estimate, Noise};
+use super::fit::{Discrepancy, Estimate, Noise};
 use super::noise::NoiseEstimate;
 
 /// The verdict of a diagnosis.
@@ -28,13 +28,20 @@ pub enum Verdict {
     /// The calibrated model explains the data within the working noise (stated, or estimated
     /// from the data); no candidate is significant.
     None,
-    /// A candidate is significant and brings the residual down to the noise.
+    /// A cause (or several together, `Report::causes`) is clearly the best explanation and
+    /// brings the residual down to the measurement error.
     Effect,
+    /// A cause is clearly the best explanation (several together, `Report::causes`, where the
+    /// search added more), but a misfit beyond the measurement error remains
+    /// ([`Report::remaining`] says which modes, how large and where, and the model's
+    /// discrepancy).
+    Partial,
     /// The best candidate explains the data, but another does nearly as well (within
     /// [`super::decide::AMBIGUITY_MARGIN`] of information criterion): the data cannot tell them apart.
     Ambiguous,
-    /// The residual stays above the noise with every candidate: an effect outside the library
-    /// ([`Report::pattern`] says where the residual sits).
+    /// No candidate is clearly better than the calibrated joint (none significant, or several
+    /// partial explanations the data cannot tell apart), and the joint alone does not fit:
+    /// an effect outside the library ([`Report::pattern`] says where the residual sits).
     Unexplained,
     /// The joint whose parameters scale as (f / f_ref)^alpha, each mode at its own frequency,
     /// explains the data, and no static candidate comes close: the paper's
@@ -47,8 +54,12 @@ pub enum Verdict {
 /// One candidate's fit, or why it failed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CandidateReport {
-    /// Candidate name.
+    /// Candidate name (a combination of causes: their names joined by " + ").
     pub name: String,
+    /// The model this one extends by its last cause (a combination), absent for a candidate
+    /// alone (it extends the joint-only fit).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extends: Option<String>,
     /// The effect's fitted parameters (joints are in `summary`).
     pub parameters: Vec<Estimate>,
     /// Fitted size in the unit of `jointid simulate --effect` (see `describe`).
@@ -57,16 +68,23 @@ pub struct CandidateReport {
     pub size_se: Option<f64>,
     /// What the effect is and what its size means.
     pub describe: String,
-    /// chi^2 with the candidate.
+    /// chi^2 with the candidate under the measurement error (the yardstick).
     pub chi2: Option<f64>,
     /// Degrees of freedom with the candidate.
     pub dof: Option<usize>,
-    /// Likelihood-ratio statistic chi^2(joint only) - chi^2(with candidate).
+    /// Deviance with the candidate under its own error model: measurement error and the
+    /// discrepancy estimated with it (module `discrepancy`).
+    pub deviance: Option<f64>,
+    /// The discrepancy estimated with the candidate.
+    pub discrepancy: Option<Discrepancy>,
+    /// Likelihood-ratio statistic: the deviance of the model it extends (the joint-only fit
+    /// for a candidate alone) less its own.
     pub lrt: Option<f64>,
-    /// The criterion: the likelihood-ratio p-value P(chi^2_k > lrt), Bonferroni-adjusted for
-    /// the number of candidates tried (smaller is more significant).
+    /// The criterion: the likelihood-ratio p-value (chi-square, or F where a discrepancy was
+    /// estimated), Bonferroni-adjusted for the hypotheses tried up to its step (smaller is
+    /// more significant).
     pub criterion: Option<f64>,
-    /// Goodness of fit with the candidate, P(chi^2_dof > chi^2).
+    /// Goodness of fit with the candidate under the measurement error.
     pub fit_p_value: Option<f64>,
     /// Lack of fit of the frequencies alone under the working noise, P(chi^2_dof > chi^2_f)
     /// (module `noise`).
@@ -92,12 +110,15 @@ impl CandidateReport {
     pub fn failed(name: &str, describe: &str, error: String) -> Self {
         Self {
             name: name.to_string(),
+            extends: None,
             parameters: Vec::new(),
             size: None,
             size_se: None,
             describe: describe.to_string(),
             chi2: None,
             dof: None,
+            deviance: None,
+            discrepancy: None,
             lrt: None,
             criterion: None,
             fit_p_value: None,
@@ -111,16 +132,59 @@ impl CandidateReport {
     }
 }
 
+/// What remains beyond the measurement error with the named model (`partial`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Remainder {
+    /// The share of the joint-only fit's misfit (its chi^2 under the measurement error) that
+    /// the named model removes: 1 - chi^2(after) / chi^2(before).
+    pub removed: f64,
+    /// chi^2 of the named model under the measurement error, and its degrees of freedom.
+    pub chi2: f64,
+    /// Its degrees of freedom.
+    pub dof: usize,
+    /// The modes whose frequency or shape still miss beyond the measurement error, how large
+    /// (in % and in standard deviations of the measurement error), and what the library lacks
+    /// for them where it can be said.
+    pub modes: Vec<Remaining>,
+    /// Where along the structure the remaining misfit sits.
+    pub pattern: ResidualPattern,
+}
+
+/// A measured mode the diagnosis left out: no model mode resembled it, with the model as
+/// given nor with the joint calibrated on the other modes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LeftOut {
+    /// Measured mode r.
+    pub mode: usize,
+    /// Its frequency, Hz.
+    pub frequency_hz: f64,
+    /// Why: the pairing's message.
+    pub reason: String,
+}
+
 /// A whole diagnosis.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
-    /// none, effect, ambiguous, unexplained or frequency-dependent.
+    /// none, effect, partial, ambiguous, unexplained or frequency-dependent.
     pub verdict: Verdict,
-    /// The selected candidate, when the verdict is `effect` or `frequency_dependent` (when
-    /// `ambiguous`: the best of the contenders, whose fit is `after`).
+    /// The named model, when the verdict is `effect`, `partial` or `frequency_dependent` (when
+    /// `ambiguous`: the best of the contenders), whose fit is `after`: a candidate's name, or
+    /// the causes together joined by " + ".
     pub selected: Option<String>,
-    /// When `ambiguous`: every candidate within the margin of the best, best first.
+    /// The causes of `selected`, in the order the search added them.
+    pub causes: Vec<String>,
+    /// When `ambiguous` (or `unexplained` with several partial explanations): every candidate
+    /// within the margin of the best, best first.
     pub contenders: Vec<String>,
+    /// The discrepancy of the `after` model: what it misses beyond the measurement error, as
+    /// standard deviations (module `discrepancy`).
+    pub discrepancy: Discrepancy,
+    /// When `partial`: what remains beyond the measurement error with the named model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub remaining: Option<Remainder>,
+    /// Measured modes left out of the diagnosis: no model mode resembles them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub left_out: Vec<LeftOut>,
     /// When `unexplained`: where the misfit of the joint-only fit sits, under the working
     /// noise.
     pub pattern: Option<ResidualPattern>,

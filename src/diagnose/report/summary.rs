@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::diagnose::fit::{Estimate, Fitted};
+use crate::diagnose::fit::{Estimate, Fitted, chi2_of, residuals};
 use crate::diagnose::noise::NoiseEstimate;
 use crate::diagnose::pairing::mac;
 use crate::measured::MeasuredModes;
@@ -41,7 +41,8 @@ pub struct ErrorSummary {
     pub min_mac: f64,
     /// Mean MAC.
     pub mean_mac: f64,
-    /// chi^2 of the residuals under the stated noise.
+    /// chi^2 of the residuals under the measurement error (the yardstick: module
+    /// `diagnose::yardstick`).
     pub chi2: f64,
     /// Its degrees of freedom (data minus fitted unknowns).
     pub dof: usize,
@@ -56,9 +57,10 @@ pub struct ErrorSummary {
 }
 
 impl ErrorSummary {
-    /// The summary of a fitted (or as-given) model; its goodness of fit under the scale of
-    /// `noise`.
+    /// The summary of a fitted (or as-given) model; its chi^2 and goodness of fit under the
+    /// measurement error `noise` (the yardstick).
     pub fn of(fitted: &Fitted, measured: &MeasuredModes, noise: &NoiseEstimate) -> Self {
+        let chi2 = chi2_of(&residuals(fitted, measured), measured, &noise.calibration());
         let modes: Vec<ModeError> = measured
             .modes()
             .iter()
@@ -102,10 +104,10 @@ impl ErrorSummary {
                 .sqrt(),
             min_mac: modes.iter().map(|e| e.mac).fold(f64::INFINITY, f64::min),
             mean_mac: modes.iter().map(|e| e.mac).sum::<f64>() / count,
-            chi2: fitted.chi2,
+            chi2,
             dof: fitted.dof,
-            chi2_per_dof: fitted.chi2 / fitted.dof as f64,
-            p_value: noise.fit_p_value(fitted.chi2, fitted.dof),
+            chi2_per_dof: chi2 / fitted.dof as f64,
+            p_value: noise.fit_p_value(chi2, fitted.dof),
             parameters: fitted.estimates.clone(),
             modes,
         }

@@ -29,8 +29,9 @@ mod problem;
 pub use problem::ALPHA_MAX;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::decide::ALPHA;
-use crate::diagnose::fit::{self, Estimate, FitError, Fitted, OwnModel, RANGE_FACTOR};
+use crate::diagnose::decide::{ALPHA, lr_p_value};
+use crate::diagnose::discrepancy;
+use crate::diagnose::fit::{self, Calibration, Estimate, FitError, Fitted, OwnModel};
 use crate::diagnose::progress::Iterations;
 use crate::diagnose::report::Verdict;
 use crate::modal::ModalSolution;
@@ -66,26 +67,22 @@ impl Candidate for FrequencyDependence {
         Verdict::FrequencyDependent
     }
 
-    /// Both variants fitted (from their optima on the earlier stage when given), the one the
-    /// data support kept.
-    fn fit(&self, stage: &Stage, earlier: Option<&Fit>) -> Result<Fit, CandidateError> {
-        let start = |i: usize| {
-            earlier
-                .and_then(|e| e.members.get(i))
-                .and_then(Option::as_ref)
-                .map(|f| f.solution.clone())
-        };
+    /// Both variants fitted, each with its own discrepancy, the one the data support kept.
+    fn fit(&self, stage: &Stage) -> Result<Fit, CandidateError> {
         let joints = stage.base.estimates.len();
-        let shared = fit_variant(stage, false, start(0))?;
+        let shared = fit_variant(stage, false, None)?;
         let per = (joints > 1)
             .then(|| {
-                let from = start(1).unwrap_or_else(|| spread(&shared.fitted.solution, joints));
+                let from = spread(&shared.fitted.solution, joints);
                 fit_variant(stage, true, Some(from))
             })
             .and_then(Result::ok);
         let comparison = per.as_ref().map(|p| {
-            let lrt = (shared.fitted.chi2 - p.fitted.chi2).max(0.0);
-            (lrt, stage.lrt_p_value(lrt, joints - 1))
+            let lrt = (shared.fitted.deviance - p.fitted.deviance).max(0.0);
+            (
+                lrt,
+                lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof),
+            )
         });
         let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
         let words = match comparison {
@@ -100,33 +97,25 @@ impl Candidate for FrequencyDependence {
             ),
             None => "one alpha (one joint parameter)".to_string(),
         };
-        let members = vec![
-            Some(shared.fitted.clone()),
-            per.as_ref().map(|p| p.fitted.clone()),
-        ];
         let chosen = match per {
             Some(p) if per_supported => p,
             _ => shared,
         };
         let fitted = chosen.fitted;
-        Ok(Fit {
-            describe: format!(
-                "every joint parameter p scales as p0 (f / {:.4e} Hz)^alpha, each mode solved with the joint at its own frequency; {words}",
-                chosen.reference_hz
-            ),
-            size: chosen.size,
-            chi2: fitted.chi2,
-            dof: fitted.dof,
-            lrt: (stage.base.chi2 - fitted.chi2).max(0.0),
-            added: chosen.alphas.len(),
-            unknowns: joints + chosen.alphas.len(),
-            residuals: fit::residuals(&fitted, stage.measured),
-            parameters: chosen.alphas,
-            model: Some(fitted),
-            excluded: None,
-            profile: None,
-            members,
-        })
+        let describe = format!(
+            "every joint parameter p scales as p0 (f / {:.4e} Hz)^alpha, each mode solved with the joint at its own frequency; {words}",
+            chosen.reference_hz
+        );
+        let added = chosen.alphas.len();
+        Ok(Fit::of_model(
+            stage.measured,
+            fitted,
+            chosen.alphas,
+            chosen.size,
+            describe,
+            added,
+            None,
+        ))
     }
 }
 
@@ -147,16 +136,41 @@ fn spread(x: &[f64], joints: usize) -> Vec<f64> {
     [&x[..joints], &vec![alpha; joints], &x[joints + 1..]].concat()
 }
 
-/// The variant (`per_parameter` or shared alpha) fitted on `stage` from `from`, or from the
-/// stage's calibrated joint with alpha = 0.
+/// The variant (`per_parameter` or shared alpha) fitted on `stage` with its own discrepancy
+/// (module `discrepancy`), from `from`, or from the stage's calibrated joint with alpha = 0.
 fn fit_variant(
     stage: &Stage,
     per_parameter: bool,
     from: Option<Vec<f64>>,
 ) -> Result<Variant, FitError> {
+    let mut last = None;
+    let fitted = discrepancy::fit_with(
+        stage.measured,
+        stage.calibration,
+        stage.start(),
+        |calibration, earlier| {
+            let x = earlier.map(|f| f.solution.clone()).or_else(|| from.clone());
+            let variant = fit_under(stage, calibration, per_parameter, x)?;
+            let fitted = variant.fitted.clone();
+            last = Some(variant);
+            Ok(fitted)
+        },
+    )?;
+    let variant = last.expect("a fit that succeeded made a variant");
+    Ok(Variant { fitted, ..variant })
+}
+
+/// The variant fitted under `calibration` from `from`, or from the stage's calibrated joint
+/// with alpha = 0.
+fn fit_under(
+    stage: &Stage,
+    calibration: &Calibration,
+    per_parameter: bool,
+    from: Option<Vec<f64>>,
+) -> Result<Variant, FitError> {
     let (ctx, measured, base) = (stage.ctx, stage.measured, stage.base);
     let pairing = &base.pairing;
-    let problem = Problem::new(ctx, measured, stage.calibration, pairing, per_parameter);
+    let problem = Problem::new(ctx, measured, calibration, pairing, per_parameter);
     let unknowns = problem.unknowns();
     let data: usize = measured.modes().iter().map(|m| 1 + m.points.len()).sum();
     if data <= unknowns {
@@ -189,28 +203,7 @@ fn fit_variant(
             chi2: solution.cost,
         });
     }
-    in_range(&problem, &solution.state)?;
     finish(&problem, solution.x, solution.state, solution.iterations)
-}
-
-/// Refuses a fit that takes a joint parameter, at any mode's frequency, beyond
-/// [`RANGE_FACTOR`] of its nominal value.
-fn in_range(problem: &Problem, state: &State) -> Result<(), FitError> {
-    let nominal = problem.ctx.structure.identified();
-    for sv in &state.modes {
-        for (p, p0) in sv.structure.identified().iter().zip(&nominal) {
-            if !(p.value / p0.value).ln().abs().le(&RANGE_FACTOR.ln()) {
-                return Err(FitError::OutOfRange {
-                    effect: NAME.into(),
-                    name: p.name.clone(),
-                    value: p.value,
-                    unit: p.unit,
-                    nominal: p0.value,
-                });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// The fitted model at the optimum x: the joint at f_ref as its structure, every mode's own
@@ -241,6 +234,7 @@ fn finish(
             unit: "1",
             value: x[joints + a],
             se: covariance[(joints + a, joints + a)].max(0.0).sqrt(),
+            limit: None,
         })
         .collect();
     estimates.extend(alpha_estimates.iter().cloned());
@@ -259,7 +253,11 @@ fn finish(
             modal: sv.modal,
         })
         .collect();
+    let chi2 = fit::chi2(&state.residual);
     let fitted = Fitted {
+        discrepancy: problem.discrepancy,
+        deviance: problem.deviance(chi2),
+        discrepancy_dof: f64::INFINITY,
         configured: Configured {
             ctx: problem.ctx.clone(),
             structure,
@@ -268,7 +266,7 @@ fn finish(
         modal,
         own,
         pairing: problem.pairing.clone(),
-        chi2: fit::chi2(&state.residual),
+        chi2,
         dof: data - n,
         estimates,
         iterations,

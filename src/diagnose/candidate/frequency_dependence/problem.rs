@@ -21,7 +21,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 use faer::Mat;
 
 use super::own::{self, Law, Settled, Solved};
-use crate::diagnose::fit::{self, Calibration, FitError, RANGE_FACTOR, chi2, model_sign};
+use crate::diagnose::fit::{self, Calibration, Discrepancy, FitError, chi2, model_sign};
 use crate::diagnose::pairing::Pairing;
 use crate::diagnose::sensitivity::ModeDerivatives;
 use crate::measured::MeasuredModes;
@@ -47,6 +47,10 @@ pub struct Problem<'a> {
     pub(super) log_ref: f64,
     sigma_f: Vec<f64>,
     sigma: Vec<Vec<f64>>,
+    /// The interval of every x_j = ln(p_j0 / p_j nominal) ([`fit::ranges`]).
+    ranges: Vec<(f64, f64)>,
+    /// The discrepancy in the weights.
+    pub discrepancy: Discrepancy,
     /// Eigenpairs computed per solve.
     count: usize,
     /// Per measured mode, where it settled at the last evaluation: its next start.
@@ -62,6 +66,11 @@ pub struct State {
 }
 
 impl<'a> Problem<'a> {
+    /// The deviance of weighted residuals whose squares sum to `chi2` ([`fit::deviance`]).
+    pub fn deviance(&self, chi2: f64) -> f64 {
+        fit::deviance(chi2, self.measured, &self.sigma_f, &self.sigma)
+    }
+
     /// The problem of `measured` on `ctx` under `calibration`, modes paired as `pairing`, with
     /// one alpha shared by every joint parameter or one each (`per_parameter`).
     pub fn new(
@@ -72,6 +81,7 @@ impl<'a> Problem<'a> {
         per_parameter: bool,
     ) -> Self {
         let (sigma_f, sigma) = fit::sigmas(measured, calibration);
+        let ranges = fit::ranges(&ctx.structure);
         let log_nominal: Vec<f64> = ctx
             .structure
             .identified()
@@ -96,6 +106,8 @@ impl<'a> Problem<'a> {
             log_ref,
             sigma_f,
             sigma,
+            ranges,
+            discrepancy: calibration.discrepancy,
             count,
             settled: Mutex::new(vec![None; modes.len()]),
         }
@@ -226,11 +238,14 @@ impl<'a> Problem<'a> {
         jac
     }
 
-    /// Whether x keeps every alpha within [`ALPHA_MAX`] and every p_j0 within
-    /// [`RANGE_FACTOR`] of its nominal value.
+    /// Whether x keeps every alpha within [`ALPHA_MAX`] and every p_j0 within its range
+    /// between free and rigid ([`fit::ranges`]).
     pub fn admissible(&self, x: &[f64]) -> bool {
         let j = self.joints();
-        x[..j].iter().all(|v| v.abs() <= RANGE_FACTOR.ln())
+        x[..j]
+            .iter()
+            .zip(&self.ranges)
+            .all(|(v, (lo, hi))| (lo..=hi).contains(&v))
             && x[j..j + self.alphas].iter().all(|a| a.abs() <= ALPHA_MAX)
     }
 }

@@ -25,6 +25,10 @@
 //! has no eigensolution is a step too long. The standard errors come from (J^T J)^-1 at the
 //! optimum, formed as R^-1 R^-T from a QR of J ([`crate::optim::lstsq::inverse_gram`]).
 
+mod limits;
+
+pub use limits::{BOUND_CHI2, FREE, RIGID, ranges, structural_scale};
+
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -55,15 +59,24 @@ pub struct Noise {
     pub shape: f64,
 }
 
-/// Largest change of a fitted model parameter from its nominal value, as a factor either way
-/// (10^3): a fit that leaves this range has diverged or describes another structure.
-pub const RANGE_FACTOR: f64 = 1e3;
+/// The model discrepancy of an error model: what a model misses beyond the measurement error,
+/// as standard deviations added in quadrature to it (module `discrepancy`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct Discrepancy {
+    /// Of every frequency, relative to it (the model's f / f_meas - 1).
+    pub frequency: f64,
+    /// Of every shape component, as a fraction of its mode's measured peak.
+    pub shape: f64,
+}
 
 /// What a calibration needs besides the model and the data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Calibration {
     /// The stated measurement noise.
     pub noise: Noise,
+    /// The model discrepancy added to the measurement error in the weights (zero: the
+    /// measurement error alone).
+    pub discrepancy: Discrepancy,
     /// How measured modes pair with model modes.
     pub pairing: PairingRule,
     /// Floor of the shape standard deviation, as a fraction of the mode's largest component
@@ -74,12 +87,28 @@ pub struct Calibration {
     pub measured_std: bool,
 }
 
-/// The standard deviations of the data: per mode, of the frequency relative to it, and of
-/// each shape component. From the data's standard errors when `calibration` says so and the
-/// data carry them ([`crate::measured::MeasuredMode::value_sigmas`]); else from the stated
-/// noise:
-/// sigma_f, and sigma_s sqrt(u^2 + (floor peak)^2) (module docs).
+/// The standard deviations of the residuals: the measurement error ([`measurement_sigmas`])
+/// and the calibration's model discrepancy, in quadrature: per mode, of the frequency relative
+/// to it, and of each shape component.
 pub fn sigmas(measured: &MeasuredModes, calibration: &Calibration) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let (mut sigma_f, mut sigma) = measurement_sigmas(measured, calibration);
+    let d = calibration.discrepancy;
+    for ((f, s), m) in sigma_f.iter_mut().zip(&mut sigma).zip(measured.modes()) {
+        *f = f.hypot(d.frequency);
+        let floor = d.shape * m.peak();
+        s.iter_mut().for_each(|v| *v = v.hypot(floor));
+    }
+    (sigma_f, sigma)
+}
+
+/// The standard deviations of the measurement error: per mode, of the frequency relative to
+/// it, and of each shape component. From the data's standard errors when `calibration` says so
+/// and the data carry them ([`crate::measured::MeasuredMode::value_sigmas`]); else from the
+/// stated noise: sigma_f, and sigma_s sqrt(u^2 + (floor peak)^2) (module docs).
+pub fn measurement_sigmas(
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> (Vec<f64>, Vec<Vec<f64>>) {
     let data = calibration.measured_std && measured.has_std();
     let noise = calibration.noise;
     measured
@@ -122,20 +151,6 @@ pub enum FitError {
         /// Unknowns (joint and effect parameters, one scale per mode).
         parameters: usize,
     },
-    /// A fitted parameter left its physical range.
-    #[error("the fit{with} took {name} to {value:.4e} {unit}, beyond a factor {RANGE_FACTOR:e} from its nominal {nominal:.4e}: refused (the data and the model disagree on more than this parameter; check the pairing, units and set-up)", with = if effect.is_empty() { String::new() } else { format!(" with {effect}") })]
-    OutOfRange {
-        /// Effect fitted, if any.
-        effect: String,
-        /// The parameter.
-        name: String,
-        /// Its fitted value.
-        value: f64,
-        /// Its unit.
-        unit: &'static str,
-        /// Its nominal value.
-        nominal: f64,
-    },
     /// A mode of the frequency-dependent joint found no frequency equal to the one its joint
     /// is evaluated at.
     #[error(
@@ -170,8 +185,33 @@ pub struct Estimate {
     pub unit: &'static str,
     /// Fitted value.
     pub value: f64,
-    /// Standard error from the stated noise (linearised at the optimum).
+    /// Standard error (linearised at the optimum, under the fit's error model).
     pub se: f64,
+    /// The limit the parameter runs to, when the data cannot tell it from that limit (a
+    /// rigid joint, a glued interface): `value` is then where the fit stopped, and the limit
+    /// says the bound the data do set.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit: Option<Limit>,
+}
+
+/// A joint parameter the data cannot tell from one of its limits (module `limits`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Limit {
+    /// Which limit.
+    pub kind: LimitKind,
+    /// The value the data set as a one-sided bound: at least this (rigid) or at most this
+    /// (free), at 95% (chi^2 up by 3.84 from the limit's).
+    pub bound: f64,
+}
+
+/// The limit of a stiffness.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LimitKind {
+    /// Infinitely stiff: the parts it joins move as one.
+    Rigid,
+    /// Zero: the parts it joins are free of each other in its direction.
+    Free,
 }
 
 /// The outcome of a fit.
@@ -197,6 +237,14 @@ pub struct Fitted {
     /// (the frequency-dependent joint: the joint evaluated at the mode's own frequency);
     /// empty when every mode is read from `modal`.
     pub own: Vec<OwnModel>,
+    /// The model discrepancy the fit was made under (module `discrepancy`).
+    pub discrepancy: Discrepancy,
+    /// The deviance under that error model, sum [r^2 + ln v] over the data, v the variance of
+    /// each residual in the units of [`Residuals`]: chi^2 plus a term that depends on the
+    /// discrepancy alone.
+    pub deviance: f64,
+    /// Degrees of freedom of the discrepancy's estimate (infinite: none was estimated).
+    pub discrepancy_dof: f64,
     /// The optimum in the fit's own unknowns (a start for a refit).
     pub(crate) solution: Vec<f64>,
 }
@@ -230,10 +278,14 @@ struct Problem<'a> {
     pairing: &'a PairingRule,
     effects: Vec<(Arc<dyn Effect>, Vec<f64>)>,
     joint_p0: Vec<f64>,
+    /// The interval of every joint unknown x = ln(p / p0) (module `limits`).
+    ranges: Vec<(f64, f64)>,
     /// Per measured mode, sigma of its frequency relative to it.
     sigma_f: Vec<f64>,
     /// Per measured mode, sigma of each shape component.
     sigma: Vec<Vec<f64>>,
+    /// The discrepancy in the weights.
+    discrepancy: Discrepancy,
     /// Pairs the last eigensolution needed to cover the pairing window: the next one starts
     /// there instead of doubling up from the minimum again.
     covering: AtomicUsize,
@@ -264,6 +316,8 @@ impl<'a> Problem<'a> {
             sigma_f,
             sigma,
             joint_p0: ctx.structure.identified().iter().map(|p| p.value).collect(),
+            ranges: ranges(&ctx.structure),
+            discrepancy: calibration.discrepancy,
             covering: AtomicUsize::new(0),
         }
     }
@@ -314,23 +368,6 @@ impl<'a> Problem<'a> {
 
     fn rigid(&self) -> usize {
         self.ctx.structure.rigid
-    }
-
-    /// Refuses a model parameter beyond [`RANGE_FACTOR`] of its nominal value.
-    fn in_range(&self, x: &[f64], effect: &str) -> Result<(), FitError> {
-        let params = self.ctx.structure.identified();
-        for ((p, &p0), &xi) in params.iter().zip(&self.joint_p0).zip(x) {
-            if xi.is_nan() || xi.abs() > RANGE_FACTOR.ln() {
-                return Err(FitError::OutOfRange {
-                    effect: effect.to_string(),
-                    name: p.name.clone(),
-                    value: p0 * xi.exp(),
-                    unit: p.unit,
-                    nominal: p0,
-                });
-            }
-        }
-        Ok(())
     }
 
     /// The model modes the pairing can reach: every mode up to (1 + window) times the highest
@@ -426,8 +463,8 @@ impl<'a> Problem<'a> {
         jac
     }
 
-    /// The effects' non-negative parameters and their inequalities
-    /// ([`Effect::inequalities`]) on the unknowns theta / scale.
+    /// The joints' ranges (module `limits`), the effects' non-negative parameters and their
+    /// inequalities ([`Effect::inequalities`]) on the unknowns theta / scale.
     fn bounds(&self) -> Bounds {
         let mut at = self.joint_count();
         let mut rows = Vec::new();
@@ -447,7 +484,12 @@ impl<'a> Problem<'a> {
             }
             at += params.len();
         }
-        Bounds::new(rows)
+        self.ranges
+            .iter()
+            .enumerate()
+            .fold(Bounds::new(rows), |b, (j, &(lo, hi))| {
+                b.with_interval(j, lo, hi)
+            })
     }
 }
 
@@ -499,6 +541,49 @@ pub fn residuals(fitted: &Fitted, measured: &MeasuredModes) -> Residuals {
     out
 }
 
+/// chi^2 of the unweighted residuals `res` under the standard deviations of `calibration`
+/// ([`sigmas`]).
+pub fn chi2_of(res: &Residuals, measured: &MeasuredModes, calibration: &Calibration) -> f64 {
+    let (sigma_f, sigma) = sigmas(measured, calibration);
+    let frequency: f64 = res
+        .frequency
+        .iter()
+        .zip(&sigma_f)
+        .map(|(e, s)| (e / s).powi(2))
+        .sum();
+    let mut shape = 0.0;
+    let mut at = 0;
+    for (m, sigma) in measured.modes().iter().zip(&sigma) {
+        let peak = m.peak().max(f64::MIN_POSITIVE);
+        for s in sigma {
+            shape += (res.shape[at].1 * peak / s).powi(2);
+            at += 1;
+        }
+    }
+    frequency + shape
+}
+
+/// The deviance of a fit whose weighted residuals give `chi2` under the standard deviations
+/// `sigma_f` (relative, per mode) and `sigma` (per shape component), in the units of
+/// [`Residuals`] (the shapes per unit of their mode's peak): chi2 + sum ln v.
+pub(crate) fn deviance(
+    chi2: f64,
+    measured: &MeasuredModes,
+    sigma_f: &[f64],
+    sigma: &[Vec<f64>],
+) -> f64 {
+    let mut log = 0.0;
+    for ((m, f), s) in measured.modes().iter().zip(sigma_f).zip(sigma) {
+        let peak = m.peak().max(f64::MIN_POSITIVE);
+        log += 2.0 * f.max(f64::MIN_POSITIVE).ln();
+        log += s
+            .iter()
+            .map(|v| 2.0 * (v / peak).max(f64::MIN_POSITIVE).ln())
+            .sum::<f64>();
+    }
+    chi2 + log
+}
+
 pub(crate) fn chi2(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
@@ -545,6 +630,30 @@ pub fn refit(
     )
 }
 
+/// As [`fit`], from the unknowns `x0` (joints, effects, shape scales: the layout of
+/// [`Fitted::solution`] with the effects' parameters appended in order; without the shape
+/// scales, they are solved for the start).
+pub fn fit_from(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    effects: &[Arc<dyn Effect>],
+    x0: &[f64],
+    observer: &mut dyn Observer,
+) -> Result<Fitted, FitError> {
+    run(ctx, measured, calibration, effects, Some(observer), Some(x0))
+}
+
+/// The start of a fit that extends `from` by `added` unknowns appended after its effects'
+/// (zero: the extension absent), before the shape scales.
+pub fn extended(from: &Fitted, added: usize) -> Vec<f64> {
+    let at = from.solution.len() - from.scales.len();
+    let mut x = from.solution[..at].to_vec();
+    x.extend(std::iter::repeat_n(0.0, added));
+    x.extend(&from.scales);
+    x
+}
+
 /// An observer told the iterations of one Levenberg-Marquardt run after `before` of earlier
 /// runs, numbered on from them.
 struct NumberedOn<'o> {
@@ -585,14 +694,24 @@ fn run(
         .map(|e| e.name())
         .collect::<Vec<_>>()
         .join(" + ");
-    let mut x = match from {
-        Some(x0) if x0.len() == unknowns => x0.to_vec(),
-        _ => vec![0.0; unknowns],
+    // A start with the shape scales, or one without them (the model's unknowns only: the
+    // scales are then solved for it).
+    let modes = measured.modes().len();
+    let given = from.filter(|x0| x0.len() == unknowns || x0.len() + modes == unknowns);
+    let mut x = match given {
+        Some(x0) => {
+            let mut x = x0.to_vec();
+            x.resize(unknowns, 0.0);
+            // Inside the bounds (a start from another optimum may lie outside this model's
+            // ranges).
+            problem.bounds().project(x.clone()).unwrap_or(x)
+        }
+        None => vec![0.0; unknowns],
     };
     let start = problem.configured(&x);
     let start_modal = problem.modes(&start.assemble())?;
     let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
-    if from.is_none() {
+    if given.is_none_or(|x0| x0.len() < unknowns) {
         initial_scales(&problem, &start_modal, &pairing, &mut x);
     }
     let Some(observer) = observer else {
@@ -628,7 +747,6 @@ fn run(
         last_chi2 = chi2(&eval.residual);
         let repaired = pair(&eval.modal, measured, problem.rigid(), problem.pairing)?;
         if repaired.model_index == pairing.model_index {
-            problem.in_range(&x, &name)?;
             return Ok(finish(
                 &problem,
                 x,
@@ -717,6 +835,7 @@ pub(crate) fn joint_estimates(structure: &Structure, covariance: &Mat<f64>) -> V
             unit: p.unit,
             value: p.value,
             se: p.value * covariance[(i, i)].max(0.0).sqrt(),
+            limit: None,
         })
         .collect()
 }
@@ -740,7 +859,15 @@ fn finish(
     let n = x.len();
     // (J^T J)^-1 from the R of a QR of J; infinite variances when J has a dependent column.
     let covariance = covariance(jac.as_ref(), n);
+    let chi2 = chi2(&eval.residual);
     let mut estimates = joint_estimates(&eval.configured.structure, &covariance);
+    // A fit's joints at their limits (a start evaluated, not fitted, has none).
+    if iterations > 0 {
+        for (i, e) in estimates.iter_mut().enumerate() {
+            let se = covariance[(i, i)].max(0.0).sqrt();
+            e.limit = limits::limit(problem, &x, &pairing, i, chi2, se);
+        }
+    }
     let j = problem.joint_count();
     let scales = problem.scales();
     for (k, p) in eval.configured.effect_parameters().iter().enumerate() {
@@ -749,11 +876,15 @@ fn finish(
             unit: p.unit,
             value: p.value,
             se: scales[k] * covariance[(j + k, j + k)].max(0.0).sqrt(),
+            limit: None,
         });
     }
-    let chi2 = chi2(&eval.residual);
     let scales = x[j + problem.effect_count()..].to_vec();
+    let deviance = deviance(chi2, problem.measured, &problem.sigma_f, &problem.sigma);
     Fitted {
+        discrepancy: problem.discrepancy,
+        deviance,
+        discrepancy_dof: f64::INFINITY,
         scales,
         solution: x,
         configured: eval.configured,

@@ -1,0 +1,278 @@
+//! The error model of a fit: measurement error plus model discrepancy, the discrepancy
+//! estimated with the fit.
+//!
+//! Every model of a real structure misses its modes by more than their measurement error. A
+//! residual is taken as the sum of two independent errors: the measurement error, of known
+//! standard deviation s_i (stated, or the data's own standard errors: module `fit`), and the
+//! model's discrepancy, of unknown standard deviation tau per kind of quantity: tau_f for the
+//! frequencies (relative to them), tau_s for the shape components (a fraction of each mode's
+//! measured peak). The variance of residual i is v_i = s_i^2 + tau_k^2, and the deviance
+//!
+//! ```text
+//!   -2 ln L(theta, tau) = sum_i [ e_i(theta)^2 / v_i + ln v_i ]      (+ a constant)
+//! ```
+//!
+//! is minimised over the model's unknowns theta and tau together (Beck & Yuen, "Model
+//! selection using response measurements: Bayesian probabilistic approach", J. Eng. Mech.
+//! 130, 2004: the prediction-error variance as a parameter of each model class; Kennedy &
+//! O'Hagan, "Bayesian calibration of computer models", JRSS B 63, 2001, for the discrepancy as
+//! a term of its own; Simoen, De Roeck & Lombaert, "Dealing with uncertainty in model
+//! updating for damage assessment: a review", MSSP 56-57, 2015). [`fit_with`] alternates the
+//! two blocks: the weighted least squares of theta under the current tau (the fit of module
+//! `fit`, from the last optimum), then each tau^2 by its own one-dimensional maximum
+//! likelihood given the residuals ([`variance`]); every step lowers the deviance, and it stops
+//! when tau^2 moves by less than [`TOLERANCE`] of the total variance. A model that fits within
+//! the measurement error keeps tau = 0 and its deviance is its chi^2 (plus the constant
+//! sum ln s_i^2, the same for every model of the data): the error model changes nothing there.
+//!
+//! Each candidate's deviance at its optimum is its profile likelihood with tau as a nuisance
+//! parameter: two models are compared by the difference of their deviances (module `search`),
+//! each with its own discrepancy. The degrees of freedom of the discrepancy's estimate
+//! ([`dof`]) make that comparison an F test where tau was estimated.
+
+use super::fit::{
+    Calibration, Discrepancy, FitError, Fitted, Residuals, measurement_sigmas, residuals,
+};
+use crate::measured::MeasuredModes;
+
+/// Largest number of refits of theta under a new tau.
+pub const ROUNDS: usize = 12;
+/// Converged when every tau^2 moves by less than this fraction of its kind's mean total
+/// variance.
+pub const TOLERANCE: f64 = 1e-3;
+
+/// The squared residuals and measurement variances of one kind of quantity, in the units of
+/// [`Discrepancy`] (relative frequencies; shape components per unit of their mode's peak).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Squares {
+    /// (e_i^2, s_i^2) of every residual.
+    pub pairs: Vec<(f64, f64)>,
+}
+
+impl Squares {
+    /// The deviance sum [e^2 / (s^2 + t) + ln(s^2 + t)] at the discrepancy variance t.
+    pub fn deviance(&self, t: f64) -> f64 {
+        self.pairs
+            .iter()
+            .map(|&(e2, s2)| {
+                let v = (s2 + t).max(f64::MIN_POSITIVE);
+                e2 / v + v.ln()
+            })
+            .sum()
+    }
+
+    /// Mean measurement variance.
+    fn mean_variance(&self) -> f64 {
+        self.pairs.iter().map(|p| p.1).sum::<f64>() / self.pairs.len().max(1) as f64
+    }
+}
+
+/// The residuals of `fitted` split by kind: (frequencies, shapes).
+pub fn squares(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> (Squares, Squares) {
+    squares_of(&residuals(fitted, measured), measured, calibration)
+}
+
+/// The residuals `res` split by kind, with the measurement variances of `calibration`.
+pub fn squares_of(
+    res: &Residuals,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> (Squares, Squares) {
+    let (sigma_f, sigma) = measurement_sigmas(measured, calibration);
+    let frequency = res
+        .frequency
+        .iter()
+        .zip(&sigma_f)
+        .map(|(e, s)| (e * e, s * s))
+        .collect();
+    let mut shape = Vec::with_capacity(res.shape.len());
+    let mut at = 0;
+    for (m, sigma) in measured.modes().iter().zip(&sigma) {
+        let peak = m.peak().max(f64::MIN_POSITIVE);
+        for s in sigma {
+            let e = res.shape[at].1;
+            shape.push((e * e, (s / peak).powi(2)));
+            at += 1;
+        }
+    }
+    (Squares { pairs: frequency }, Squares { pairs: shape })
+}
+
+/// The discrepancy variance t >= 0 that minimises [`Squares::deviance`]: the best of t = 0 and
+/// a logarithmic grid from 1e-6 of the smallest measurement variance to twice the largest
+/// squared residual, refined by golden sections around it (the deviance may have a local
+/// minimum at 0 beside the global one when the measurement variances differ).
+pub fn variance(squares: &Squares) -> f64 {
+    let largest = squares.pairs.iter().fold(0.0_f64, |a, p| a.max(p.0));
+    let smallest = squares
+        .pairs
+        .iter()
+        .map(|p| p.1)
+        .filter(|s| *s > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    if squares.pairs.is_empty() || largest == 0.0 {
+        return 0.0;
+    }
+    let (lo, hi) = (
+        (1e-6 * smallest.min(largest)).ln(),
+        (2.0 * largest).ln().max((1e-6 * smallest.min(largest)).ln() + 1.0),
+    );
+    const GRID: usize = 80;
+    let step = (hi - lo) / GRID as f64;
+    let at = |u: f64| squares.deviance(u.exp());
+    let best = (0..=GRID)
+        .map(|i| lo + step * i as f64)
+        .min_by(|a, b| at(*a).total_cmp(&at(*b)))
+        .unwrap_or(lo);
+    let (mut a, mut b) = ((best - step).max(lo), (best + step).min(hi));
+    let phi = 0.5 * (5.0_f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (c, d) = (b - phi * (b - a), a + phi * (b - a));
+        if at(c) < at(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let t = (0.5 * (a + b)).exp();
+    if squares.deviance(0.0) <= squares.deviance(t) {
+        0.0
+    } else {
+        t
+    }
+}
+
+/// The discrepancy that maximises the likelihood of `fitted`'s residuals, its unknowns held.
+pub fn estimate(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> Discrepancy {
+    let (frequency, shape) = squares(fitted, measured, calibration);
+    Discrepancy {
+        frequency: variance(&frequency).sqrt(),
+        shape: variance(&shape).sqrt(),
+    }
+}
+
+/// Whether `next` is `current` to [`TOLERANCE`] of each kind's mean total variance.
+fn settled(next: Discrepancy, current: Discrepancy, frequency: &Squares, shape: &Squares) -> bool {
+    let close = |a: f64, b: f64, s: &Squares| {
+        (a * a - b * b).abs() <= TOLERANCE * (a * a + s.mean_variance()).max(f64::MIN_POSITIVE)
+    };
+    close(next.frequency, current.frequency, frequency) && close(next.shape, current.shape, shape)
+}
+
+/// Degrees of freedom of the discrepancy's estimate in `fitted`: for every kind whose tau is
+/// above 0, its values less its share of the unknowns (the shape scales are the shapes'; the
+/// model's parameters are shared by count); infinite when tau is 0 for both (the measurement
+/// error alone, known).
+pub fn dof(fitted: &Fitted, measured: &MeasuredModes) -> f64 {
+    let n_f = measured.modes().len() as f64;
+    let n_s: f64 = measured.modes().iter().map(|m| m.points.len() as f64).sum();
+    let unknowns = fitted.estimates.len() as f64;
+    let p_f = unknowns * n_f / (n_f + n_s);
+    let p_s = n_f + unknowns * n_s / (n_f + n_s);
+    let d = fitted.discrepancy;
+    let mut dof = 0.0;
+    if d.frequency > 0.0 {
+        dof += (n_f - p_f).max(1.0);
+    }
+    if d.shape > 0.0 {
+        dof += (n_s - p_s).max(1.0);
+    }
+    if dof == 0.0 { f64::INFINITY } else { dof }
+}
+
+/// A model fitted with its own discrepancy (module docs): `fit` fits the model's unknowns
+/// under a calibration, from an earlier optimum when given (None: its own start); the first
+/// fit is under `calibration` with the discrepancy `start` (the joint-only fit's, for a
+/// candidate: most candidates leave much of it). The returned fit carries its discrepancy,
+/// its deviance under it and the discrepancy's degrees of freedom.
+pub fn fit_with(
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    start: Discrepancy,
+    mut fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
+) -> Result<Fitted, FitError> {
+    let mut current = Calibration {
+        discrepancy: start,
+        ..calibration.clone()
+    };
+    let mut fitted = fit(&current, None)?;
+    for _ in 0..ROUNDS {
+        let (frequency, shape) = squares(&fitted, measured, calibration);
+        let next = Discrepancy {
+            frequency: variance(&frequency).sqrt(),
+            shape: variance(&shape).sqrt(),
+        };
+        if settled(next, current.discrepancy, &frequency, &shape) {
+            break;
+        }
+        current.discrepancy = next;
+        fitted = fit(&current, Some(&fitted))?;
+    }
+    fitted.discrepancy_dof = dof(&fitted, measured);
+    Ok(fitted)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Residuals of equal measurement variance s^2: the maximum likelihood of t is
+    /// mean(e^2) - s^2 when positive, else 0.
+    #[test]
+    fn the_variance_is_the_excess_of_the_mean_square() {
+        let s2 = 1e-6;
+        let e: [f64; 6] = [3e-3, -2e-3, 1e-3, 4e-3, -1e-3, 2e-3];
+        let squares = Squares {
+            pairs: e.iter().map(|e| (e * e, s2)).collect(),
+        };
+        let mean = e.iter().map(|e| e * e).sum::<f64>() / 6.0;
+        let t = variance(&squares);
+        assert!((t - (mean - s2)).abs() < 1e-9 * mean, "{t} vs {}", mean - s2);
+        let within = Squares {
+            pairs: e.iter().map(|e| (0.1 * e * e, 1e-5)).collect(),
+        };
+        assert_eq!(variance(&within), 0.0);
+        assert_eq!(variance(&Squares::default()), 0.0);
+    }
+
+    /// Unequal measurement variances: the estimate is where the derivative of the deviance,
+    /// sum [1 / v - e^2 / v^2], vanishes, and no point of a fine grid has a lower deviance.
+    #[test]
+    fn the_variance_minimises_the_deviance_with_unequal_errors() {
+        let squares = Squares {
+            pairs: vec![
+                (4e-4, 1e-6),
+                (1e-4, 1e-4),
+                (9e-4, 1e-8),
+                (2e-5, 4e-4),
+                (5e-4, 1e-6),
+            ],
+        };
+        let t = variance(&squares);
+        assert!(t > 0.0);
+        let slope: f64 = squares
+            .pairs
+            .iter()
+            .map(|&(e2, s2)| 1.0 / (s2 + t) - e2 / (s2 + t).powi(2))
+            .sum();
+        let curvature: f64 = squares
+            .pairs
+            .iter()
+            .map(|&(e2, s2)| 2.0 * e2 / (s2 + t).powi(3) - 1.0 / (s2 + t).powi(2))
+            .sum();
+        assert!((slope / curvature).abs() < 1e-8 * t, "{slope} {curvature} {t}");
+        let at = squares.deviance(t);
+        for i in 0..2000 {
+            let u = 1e-9 * 1.02_f64.powi(i);
+            assert!(squares.deviance(u) >= at - 1e-12 * at.abs(), "{u}");
+        }
+    }
+}

@@ -1,0 +1,222 @@
+//! The search for what the calibrated joint leaves: every candidate fitted once, with its own
+//! discrepancy; the clearly best one ([`super::decide::select`]); then causes added one after
+//! another (forward selection): the model of the causes so far extended by every other
+//! candidate that combines (module `candidate`'s `combined`), each fitted once, the clearly
+//! best significant addition kept, until none is significant, two contend, or
+//! [`MAX_CAUSES`] are together.
+//!
+//! Multiple testing is counted honestly: the p-value of an addition is adjusted for every
+//! hypothesis tried up to its step (the candidates, the members of scans, every addition tried
+//! before and at that step). The search stands on the relative rules only (each model judged
+//! against the one it extends, both with their own discrepancy); whether the result fits
+//! within the measurement error is the yardstick's question (module `yardstick`), asked after.
+//!
+//! Layer: diagnose; the step after the calibration.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
+use super::decide::{MAX_CAUSES, Path, Rival, adjusted, lr_p_value, select};
+use super::fit::Fitted;
+use super::progress::Pass;
+use super::report::Verdict;
+use crate::model::chain::assembly::LAYERED_LAP;
+
+/// One model the search fitted: a candidate alone, or a combination of causes.
+#[derive(Debug)]
+pub struct Model {
+    /// Its name: the candidate's, or the causes joined by " + ".
+    pub name: String,
+    /// What the candidate (or the cause added last) is.
+    pub describe: String,
+    /// The verdict that names it when it stands alone.
+    pub verdict: Verdict,
+    /// The model it extends (index into the search's models), None: the joint-only fit.
+    pub extends: Option<usize>,
+    /// Its fit, or why it has none.
+    pub outcome: Result<Fit, CandidateError>,
+    /// Likelihood-ratio statistic against the model it extends, when both fitted.
+    pub lrt: Option<f64>,
+    /// Its p-value adjusted for the hypotheses tried up to its step.
+    pub adjusted: Option<f64>,
+}
+
+impl Model {
+    /// Its fit, when it has one.
+    pub fn fit(&self) -> Option<&Fit> {
+        self.outcome.as_ref().ok()
+    }
+
+    /// Its fitted model, when it has one.
+    pub fn fitted(&self) -> Option<&Fitted> {
+        self.fit().and_then(|f| f.model.as_ref())
+    }
+}
+
+/// What the search found.
+#[derive(Debug)]
+pub struct Search {
+    /// Every model fitted: the candidates in library order, then the combinations in the
+    /// order they were tried.
+    pub models: Vec<Model>,
+    /// The causes put together and the contenders of the first.
+    pub path: Path,
+    /// Hypotheses tried in all (the multiple-testing count of the last step).
+    pub hypotheses: usize,
+    /// Hypotheses of the candidates alone.
+    pub candidates_hypotheses: usize,
+}
+
+/// The search on `stage` over `library` (module docs); `hypotheses` the count of the
+/// candidates alone (the members of scans each one).
+pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) -> Search {
+    let watch = stage.watch.during(Pass::Candidates);
+    let singles: Vec<Model> = library
+        .par_iter()
+        .map(|c| {
+            let outcome = c.fit(&Stage { watch, ..*stage });
+            tell_fitted(&watch, c.name(), &outcome);
+            Model {
+                name: c.name().to_string(),
+                describe: c.describe().to_string(),
+                verdict: c.verdict(),
+                extends: None,
+                outcome,
+                lrt: None,
+                adjusted: None,
+            }
+        })
+        .collect();
+    let mut models = singles;
+    let mut tried = hypotheses;
+    for m in &mut models {
+        judge(m, stage.base, tried);
+    }
+    let rivals: Vec<Rival> = models.iter().map(rival).collect();
+    let Some((first, contenders)) = select(&rivals) else {
+        return Search {
+            models,
+            path: Path::default(),
+            hypotheses: tried,
+            candidates_hypotheses: hypotheses,
+        };
+    };
+    let mut path = Path {
+        models: vec![first],
+        contenders,
+    };
+    let lap = library
+        .iter()
+        .position(|c| c.name() == LAYERED_LAP)
+        .and_then(|i| models[i].fitted().cloned());
+    // Causes added one after another while the first stands clearly alone.
+    while path.contenders.is_empty() && path.models.len() < MAX_CAUSES {
+        let &last = path.models.last().expect("the path has a first cause");
+        let Some(parts) = parts_of(&path.models, &models, library) else {
+            break;
+        };
+        let additions: Vec<(usize, Part)> = library
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !parts.contains(i))
+            .filter_map(|(i, c)| Some((i, c.part()?)))
+            .filter(|(i, _)| models[*i].fit().is_some())
+            .collect();
+        if additions.is_empty() {
+            break;
+        }
+        let Some(from) = models[last].fitted().cloned() else {
+            break;
+        };
+        let step = path.models.len() + 1;
+        let watch = stage.watch.during(Pass::Together(step));
+        let fitted: Vec<Model> = additions
+            .par_iter()
+            .map(|(i, part)| {
+                let name = format!("{} + {}", models[last].name, library[*i].name());
+                let outcome = combine(&Stage { watch, ..*stage }, &from, part, lap.as_ref(), &name);
+                tell_fitted(&watch, &name, &outcome);
+                Model {
+                    name,
+                    describe: library[*i].describe().to_string(),
+                    verdict: Verdict::Effect,
+                    extends: Some(last),
+                    outcome,
+                    lrt: None,
+                    adjusted: None,
+                }
+            })
+            .collect();
+        tried += fitted.len();
+        let at = models.len();
+        models.extend(fitted);
+        for m in &mut models[at..] {
+            judge(m, &from, tried);
+        }
+        let rivals: Vec<Rival> = models[at..].iter().map(rival).collect();
+        match select(&rivals) {
+            Some((best, close)) if close.is_empty() => path.models.push(at + best),
+            _ => break,
+        }
+    }
+    Search {
+        models,
+        path,
+        hypotheses: tried,
+        candidates_hypotheses: hypotheses,
+    }
+}
+
+/// The likelihood-ratio statistic of `m` against `from`, the model it extends, and its
+/// p-value adjusted for `tried` hypotheses.
+fn judge(m: &mut Model, from: &Fitted, tried: usize) {
+    if let Ok(fit) = &m.outcome {
+        let lrt = (from.deviance - fit.deviance).max(0.0);
+        m.lrt = Some(lrt);
+        m.adjusted = Some(adjusted(
+            lr_p_value(lrt, fit.added, fit.discrepancy_dof),
+            tried,
+        ));
+    }
+}
+
+/// What the relative rules read of `m`.
+fn rival(m: &Model) -> Rival {
+    match (&m.outcome, m.lrt, m.adjusted) {
+        (Ok(fit), Some(lrt), Some(adjusted)) => Rival {
+            deviance: fit.deviance,
+            parameters: fit.parameters.len(),
+            lrt,
+            adjusted,
+            usable: fit.excluded.is_none(),
+            dependent: m.verdict == Verdict::FrequencyDependent,
+        },
+        _ => Rival {
+            deviance: f64::INFINITY,
+            parameters: 0,
+            lrt: 0.0,
+            adjusted: 1.0,
+            usable: false,
+            dependent: false,
+        },
+    }
+}
+
+/// The candidates (indices into `library`) whose causes the models of `path` hold, when every
+/// one of them combines; None when one stands alone.
+fn parts_of(
+    path: &[usize],
+    models: &[Model],
+    library: &[Arc<dyn Candidate>],
+) -> Option<Vec<usize>> {
+    let names: Vec<&str> = models[*path.last()?].name.split(" + ").collect();
+    names
+        .iter()
+        .map(|n| {
+            let i = library.iter().position(|c| c.name() == *n)?;
+            library[i].part().map(|_| i)
+        })
+        .collect()
+}
