@@ -104,7 +104,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
 const HOLD: Duration = Duration::from_secs(2);
 /// Least time between two logged iterations of a fit: a long fit shows it is moving, a quick
 /// one does not fill the log.
-const PACE: Duration = Duration::from_secs(0);
+const PACE: Duration = Duration::from_secs(10);
 
 /// The log of the diagnosis's steps (module `jointid::output::diagnose_log`), each line given
 /// to `write`: held back for the first `hold`, then every line as its step finishes; an
