@@ -91,9 +91,17 @@ pub fn calibrate(
     let joints = ctx.structure.identified().len();
     let mut kept = measured.clone();
     let mut aside: Vec<LeftOut> = Vec::new();
-    let base = loop {
-        match joint_only(ctx, &kept, calibration, None) {
-            Ok(base) => break base,
+    let measurement = Calibration {
+        discrepancy: Discrepancy::default(),
+        ..calibration.clone()
+    };
+    let (initial, base) = loop {
+        let fitted = fit::as_given(ctx, &kept, &measurement).and_then(|initial| {
+            let start = discrepancy::estimate(&initial, &kept, &measurement);
+            Ok((initial, joint_only(ctx, &kept, calibration, start, None)?))
+        });
+        match fitted {
+            Ok(both) => break both,
             Err(FitError::Unpaired(e)) => {
                 let Unpaired::NoPartner {
                     mode, frequency_hz, ..
@@ -124,31 +132,32 @@ pub fn calibrate(
             pair(&base.modal, &trial, ctx.structure.rigid, &calibration.pairing).is_ok()
         })
         .collect();
-    let (measured, base) = if back.is_empty() {
-        (kept, base)
+    let (measured, initial, base) = if back.is_empty() {
+        (kept, initial, base)
     } else {
         let all = back.iter().fold(kept.clone(), |m, &r| with(&m, measured, r));
         let joint_start = &base.solution[..joints];
-        match joint_only(ctx, &all, calibration, Some(joint_start)) {
-            Ok(again) => (all, again),
-            Err(_) => (kept, base),
+        let again = fit::as_given(ctx, &all, &measurement).and_then(|initial| {
+            let start = discrepancy::estimate(&initial, &all, &measurement);
+            Ok((initial, joint_only(ctx, &all, calibration, start, Some(joint_start))?))
+        });
+        match again {
+            Ok((initial, again)) => (all, initial, again),
+            Err(_) => (kept, initial, base),
         }
     };
     let left_out = aside
         .into_iter()
         .filter(|left| measured.modes().iter().all(|m| m.mode != left.mode))
         .collect();
-    let measurement = Calibration {
-        discrepancy: Discrepancy::default(),
-        ..calibration.clone()
-    };
-    let initial = fit::as_given(ctx, &measured, &measurement)?;
-    // Growth beyond round-off (relative, and absolute for data the model fits exactly).
-    let grown = fit::chi2_of(&fit::residuals(&base, &measured), &measured, &measurement);
-    if grown > initial.chi2 * (1.0 + 1e-9) + 1e-9 * base.dof as f64 {
+    // Growth beyond round-off (relative, and absolute for data the model fits exactly) of the
+    // deviance, each with its own discrepancy: the calibration can only lower it unless the
+    // pairing changed on the way.
+    let given = discrepancy::profile_deviance(&initial, &measured, &measurement);
+    if base.deviance > given + 1e-9 * given.abs() + 1e-9 * base.dof as f64 {
         return Err(DiagnoseError::ErrorGrew {
-            before: initial.chi2,
-            after: grown,
+            before: given,
+            after: base.deviance,
         });
     }
     Ok(Calibrated {
@@ -159,15 +168,16 @@ pub fn calibrate(
     })
 }
 
-/// The joint-only fit of `measured` with its own discrepancy, from the nominal joint or the
-/// joint unknowns `joint_start`.
+/// The joint-only fit of `measured` with its own discrepancy (from `start`), from the nominal
+/// joint or the joint unknowns `joint_start`.
 fn joint_only(
     ctx: &Arc<EffectContext>,
     measured: &MeasuredModes,
     calibration: &Calibration,
+    start: Discrepancy,
     joint_start: Option<&[f64]>,
 ) -> Result<Fitted, FitError> {
-    discrepancy::fit_with(measured, calibration, Discrepancy::default(), |cal, from| {
+    discrepancy::fit_with(measured, calibration, start, |cal, from| {
         match (from, joint_start) {
             (Some(from), _) => fit::refit(ctx, measured, cal, &[], from, &mut Silent),
             (None, Some(x0)) => fit::fit_from(ctx, measured, cal, &[], x0, &mut Silent),

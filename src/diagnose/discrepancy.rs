@@ -39,7 +39,7 @@ use crate::measured::MeasuredModes;
 pub const ROUNDS: usize = 12;
 /// Converged when every tau^2 moves by less than this fraction of its kind's mean total
 /// variance.
-pub const TOLERANCE: f64 = 1e-3;
+pub const TOLERANCE: f64 = 1e-2;
 
 /// The squared residuals and measurement variances of one kind of quantity, in the units of
 /// [`Discrepancy`] (relative frequencies; shape components per unit of their mode's peak).
@@ -59,6 +59,14 @@ impl Squares {
                 e2 / v + v.ln()
             })
             .sum()
+    }
+
+    /// The first and second derivatives of [`Squares::deviance`] in t.
+    fn derivatives(&self, t: f64) -> (f64, f64) {
+        self.pairs.iter().fold((0.0, 0.0), |(d1, d2), &(e2, s2)| {
+            let v = (s2 + t).max(f64::MIN_POSITIVE);
+            (d1 + 1.0 / v - e2 / (v * v), d2 + 2.0 * e2 / (v * v * v) - 1.0 / (v * v))
+        })
     }
 
     /// Mean measurement variance.
@@ -138,7 +146,19 @@ pub fn variance(squares: &Squares) -> f64 {
             a = c;
         }
     }
-    let t = (0.5 * (a + b)).exp();
+    // Newton's steps on the derivative polish what the comparisons of a flat minimum leave
+    // (about the square root of the rounding).
+    let mut t = (0.5 * (a + b)).exp();
+    for _ in 0..4 {
+        let (slope, curvature) = squares.derivatives(t);
+        if !(curvature > 0.0) {
+            break;
+        }
+        let next = t - slope / curvature;
+        if next > 0.0 && squares.deviance(next) <= squares.deviance(t) {
+            t = next;
+        }
+    }
     if squares.deviance(0.0) <= squares.deviance(t) {
         0.0
     } else {
@@ -157,6 +177,17 @@ pub fn estimate(
         frequency: variance(&frequency).sqrt(),
         shape: variance(&shape).sqrt(),
     }
+}
+
+/// The deviance of `fitted`'s residuals with the discrepancy that maximises their likelihood,
+/// its unknowns held: its profile over the discrepancy.
+pub fn profile_deviance(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> f64 {
+    let (frequency, shape) = squares(fitted, measured, calibration);
+    frequency.deviance(variance(&frequency)) + shape.deviance(variance(&shape))
 }
 
 /// Whether `next` is `current` to [`TOLERANCE`] of each kind's mean total variance.
@@ -204,7 +235,9 @@ pub fn fit_with(
         ..calibration.clone()
     };
     let mut fitted = fit(&current, None)?;
+    let mut rounds_done = 0;
     for _ in 0..ROUNDS {
+        rounds_done += 1;
         let (frequency, shape) = squares(&fitted, measured, calibration);
         let next = Discrepancy {
             frequency: variance(&frequency).sqrt(),
@@ -217,6 +250,7 @@ pub fn fit_with(
         fitted = fit(&current, Some(&fitted))?;
     }
     fitted.discrepancy_dof = dof(&fitted, measured);
+    if std::env::var("JOINTID_DEBUG").is_ok() { eprintln!("DEBUG rounds {:?} tau {:?} dev {}", rounds_done, fitted.discrepancy, fitted.deviance); }
     Ok(fitted)
 }
 

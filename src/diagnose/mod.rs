@@ -8,15 +8,16 @@
 //! 1. [`calibrate`]: the model checked, the effects' context, the joint calibrated with its own
 //!    discrepancy (modes without a partner set aside, paired again, left out);
 //! 2. [`search`]: every candidate fitted once with its own discrepancy ([`discrepancy`]), the
-//!    clearly best one, causes added one after another;
-//! 3. [`yardstick`]: the measurement error the models are judged against: the data's own
-//!    standard errors, or the noise estimated from the largest model's residuals ([`noise`])
-//!    when they pass the checks that do not stand on the noise level, else the stated noise;
-//! 4. [`score`]: each model judged against it: goodness of fit, lack of fit of the
-//!    frequencies, whiteness of the shape residuals ([`whiteness`]);
-//! 5. [`decide`]: the rules: which explanation is best (relative), whether it is adequate
+//!    clearly best one, causes added one after another while the model does not fit within
+//!    the measurement error;
+//! 3. [`score`]: every model judged against the measurement error ([`yardstick`]: the data's
+//!    own standard errors, or the noise estimated from the largest model's residuals
+//!    ([`noise`]) when they pass the checks that do not stand on the noise level, else the
+//!    stated noise): goodness of fit, lack of fit of the frequencies, whiteness of the shape
+//!    residuals ([`whiteness`]);
+//! 4. [`decide`]: the rules: which explanation is best (relative), whether it is adequate
 //!    (absolute), the graded verdict;
-//! 6. [`assemble`]: the [`report`] assembled: errors before and after, what remains, the
+//! 5. [`assemble`]: the [`report`] assembled: errors before and after, what remains, the
 //!    paper's per-mode corrections, the misfit's pattern.
 //!
 //! Beside them: [`settings`] (checked where set), [`pairing`] (MAC pairing of measured and
@@ -91,12 +92,12 @@ pub enum DiagnoseError {
     Fit(#[from] FitError),
     /// The calibration ended with a larger error than the model as given.
     #[error(
-        "the calibration of the joint ended with chi^2 {after:.4e} above the model as given ({before:.4e}): refused (the pairing of modes changed on the way; check it with --pair)"
+        "the calibration of the joint ended with deviance {after:.4e} above the model as given ({before:.4e}), each with its own discrepancy: refused (the pairing of modes changed on the way; check it with --pair)"
     )]
     ErrorGrew {
-        /// chi^2 of the model as given.
+        /// Deviance of the model as given.
         before: f64,
-        /// chi^2 after the calibration.
+        /// Deviance after the calibration.
         after: f64,
     },
     /// The nominal model is a mechanism.
@@ -164,7 +165,8 @@ pub fn diagnose_watched(
         watch,
     };
     let found = search::search(&library, &stage, candidate::hypotheses(&library, &ctx));
-    let estimate = yardstick::choose(&found, &calibrated.base, measured, &calibration);
+    let (largest, fitted) = found.largest(&calibrated.base);
+    let estimate = yardstick::of_model(largest, fitted, measured, &calibration);
     watch.tell(&Step::Noise(&estimate));
     let judge = Judge {
         estimate: &estimate,

@@ -7,11 +7,11 @@
 //! Layer: diagnose; reads the search's models, writes their reports.
 
 use super::decide::Judgement;
-use super::fit::{Fitted, Residuals, chi2_of, residuals};
+use super::fit::{Fitted, Residuals, residuals};
 use super::noise::NoiseEstimate;
 use super::report::{CandidateReport, ErrorSummary, Verdict};
 use super::search::{Model, Search};
-use super::whiteness;
+use super::yardstick;
 use crate::measured::MeasuredModes;
 
 /// A model's report with its fitted model and the verdict it names when standing alone.
@@ -38,16 +38,7 @@ impl Judge<'_> {
     /// The judgement of residuals `res` of a model with `unknowns` parameters besides the shape
     /// scales and `dof` degrees of freedom, with their chi^2 under the yardstick.
     fn judged(&self, res: &Residuals, unknowns: usize, dof: usize) -> (f64, Judgement) {
-        let e = self.estimate;
-        let chi2 = chi2_of(res, self.measured, &e.calibration());
-        let judgement = Judgement {
-            fit: Some(e.fit_p_value(chi2, dof)),
-            frequency: Some(e.frequency_lack_of_fit(res, unknowns).2),
-            whiteness: Some(
-                whiteness::of_residuals(res, self.measured, e.working, e.working_floor).p_value,
-            ),
-        };
-        (chi2, judgement)
+        yardstick::judgement(self.estimate, self.measured, res, unknowns, dof)
     }
 
     /// The judgement of the fitted model `fitted` (the joint-only fit).

@@ -2,14 +2,14 @@
 //! discrepancy; the clearly best one ([`super::decide::select`]); then causes added one after
 //! another (forward selection): the model of the causes so far extended by every other
 //! candidate that combines (module `candidate`'s `combined`), each fitted once, the clearly
-//! best significant addition kept, until none is significant, two contend, or
-//! [`MAX_CAUSES`] are together.
+//! best significant addition kept, until the model fits within the measurement error (module
+//! `yardstick`'s adequacy), none is significant, two contend, or [`MAX_CAUSES`] are together.
 //!
 //! Multiple testing is counted honestly: the p-value of an addition is adjusted for every
 //! hypothesis tried up to its step (the candidates, the members of scans, every addition tried
-//! before and at that step). The search stands on the relative rules only (each model judged
-//! against the one it extends, both with their own discrepancy); whether the result fits
-//! within the measurement error is the yardstick's question (module `yardstick`), asked after.
+//! before and at that step). Which cause is best stands on the relative rules only (each model
+//! judged against the one it extends, both with their own discrepancy); whether the result
+//! fits within the measurement error is the yardstick's question (module `yardstick`).
 //!
 //! Layer: diagnose; the step after the calibration.
 
@@ -22,6 +22,7 @@ use super::decide::{MAX_CAUSES, Path, Rival, adjusted, lr_p_value, select};
 use super::fit::Fitted;
 use super::progress::Pass;
 use super::report::Verdict;
+use super::yardstick;
 use crate::model::chain::assembly::LAYERED_LAP;
 
 /// One model the search fitted: a candidate alone, or a combination of causes.
@@ -111,9 +112,16 @@ pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) 
         .iter()
         .position(|c| c.name() == LAYERED_LAP)
         .and_then(|i| models[i].fitted().cloned());
-    // Causes added one after another while the first stands clearly alone.
+    // Causes added one after another while the first stands clearly alone and the model of
+    // the causes so far does not fit within the measurement error.
     while path.contenders.is_empty() && path.models.len() < MAX_CAUSES {
         let &last = path.models.last().expect("the path has a first cause");
+        let fits = models[last].fitted().is_some_and(|f| {
+            yardstick::adequate(&models[last].name, f, stage.measured, stage.calibration)
+        });
+        if fits {
+            break;
+        }
         let Some(parts) = parts_of(&path.models, &models, library) else {
             break;
         };
@@ -168,6 +176,44 @@ pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) 
         candidates_hypotheses: hypotheses,
     }
 }
+
+impl Search {
+    /// The largest physical model (module `yardstick`): the last model of the path when it is
+    /// static, else the static candidate of least deviance when below the joint-only fit
+    /// `base`'s by more than [`TIE`] of it, else `base` (named `joint only`); with its name.
+    pub fn largest<'a>(&'a self, base: &'a Fitted) -> (&'a str, &'a Fitted) {
+        let stands = |i: usize| self.models[i].verdict != Verdict::FrequencyDependent;
+        let usable = |i: usize| {
+            let m = &self.models[i];
+            let fit = m.fit().filter(|f| f.excluded.is_none())?;
+            Some((m.name.as_str(), fit.model.as_ref()?))
+        };
+        if let Some(found) = self
+            .path
+            .models
+            .last()
+            .filter(|&&i| stands(i))
+            .and_then(|&i| usable(i))
+        {
+            return found;
+        }
+        (0..self.models.len())
+            .filter(|&i| stands(i))
+            .filter_map(usable)
+            .filter(|(_, f)| f.deviance < base.deviance - TIE * base.deviance.abs())
+            .min_by(|a, b| a.1.deviance.total_cmp(&b.1.deviance))
+            .unwrap_or((JOINT_ONLY, base))
+    }
+}
+
+/// Relative deviance difference within which a candidate is the joint-only fit as far as the
+/// fits can tell (a candidate at the bound where it is the joint-only model, such as a mass of
+/// 0): two fits of one model end within the solver's decrement tolerance, 1e-8 of the cost,
+/// and which of two such ends is lower is the solver's path, not the data.
+pub const TIE: f64 = 1e-6;
+
+/// The name of the joint-only fit among the models.
+pub const JOINT_ONLY: &str = "joint only";
 
 /// The likelihood-ratio statistic of `m` against `from`, the model it extends, and its
 /// p-value adjusted for `tried` hypotheses.

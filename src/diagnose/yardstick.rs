@@ -4,9 +4,7 @@
 //!
 //! Data with their own standard errors are judged by them ([`super::noise::from_data`]: the
 //! residuals of the largest model are the check). Otherwise the largest physical model (the
-//! last model of the search's path when it is static, else the static candidate of least
-//! deviance when below the joint-only fit's by more than [`TIE`] of it, else the joint-only fit)
-//! gives the noise estimate ([`super::noise::estimate`] of its residuals), which becomes the
+//! search's: `super::search::Search::largest`) gives the noise estimate ([`super::noise::estimate`] of its residuals), which becomes the
 //! yardstick when its residuals pass the checks that do not stand on the noise level, each at
 //! [`FIT_ALPHA`]:
 //! - the whiteness of its shape residuals along the structure ([`whiteness`]: smooth
@@ -24,59 +22,24 @@
 //! the check. The frequency-dependent joint never gives the yardstick: its exponents fit any
 //! smooth trend of the frequencies with the mode whatever its cause.
 //!
-//! Nothing is fitted here: the models' residuals are read as the search left them.
+//! Nothing is fitted here: the models' residuals are read as the search left them. The search
+//! asks the same question of each model it would extend ([`adequate`]): causes are added only
+//! while the model does not fit within the measurement error.
 
-use super::decide::FIT_ALPHA;
-use super::fit::{Calibration, Fitted, Noise, SHAPE_FLOOR, residuals};
+use super::decide::{FIT_ALPHA, Judgement};
+use super::fit::{Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, chi2_of, residuals};
 use super::noise::{LARGEST_FACTOR, NoiseEstimate, estimate, from_data};
-use super::report::Verdict;
-use super::search::Search;
 use super::whiteness;
 use crate::measured::MeasuredModes;
 
-/// Relative deviance difference within which a candidate is the joint-only fit as far as the
-/// fits can tell (a candidate at the bound where it is the joint-only model, such as a mass of
-/// 0): two fits of one model end within the solver's decrement tolerance, 1e-8 of the cost,
-/// and which of two such ends is lower is the solver's path, not the data.
-pub const TIE: f64 = 1e-6;
-
-/// The name of the joint-only fit among the models.
-const JOINT_ONLY: &str = "joint only";
-
-/// The largest physical model of a search (module docs): its name and fitted model.
-pub fn largest<'a>(search: &'a Search, base: &'a Fitted) -> (&'a str, &'a Fitted) {
-    let stands = |i: usize| search.models[i].verdict != Verdict::FrequencyDependent;
-    let usable = |i: usize| {
-        let m = &search.models[i];
-        let fit = m.fit().filter(|f| f.excluded.is_none())?;
-        Some((m.name.as_str(), fit.model.as_ref()?))
-    };
-    if let Some(found) = search
-        .path
-        .models
-        .last()
-        .filter(|&&i| stands(i))
-        .and_then(|&i| usable(i))
-    {
-        return found;
-    }
-    (0..search.models.len())
-        .filter(|&i| stands(i))
-        .filter_map(usable)
-        .filter(|(_, f)| f.deviance < base.deviance - TIE * base.deviance.abs())
-        .min_by(|a, b| a.1.deviance.total_cmp(&b.1.deviance))
-        .unwrap_or((JOINT_ONLY, base))
-}
-
-/// The yardstick of `search` on `measured` (module docs), `calibration` the measurement error
-/// (the stated noise or the data's standard errors).
-pub fn choose(
-    search: &Search,
-    base: &Fitted,
+/// The yardstick the model `fitted` (named `name`) gives on `measured` (module docs),
+/// `calibration` the measurement error (the stated noise or the data's standard errors).
+pub fn of_model(
+    name: &str,
+    fitted: &Fitted,
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> NoiseEstimate {
-    let (name, fitted) = largest(search, base);
     if calibration.measured_std {
         return from_data(name, fitted, measured, calibration);
     }
@@ -97,6 +60,39 @@ pub fn choose(
     } else {
         stated_yardstick(e, stated)
     }
+}
+
+/// The judgement under the yardstick `e` of residuals `res` of a model with `unknowns`
+/// parameters besides the shape scales and `dof` degrees of freedom, with their chi^2 under it.
+pub fn judgement(
+    e: &NoiseEstimate,
+    measured: &MeasuredModes,
+    res: &Residuals,
+    unknowns: usize,
+    dof: usize,
+) -> (f64, Judgement) {
+    let chi2 = chi2_of(res, measured, &e.calibration());
+    let judgement = Judgement {
+        fit: Some(e.fit_p_value(chi2, dof)),
+        frequency: Some(e.frequency_lack_of_fit(res, unknowns).2),
+        whiteness: Some(whiteness::of_residuals(res, measured, e.working, e.working_floor).p_value),
+    };
+    (chi2, judgement)
+}
+
+/// Whether `fitted` explains `measured` within the measurement error, judged under the
+/// yardstick it gives itself.
+pub fn adequate(
+    name: &str,
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> bool {
+    let e = of_model(name, fitted, measured, calibration);
+    let res = residuals(fitted, measured);
+    judgement(&e, measured, &res, fitted.estimates.len(), fitted.dof)
+        .1
+        .explains(&e)
 }
 
 /// The stated noise as the yardstick, `check` (the largest model's estimate) kept as the

@@ -6,8 +6,8 @@
 //! - `stiffness_{param}.svg`: the per-mode joint parameter (calibrated value plus the mode's
 //!   correction) against frequency, with the band mean +- 2 standard deviations that a
 //!   frequency-independent joint would keep to (the paper's question);
-//! - `candidates.svg`: every candidate's likelihood-ratio statistic against the critical
-//!   value of the selection.
+//! - `candidates.svg`: every candidate's significance (-log10 of its adjusted p-value) against the
+//!   threshold of the selection.
 
 use super::plot::{LineAxes, PlotError, Series, bars, lines, svg};
 use super::study_report::{Figure, unit_of};
@@ -209,22 +209,23 @@ fn correction_figures(report: &Report) -> Result<Vec<Figure>, PlotError> {
     Ok(out)
 }
 
-/// Every candidate's likelihood-ratio statistic against the critical value (none when no
-/// candidate was fitted).
+/// Every candidate's (and combination's) significance against the rule's threshold (none when
+/// no candidate was fitted).
 fn candidates_figure(report: &Report) -> Result<Option<Figure>, PlotError> {
     let fitted: Vec<_> = report
         .candidates
         .iter()
-        .filter(|c| c.lrt.is_some())
+        .filter(|c| c.criterion.is_some())
         .collect();
     if !fitted.is_empty() {
         let labels: Vec<String> = fitted.iter().map(|c| c.name.clone()).collect();
-        let values: Vec<f64> = fitted.iter().map(|c| c.lrt.unwrap_or(0.0)).collect();
-        let k = fitted.iter().map(|c| c.parameters.len()).max().unwrap_or(1);
-        let critical = report
-            .noise_estimate
-            .lrt_critical(ALPHA / report.hypotheses as f64, k);
-        let label = format!("critical value {critical:.2}");
+        // -log10 of the adjusted p-value, a p-value of 0 (below the smallest double) at 300.
+        let values: Vec<f64> = fitted
+            .iter()
+            .map(|c| -c.criterion.unwrap_or(1.0).max(1e-300).log10())
+            .collect();
+        let critical = -ALPHA.log10();
+        let label = format!("significant above {critical:.0} (p = {ALPHA})");
         let selected = report
             .selected
             .as_ref()
@@ -233,8 +234,8 @@ fn candidates_figure(report: &Report) -> Result<Option<Figure>, PlotError> {
         let body = svg((900, 450), |area| {
             bars(
                 area,
-                "Candidates: chi^2(joint only) - chi^2(with candidate)",
-                "likelihood-ratio statistic",
+                "Candidates and causes together: significance against the model each extends",
+                "-log10 adjusted p-value",
                 &labels,
                 &values,
                 (critical, &label),
@@ -244,13 +245,8 @@ fn candidates_figure(report: &Report) -> Result<Option<Figure>, PlotError> {
         return Ok(Some(Figure {
             name: "candidates.svg".into(),
             caption: format!(
-                "Every candidate's likelihood-ratio statistic (chi^2 units, log scale). Above the dashed critical value (p = {ALPHA} / {} {}, Bonferroni, for the largest parameter count of a candidate) a candidate is significant; the selected one is the significant candidate with the largest statistic whose fit explains the data.",
-                report.hypotheses,
-                if report.hypotheses == report.candidates.len() {
-                    "candidates"
-                } else {
-                    "hypotheses (a scan counts each of its members)"
-                }
+                "Every candidate's significance, -log10 of its likelihood-ratio p-value (each model with its own discrepancy: F where one was estimated) adjusted for the {} hypotheses tried up to its step (Bonferroni; log scale); a combination (a + b) is tested against the model it extends (a). Above the dashed line a cause is significant; the selected model is the clearly best one, extended while a further cause is.",
+                report.hypotheses
             ),
             svg: body,
         }));

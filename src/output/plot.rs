@@ -636,11 +636,7 @@ pub fn bars(
     threshold: (f64, &str),
     highlight: Option<(usize, &str)>,
 ) -> Result<(), PlotError> {
-    let mut entries = vec![(
-        "likelihood-ratio statistic".to_string(),
-        PALETTE[0],
-        Mark::Dot,
-    )];
+    let mut entries = vec![(y_desc.to_string(), PALETTE[0], Mark::Dot)];
     if let Some((_, name)) = highlight {
         entries.push((name.to_string(), PALETTE[2], Mark::Dot));
     }

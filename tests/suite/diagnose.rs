@@ -106,7 +106,14 @@ fn each_hidden_candidate_is_found_sized_and_brings_the_error_to_noise() {
             "{name}: after f RMS {}%",
             report.after.frequency_rms_pct
         );
-        assert!(report.after.frequency_rms_pct < report.before.frequency_rms_pct);
+        // The misfit under the measurement error falls (the joint alone, calibrated with its
+        // own discrepancy, may leave it in the shapes rather than in the frequencies).
+        assert!(
+            report.after.chi2 < report.before.chi2,
+            "{name}: chi^2 {} vs {}",
+            report.after.chi2,
+            report.before.chi2
+        );
         assert!(
             report.after.min_mac > 0.99,
             "{name}: min MAC {}",
@@ -259,15 +266,15 @@ fn a_power_law_joint_is_recovered_by_the_frequency_dependence_candidate() {
         (fitted - alpha).abs() < 0.05 * alpha,
         "alpha {fitted} against {alpha}"
     );
-    let d = exact
+    let chi2 = exact
         .candidates
         .iter()
         .find(|c| c.name == "frequency_dependence")
-        .and_then(|c| c.lrt)
+        .and_then(|c| c.chi2)
         .unwrap();
     assert!(
-        d > 0.99 * exact.before.chi2,
-        "D {d} of chi^2 {}",
+        chi2 < 0.01 * exact.before.chi2,
+        "chi^2 {chi2} of the joint alone's {}",
         exact.before.chi2
     );
     // Under the stated noise: named, alpha within 3 standard errors.
@@ -418,7 +425,12 @@ fn simulate_then_diagnose_writes_the_json_report() {
         .map(|c| c.name())
         .filter(|&n| n != "support_flexibility" && n != "layered_lap")
         .collect();
-    assert_eq!(names, expected);
+    assert_eq!(names[..expected.len()], expected);
+    // Then the combinations the search tried: the selected cause with each other one.
+    for c in &candidates[expected.len()..] {
+        assert_eq!(c["extends"], "shear", "{c}");
+        assert!(c["name"].as_str().unwrap().starts_with("shear + "), "{c}");
+    }
     for c in candidates {
         for key in ["name", "parameters", "chi2", "criterion"] {
             assert!(!c[key].is_null(), "candidate {} lacks {key}", c["name"]);

@@ -15,7 +15,8 @@
 //! deviations of the frequency noise.
 //!
 //! What a user must get: a verdict, never `none` (30 sigma is no noise) nor a library effect
-//! named as the truth; the remaining error of the calibrated model; the modes and region the
+//! named as the whole truth (`unexplained`, or `partial` naming what explains most and what
+//! remains beyond the noise); the error of the calibrated model; the modes and region the
 //! misfit sits in; the frequency trend of the joint (the frequency-dependence candidate's
 //! exponent with its standard error); and no absurd number: every value finite, a candidate
 //! the data cannot support refused with its reason, per-mode corrections the three sensors
@@ -62,7 +63,7 @@ fn model(lap: bool) -> String {
 }
 
 #[test]
-fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
+fn a_lap_outside_the_library_is_partial_or_unexplained_with_its_error_pattern_and_trend() {
     let dir = scratch("lap-beam", "diagnose");
     let truth = dir.join("truth.toml");
     let nominal = dir.join("nominal.toml");
@@ -105,7 +106,11 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
         ]);
         let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         assert_finite(&r, "report");
-        assert_eq!(r["verdict"], "unexplained", "seed {seed}");
+        let verdict = r["verdict"].as_str().unwrap();
+        assert!(
+            verdict == "unexplained" || verdict == "partial",
+            "seed {seed}: {verdict}"
+        );
         // No model fits, so none gives the yardstick: the stated noise judges the candidates
         // and the largest model's residual scale is only the check.
         let estimate = &r["noise_estimate"];
@@ -116,19 +121,19 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
             0.001,
             "seed {seed}"
         );
-        // The remaining error of the calibrated joint: the symmetric modes' 3.4-3.9% (five
-        // seeds), the antisymmetric ones within 3 sigma of the 0.1% frequency noise.
-        let after = &r["after"];
-        let rms = number(&after["frequency_rms_pct"]);
-        assert!((2.5..3.2).contains(&rms), "seed {seed}: RMS {rms}%");
-        for m in after["modes"].as_array().unwrap() {
+        // The error of the calibrated joint: the symmetric modes' 2.5-7% (five seeds), the
+        // antisymmetric ones within 3 sigma of the 0.1% frequency noise.
+        let before = &r["before"];
+        let rms = number(&before["frequency_rms_pct"]);
+        assert!((2.5..4.5).contains(&rms), "seed {seed}: RMS {rms}%");
+        for m in before["modes"].as_array().unwrap() {
             let (mode, err) = (
                 m["mode"].as_u64().unwrap(),
                 number(&m["frequency_error_pct"]),
             );
             if mode % 2 == 1 {
                 assert!(
-                    err.abs() > 3.0 && err.abs() < 4.5,
+                    err.abs() > 2.0 && err.abs() < 8.0,
                     "seed {seed}: mode {mode} {err}%"
                 );
             } else {
@@ -136,15 +141,34 @@ fn a_lap_outside_the_library_is_unexplained_with_its_error_pattern_and_trend() {
             }
         }
         // Joint parameters: finite, within the fit's range of the nominal.
+        let after = &r["after"];
         assert_within_fit_range(&after["parameters"], &[1e7, 2e2], &format!("seed {seed}"));
-        // The pattern: the misfit sits in the symmetric modes.
-        let modes: Vec<u64> = r["pattern"]["modes"].as_array().unwrap()[..3]
-            .iter()
-            .map(|m| m["mode"].as_u64().unwrap())
-            .collect();
-        let mut sorted = modes.clone();
-        sorted.sort_unstable();
-        assert_eq!(sorted, [1, 3, 5], "seed {seed}: {modes:?}");
+        if verdict == "partial" {
+            // What remains beyond the noise with the named model: less than the calibrated
+            // joint's misfit, in a symmetric mode's frequency.
+            let remaining = &r["remaining"];
+            assert!(number(&remaining["removed"]) > 0.5, "seed {seed}: {remaining}");
+            let modes: Vec<u64> = remaining["modes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|m| m["mode"].as_u64().unwrap())
+                .collect();
+            assert!(
+                !modes.is_empty() && modes.iter().all(|m| m % 2 == 1),
+                "seed {seed}: {remaining}"
+            );
+            assert!(r["discrepancy"]["frequency"].as_f64().unwrap() > 0.0);
+        } else {
+            // The pattern: the misfit sits in the symmetric modes.
+            let modes: Vec<u64> = r["pattern"]["modes"].as_array().unwrap()[..3]
+                .iter()
+                .map(|m| m["mode"].as_u64().unwrap())
+                .collect();
+            let mut sorted = modes.clone();
+            sorted.sort_unstable();
+            assert_eq!(sorted, [1, 3, 5], "seed {seed}: {modes:?}");
+        }
         // Candidates: fitted with finite numbers, or refused with a reason.
         for c in r["candidates"].as_array().unwrap() {
             if c["error"].is_null() {

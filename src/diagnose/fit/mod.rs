@@ -946,6 +946,7 @@ pub(crate) mod tests {
                 frequency: 0.001,
                 shape: 0.02,
             },
+            discrepancy: Discrepancy::default(),
             pairing: PairingRule::default(),
             shape_floor: 0.01,
             measured_std: false,
