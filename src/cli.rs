@@ -439,6 +439,11 @@ pub struct DiagnoseArgs {
     /// Also search the candidates of the extended tier (listed from the registry).
     #[arg(long, help = extended_help())]
     pub extended: bool,
+    /// Causes to try together from the start, `a+b` (repeatable): candidates that combine
+    /// (the effects of the library and the layered lap), each named once; tried beside the
+    /// candidates alone, counted as one hypothesis each.
+    #[arg(long)]
+    pub causes: Vec<String>,
     /// No log of the diagnosis's steps on stderr (a run that ends within 2 s logs nothing
     /// anyway).
     #[arg(long)]

@@ -41,6 +41,11 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         },
         per_mode,
         extended: args.extended,
+        causes: args
+            .causes
+            .iter()
+            .map(|c| c.split('+').map(|n| n.trim().to_string()).collect())
+            .collect(),
     };
     settings.check().map_err(|e| {
         flagged(
@@ -49,6 +54,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
                 ("frequency_noise", "--frequency-noise"),
                 ("shape_noise", "--shape-noise"),
                 ("pairing_window", "--pairing-window"),
+                ("causes", "--causes"),
             ],
         )
     })?;

@@ -8,9 +8,10 @@ use super::candidate::{Tier, registry};
 use super::decide::{Decision, FIT_ALPHA, TREND_SIGMAS};
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
+use super::discrepancy;
 use super::report::{
-    ErrorSummary, LeftOut, Remainder, Remaining, Report, ResidualPattern, Verdict, flatness,
-    per_mode_corrections, remains,
+    ErrorSummary, LeftOut, Remainder, Remaining, Report, ResidualPattern, Undetermined, Verdict,
+    flatness, per_mode_corrections, remains,
 };
 use super::score::Scored;
 use crate::identify::Settings;
@@ -110,6 +111,7 @@ pub fn assemble(f: Findings) -> Report {
             .map(|&i| f.scored[i].report.name.clone())
             .collect(),
         discrepancy: after.discrepancy,
+        undetermined: undetermined(after, measured),
         remaining: remainder,
         left_out: f.left_out.clone(),
         pattern,
@@ -167,6 +169,18 @@ fn remainder(
             f.estimate.working_floor,
         ),
     }
+}
+
+/// The kinds of quantity whose discrepancy `fitted` could not estimate.
+fn undetermined(fitted: &Fitted, measured: &MeasuredModes) -> Vec<Undetermined> {
+    let (f, s) = discrepancy::residual_dof(fitted, measured);
+    let n_f = measured.modes().len();
+    let n_s = measured.modes().iter().map(|m| m.points.len()).sum();
+    [("frequency", n_f, f), ("shape", n_s, s)]
+        .into_iter()
+        .filter(|&(_, _, dof)| dof < discrepancy::LEAST_DOF)
+        .map(|(kind, values, dof)| Undetermined { kind, values, dof })
+        .collect()
 }
 
 /// Whether the extended library was searched.

@@ -18,7 +18,7 @@
 //! O'Hagan, "Bayesian calibration of computer models", JRSS B 63, 2001, for the discrepancy as
 //! a term of its own; Simoen, De Roeck & Lombaert, "Dealing with uncertainty in model
 //! updating for damage assessment: a review", MSSP 56-57, 2015). [`fit_with`] alternates the
-//! two blocks: the weighted least squares of theta under the current tau (the fit of module
+//! two blocks (from two starts of tau, the better end kept): the weighted least squares of theta under the current tau (the fit of module
 //! `fit`, from the last optimum), then each tau^2 by its own one-dimensional maximum
 //! likelihood given the residuals ([`variance`]); every step lowers the deviance, and it stops
 //! when tau^2 moves by less than [`TOLERANCE`] of the total variance. A model that fits within
@@ -28,7 +28,10 @@
 //! Each candidate's deviance at its optimum is its profile likelihood with tau as a nuisance
 //! parameter: two models are compared by the difference of their deviances (module `search`),
 //! each with its own discrepancy. The degrees of freedom of the discrepancy's estimate
-//! ([`dof`]) make that comparison an F test where tau was estimated.
+//! ([`dof`]) make that comparison an F test where tau was estimated. A kind whose residuals
+//! have less than [`LEAST_DOF`] degree of freedom left by the model's unknowns ([`estimable`]:
+//! two frequencies and two joint parameters) has no discrepancy the data could estimate: it
+//! is held at 0 and the report says so.
 
 use super::fit::{
     Calibration, Discrepancy, FitError, Fitted, Residuals, measurement_sigmas, residuals,
@@ -198,50 +201,107 @@ fn settled(next: Discrepancy, current: Discrepancy, frequency: &Squares, shape: 
     close(next.frequency, current.frequency, frequency) && close(next.shape, current.shape, shape)
 }
 
-/// Degrees of freedom of the discrepancy's estimate in `fitted`: for every kind whose tau is
-/// above 0, its values less its share of the unknowns (the shape scales are the shapes'; the
-/// model's parameters are shared by count); infinite when tau is 0 for both (the measurement
-/// error alone, known).
-pub fn dof(fitted: &Fitted, measured: &MeasuredModes) -> f64 {
+/// The residual degrees of freedom of each kind in `fitted`: (frequencies, shapes), each its
+/// values less its share of the unknowns (the shape scales are the shapes'; the model's
+/// parameters are shared by count).
+pub fn residual_dof(fitted: &Fitted, measured: &MeasuredModes) -> (f64, f64) {
     let n_f = measured.modes().len() as f64;
     let n_s: f64 = measured.modes().iter().map(|m| m.points.len() as f64).sum();
     let unknowns = fitted.estimates.len() as f64;
     let p_f = unknowns * n_f / (n_f + n_s);
     let p_s = n_f + unknowns * n_s / (n_f + n_s);
+    (n_f - p_f, n_s - p_s)
+}
+
+/// Smallest residual degrees of freedom of a kind whose discrepancy is estimated: fewer, and
+/// the data cannot tell a discrepancy from the fit's own freedom; the kind's discrepancy is
+/// then held at 0 and the report says so, never guessed.
+pub const LEAST_DOF: f64 = 1.0;
+
+/// Which kinds' discrepancy the data can estimate in `fitted`: (frequencies, shapes).
+pub fn estimable(fitted: &Fitted, measured: &MeasuredModes) -> (bool, bool) {
+    let (f, s) = residual_dof(fitted, measured);
+    (f >= LEAST_DOF, s >= LEAST_DOF)
+}
+
+/// Degrees of freedom of the discrepancy's estimate in `fitted`: the residual degrees of
+/// freedom of every kind whose tau is above 0; infinite when tau is 0 for both (the
+/// measurement error alone, known).
+pub fn dof(fitted: &Fitted, measured: &MeasuredModes) -> f64 {
+    let (f, s) = residual_dof(fitted, measured);
     let d = fitted.discrepancy;
-    let mut dof = 0.0;
-    if d.frequency > 0.0 {
-        dof += (n_f - p_f).max(1.0);
-    }
-    if d.shape > 0.0 {
-        dof += (n_s - p_s).max(1.0);
-    }
+    let dof = [(d.frequency, f), (d.shape, s)]
+        .iter()
+        .filter(|(tau, _)| *tau > 0.0)
+        .map(|(_, n)| n.max(LEAST_DOF))
+        .sum::<f64>();
     if dof == 0.0 { f64::INFINITY } else { dof }
 }
 
 /// A model fitted with its own discrepancy (module docs): `fit` fits the model's unknowns
-/// under a calibration, from an earlier optimum when given (None: its own start); the first
-/// fit is under `calibration` with the discrepancy `start` (the joint-only fit's, for a
-/// candidate: most candidates leave much of it). The returned fit carries its discrepancy,
-/// its deviance under it and the discrepancy's degrees of freedom.
+/// under a calibration, from an earlier optimum when given (None: its own start). The
+/// alternation runs from two starts of the discrepancy, `start` (the joint-only fit's, for a
+/// candidate: most candidates leave much of it) and zero (the measurement error alone), and
+/// the fit of least deviance is kept: the deviance over (theta, tau) can have two basins, one
+/// where a large discrepancy hides what an effect would explain in the frequencies, one where
+/// the effect is fitted and the discrepancy small, and each start finds its own. The returned
+/// fit carries its discrepancy, its deviance under it and the discrepancy's degrees of
+/// freedom.
 pub fn fit_with(
     measured: &MeasuredModes,
     calibration: &Calibration,
     start: Discrepancy,
     mut fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
 ) -> Result<Fitted, FitError> {
+    let first = alternate(measured, calibration, start, &mut fit);
+    if start == Discrepancy::default() {
+        return first;
+    }
+    let second = alternate(measured, calibration, Discrepancy::default(), &mut fit);
+    match (first, second) {
+        (Ok(a), Ok(b)) => Ok(if b.deviance < a.deviance { b } else { a }),
+        (Ok(a), Err(_)) => Ok(a),
+        (Err(_), Ok(b)) => Ok(b),
+        (Err(e), Err(_)) => Err(e),
+    }
+}
+
+/// The alternation of [`fit_with`] from the discrepancy `start`.
+fn alternate(
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    start: Discrepancy,
+    fit: &mut impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
+) -> Result<Fitted, FitError> {
     let mut current = Calibration {
         discrepancy: start,
         ..calibration.clone()
     };
     let mut fitted = fit(&current, None)?;
-    let mut rounds_done = 0;
+    let (frequency_free, shape_free) = estimable(&fitted, measured);
+    if !(frequency_free && shape_free) {
+        // A kind without residual freedom: its discrepancy held at 0 from the start.
+        current.discrepancy = Discrepancy {
+            frequency: if frequency_free { start.frequency } else { 0.0 },
+            shape: if shape_free { start.shape } else { 0.0 },
+        };
+        if current.discrepancy != start {
+            fitted = fit(&current, None)?;
+        }
+    }
     for _ in 0..ROUNDS {
-        rounds_done += 1;
         let (frequency, shape) = squares(&fitted, measured, calibration);
         let next = Discrepancy {
-            frequency: variance(&frequency).sqrt(),
-            shape: variance(&shape).sqrt(),
+            frequency: if frequency_free {
+                variance(&frequency).sqrt()
+            } else {
+                0.0
+            },
+            shape: if shape_free {
+                variance(&shape).sqrt()
+            } else {
+                0.0
+            },
         };
         if settled(next, current.discrepancy, &frequency, &shape) {
             break;
@@ -250,7 +310,6 @@ pub fn fit_with(
         fitted = fit(&current, Some(&fitted))?;
     }
     fitted.discrepancy_dof = dof(&fitted, measured);
-    if std::env::var("JOINTID_DEBUG").is_ok() { eprintln!("DEBUG rounds {:?} tau {:?} dev {}", rounds_done, fitted.discrepancy, fitted.deviance); }
     Ok(fitted)
 }
 

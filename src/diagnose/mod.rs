@@ -164,7 +164,13 @@ pub fn diagnose_watched(
         base: &calibrated.base,
         watch,
     };
-    let found = search::search(&library, &stage, candidate::hypotheses(&library, &ctx));
+    let given = given_causes(&settings.causes, &library)?;
+    let found = search::search(
+        &library,
+        &stage,
+        candidate::hypotheses(&library, &ctx),
+        &given,
+    );
     let (largest, fitted) = found.largest(&calibrated.base);
     let estimate = yardstick::of_model(largest, fitted, measured, &calibration);
     watch.tell(&Step::Noise(&estimate));
@@ -195,6 +201,41 @@ pub fn diagnose_watched(
             .unwrap_or_else(|| report::default_settings(model, measured)),
         left_out: calibrated.left_out.clone(),
     }))
+}
+
+/// The combinations of causes the settings ask for, as indices into `library`; refused when
+/// one names a candidate the library does not hold for this model (another tier, or one that
+/// does not apply to it).
+fn given_causes(
+    causes: &[Vec<String>],
+    library: &[std::sync::Arc<dyn Candidate>],
+) -> Result<Vec<Vec<usize>>, DiagnoseError> {
+    causes
+        .iter()
+        .map(|combination| {
+            combination
+                .iter()
+                .map(|name| {
+                    library.iter().position(|c| c.name() == name).ok_or_else(|| {
+                        let tier = registry()
+                            .iter()
+                            .find(|c| c.name() == name)
+                            .map(|c| c.tier());
+                        let why = if tier == Some(Tier::Extended) {
+                            format!("{name} is a candidate of the extended tier: add --extended")
+                        } else {
+                            format!("{name} does not apply to this model")
+                        };
+                        DiagnoseError::Settings(crate::input::SettingError::new(
+                            "causes",
+                            combination.join("+"),
+                            why,
+                        ))
+                    })
+                })
+                .collect()
+        })
+        .collect()
 }
 
 #[cfg(test)]

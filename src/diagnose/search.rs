@@ -71,8 +71,15 @@ pub struct Search {
 }
 
 /// The search on `stage` over `library` (module docs); `hypotheses` the count of the
-/// candidates alone (the members of scans each one).
-pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) -> Search {
+/// candidates alone (the members of scans each one); `given` the combinations of causes the
+/// user asks for (indices into `library`, each of candidates that combine), tried beside the
+/// candidates alone, one hypothesis each.
+pub fn search(
+    library: &[Arc<dyn Candidate>],
+    stage: &Stage,
+    hypotheses: usize,
+    given: &[Vec<usize>],
+) -> Search {
     let watch = stage.watch.during(Pass::Candidates);
     let singles: Vec<Model> = library
         .par_iter()
@@ -90,8 +97,17 @@ pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) 
             }
         })
         .collect();
+    let lap = library
+        .iter()
+        .position(|c| c.name() == LAYERED_LAP)
+        .and_then(|i| singles[i].fitted().cloned());
+    let combinations: Vec<Model> = given
+        .par_iter()
+        .map(|parts| together(library, &singles, parts, stage, lap.as_ref()))
+        .collect();
     let mut models = singles;
-    let mut tried = hypotheses;
+    models.extend(combinations);
+    let mut tried = hypotheses + given.len();
     for m in &mut models {
         judge(m, stage.base, tried);
     }
@@ -108,10 +124,6 @@ pub fn search(library: &[Arc<dyn Candidate>], stage: &Stage, hypotheses: usize) 
         models: vec![first],
         contenders,
     };
-    let lap = library
-        .iter()
-        .position(|c| c.name() == LAYERED_LAP)
-        .and_then(|i| models[i].fitted().cloned());
     // Causes added one after another while the first stands clearly alone and the model of
     // the causes so far does not fit within the measurement error.
     while path.contenders.is_empty() && path.models.len() < MAX_CAUSES {
@@ -214,6 +226,56 @@ pub const TIE: f64 = 1e-6;
 
 /// The name of the joint-only fit among the models.
 pub const JOINT_ONLY: &str = "joint only";
+
+/// The causes `parts` (indices into `library`) fitted together, from the first one's own fit
+/// (`singles`), each further one added to the model of those before it; named by their names
+/// joined by " + ", a model that extends the joint-only fit.
+fn together(
+    library: &[Arc<dyn Candidate>],
+    singles: &[Model],
+    parts: &[usize],
+    stage: &Stage,
+    lap: Option<&Fitted>,
+) -> Model {
+    let name = parts
+        .iter()
+        .map(|&i| library[i].name())
+        .collect::<Vec<_>>()
+        .join(" + ");
+    let watch = stage.watch.during(Pass::Together(parts.len()));
+    let first = &singles[parts[0]];
+    let mut outcome = match &first.outcome {
+        Ok(fit) => Ok(fit.clone()),
+        Err(e) => Err(e.clone()),
+    };
+    for &i in &parts[1..] {
+        let (Ok(fit), Some(part)) = (&outcome, library[i].part()) else {
+            break;
+        };
+        let Some(from) = fit.model.as_ref() else {
+            break;
+        };
+        outcome = combine(&Stage { watch, ..*stage }, from, &part, lap, &name);
+    }
+    // The causes together add the unknowns of every one of them to the joint-only fit.
+    if let Ok(fit) = &mut outcome {
+        fit.added = parts
+            .iter()
+            .map(|&i| singles[i].fit().map_or(0, |f| f.added))
+            .sum();
+        fit.describe = format!("the causes {name} together, asked for (--causes)");
+    }
+    tell_fitted(&watch, &name, &outcome);
+    Model {
+        name,
+        describe: first.describe.clone(),
+        verdict: Verdict::Effect,
+        extends: None,
+        outcome,
+        lrt: None,
+        adjusted: None,
+    }
+}
 
 /// The likelihood-ratio statistic of `m` against `from`, the model it extends, and its
 /// p-value adjusted for `tried` hypotheses.

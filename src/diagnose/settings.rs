@@ -1,5 +1,6 @@
 //! The settings of a diagnosis, checked where they are set.
 
+use super::candidate::{Tier, registry};
 use super::fit::Noise;
 use super::pairing::PairingRule;
 use crate::identify::Settings;
@@ -20,6 +21,9 @@ pub struct DiagnoseSettings {
     pub per_mode: Option<Settings>,
     /// Also search the richer candidates (the extended tier).
     pub extended: bool,
+    /// Combinations of causes to try from the start beside the candidates alone (each the
+    /// names of candidates that combine, at least two, none twice).
+    pub causes: Vec<Vec<String>>,
 }
 
 impl DiagnoseSettings {
@@ -35,6 +39,9 @@ impl DiagnoseSettings {
                 return Err(SettingError::new(setting, value, noise));
             }
         }
+        for combination in &self.causes {
+            check_causes(combination)?;
+        }
         let window = self.pairing.window;
         if !(window.is_finite() && window > 0.0 && window <= LARGEST_WINDOW) {
             return Err(SettingError::new(
@@ -45,6 +52,41 @@ impl DiagnoseSettings {
         }
         Ok(())
     }
+}
+
+/// Refuses a combination of causes that names fewer than two, one twice, or one that is no
+/// candidate that combines (the effects of the library and the layered lap).
+fn check_causes(combination: &[String]) -> Result<(), SettingError> {
+    let value = combination.join("+");
+    let combining: Vec<&'static str> = registry()
+        .iter()
+        .filter(|c| c.part().is_some() && c.tier() != Tier::Outside)
+        .map(|c| c.name())
+        .collect();
+    let allowed = format!(
+        "two or more of {} joined by '+', each once",
+        combining.join(", ")
+    );
+    if combination.len() < 2 {
+        return Err(SettingError::new("causes", &value, &allowed));
+    }
+    for (i, name) in combination.iter().enumerate() {
+        if !combining.contains(&name.as_str()) {
+            return Err(SettingError::new(
+                "causes",
+                &value,
+                &format!("{name} is no candidate that combines; {allowed}"),
+            ));
+        }
+        if combination[..i].contains(name) {
+            return Err(SettingError::new(
+                "causes",
+                &value,
+                &format!("{name} is named twice; {allowed}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -60,6 +102,7 @@ mod tests {
             },
             per_mode: None,
             extended: false,
+            causes: Vec::new(),
         }
     }
 
@@ -76,6 +119,22 @@ mod tests {
         ] {
             let e = s.check().unwrap_err();
             assert_eq!((e.setting, e.value.as_str()), (setting, value), "{e}");
+        }
+        let with = |causes: &[&str]| DiagnoseSettings {
+            causes: vec![causes.iter().map(|c| c.to_string()).collect()],
+            ..settings(0.001, 0.02, 0.5)
+        };
+        assert!(with(&["layered_lap", "shear"]).check().is_ok());
+        for (causes, reason) in [
+            (&["shear", "shear"][..], "shear is named twice"),
+            (&["shear", "glue"][..], "glue is no candidate that combines"),
+            (&["shear"][..], "two or more of"),
+            (&["shear", "local_stiffness"][..], "local_stiffness is no candidate"),
+        ] {
+            let e = with(causes).check().unwrap_err();
+            assert_eq!(e.setting, "causes");
+            assert_eq!(e.value, causes.join("+"));
+            assert!(e.to_string().contains(reason), "{e}");
         }
         assert_eq!(
             settings(-0.1, 0.02, 0.5).check().unwrap_err().to_string(),

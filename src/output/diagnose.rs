@@ -253,6 +253,13 @@ fn write_parameters(out: &mut dyn Write, parameters: &[Estimate]) -> io::Result<
 fn write_verdict(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     let verdict = verdict_text(r, true);
     writeln!(out, "verdict: {verdict}")?;
+    for u in &r.undetermined {
+        writeln!(
+            out,
+            "  the {} discrepancy cannot be estimated: {} values leave {:.1} degrees of freedom after the model's unknowns; it is held at 0 (the measurement error alone)",
+            u.kind, u.values, u.dof
+        )?;
+    }
     for l in &r.left_out {
         writeln!(
             out,

@@ -150,6 +150,18 @@ pub struct Remainder {
     pub pattern: ResidualPattern,
 }
 
+/// A kind of quantity whose discrepancy the data cannot estimate: the model's unknowns leave
+/// its residuals less than one degree of freedom (the discrepancy is then held at 0).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Undetermined {
+    /// `frequency` or `shape`.
+    pub kind: &'static str,
+    /// Its measured values.
+    pub values: usize,
+    /// The residual degrees of freedom left (values less the kind's share of the unknowns).
+    pub dof: f64,
+}
+
 /// A measured mode the diagnosis left out: no model mode resembled it, with the model as
 /// given nor with the joint calibrated on the other modes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -179,6 +191,10 @@ pub struct Report {
     /// The discrepancy of the `after` model: what it misses beyond the measurement error, as
     /// standard deviations (module `discrepancy`).
     pub discrepancy: Discrepancy,
+    /// The kinds of quantity of the `after` model whose discrepancy the data cannot estimate
+    /// (held at 0; absent from the JSON when none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub undetermined: Vec<Undetermined>,
     /// When `partial`: what remains beyond the measurement error with the named model.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub remaining: Option<Remainder>,
