@@ -254,8 +254,7 @@ pub fn lowest_modes(
             let (applications, solves, orthogonalisation) =
                 (krylov.applications, krylov.solves, krylov.orthogonalisation);
             let llt = krylov.into_factor();
-            let refined = refine(k, m, &llt, shift, start, count, tol, REFINE_SWEEPS)
-                .ok_or(ModalError::NoConvergence)?;
+            let refined = refine(k, m, &llt, shift, start, count, tol, REFINE_SWEEPS)?;
             let pairs = ritz_pairs(shift, &refined, count, norms);
             let unconverged: Vec<(usize, f64)> = (0..count)
                 .filter(|&j| pairs.backward_errors[j] > acceptance(tol, &pairs, j))

@@ -60,6 +60,23 @@ pub enum ModalError {
     /// The symmetric eigensolver did not converge.
     #[error("the symmetric eigensolver did not converge")]
     NoConvergence,
+    /// The Lanczos vectors handed to the refinement are not M-independent: shift-invert
+    /// could not tell the lowest modes apart, their theta = 1 / (lambda - sigma) equal to
+    /// working precision at a shift far beyond them (the default shift of
+    /// [`lanczos::LanczosSettings::shift`] when one stiffness dwarfs the others: a joint
+    /// spring of 4.4e158 N m/rad in a fit, sigma = -1.6e156).
+    #[error(
+        "the Lanczos vectors of the refinement are nearly dependent (rank {independent} of \
+         {requested} in the M inner product): shift-invert cannot tell the lowest modes apart \
+         in double precision, as in a model whose stiffness-to-mass ratios K_ii/M_ii span too \
+         many orders of magnitude; check the values and their units"
+    )]
+    DependentVectors {
+        /// M-independent directions among them.
+        independent: usize,
+        /// Vectors refined (the wanted pairs and a few more).
+        requested: usize,
+    },
     /// K and M are not square matrices of one size.
     #[error(
         "K is {}x{} and M is {}x{}: both must be square and of one size",
