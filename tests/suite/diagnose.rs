@@ -51,6 +51,7 @@ fn run_at(data: &MeasuredModes, noise: Noise) -> Report {
             pairing: PairingRule::default(),
             per_mode: None,
             extended: false,
+            causes: Vec::new(),
         },
     )
     .unwrap()
@@ -330,6 +331,7 @@ fn a_joint_mass_heavier_than_the_beams_is_excluded_with_the_reason() {
             },
             per_mode: None,
             extended: false,
+            causes: Vec::new(),
         },
     )
     .unwrap();

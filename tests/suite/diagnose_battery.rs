@@ -154,6 +154,7 @@ fn verdict_word_with(
         pairing: PairingRule::default(),
         per_mode: None,
         extended: false,
+        causes: Vec::new(),
     };
     match diagnose(&model, &measured, settings) {
         Ok(report) => match report.verdict {

@@ -363,6 +363,7 @@ fn diagnosed(model: &Structure, data: &MeasuredModes) -> Report {
             pairing: PairingRule::default(),
             per_mode: None,
             extended: false,
+            causes: Vec::new(),
         },
     )
     .unwrap()
