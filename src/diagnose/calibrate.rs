@@ -14,7 +14,7 @@ use std::sync::Arc;
 use super::DiagnoseError;
 use super::discrepancy;
 use super::fit::{self, Calibration, Discrepancy, FitError, Fitted};
-use super::pairing::{Unpaired, pair};
+use super::pairing::{PairingRule, Unpaired, pair};
 use super::report::LeftOut;
 use super::settings::DiagnoseSettings;
 use crate::identify::Identifier;
@@ -136,8 +136,25 @@ pub fn calibrate(
         (kept, initial, base)
     } else {
         let all = back.iter().fold(kept.clone(), |m, &r| with(&m, measured, r));
+        // The model as given cannot pair the modes taken back: it is read with the pairs
+        // the calibrated joint gives.
+        let pairs = pair(&base.modal, &all, ctx.structure.rigid, &calibration.pairing)
+            .map_err(FitError::from)?;
+        let given = PairingRule {
+            given: all
+                .modes()
+                .iter()
+                .zip(&pairs.model_index)
+                .map(|(m, &s)| (m.mode, s + 1 - ctx.structure.rigid))
+                .collect(),
+            ..calibration.pairing.clone()
+        };
+        let read = Calibration {
+            pairing: given,
+            ..measurement.clone()
+        };
         let joint_start = &base.solution[..joints];
-        let again = fit::as_given(ctx, &all, &measurement).and_then(|initial| {
+        let again = fit::as_given(ctx, &all, &read).and_then(|initial| {
             let start = discrepancy::estimate(&initial, &all, &measurement);
             Ok((initial, joint_only(ctx, &all, calibration, start, Some(joint_start))?))
         });

@@ -44,7 +44,7 @@ pub const AMBIGUITY_MARGIN: f64 = 6.0;
 /// is reported as a trend (`Report::trend`; shown, not the test).
 pub const TREND_SIGMAS: f64 = 3.0;
 /// Most causes the search puts together.
-pub const MAX_CAUSES: usize = 3;
+pub const MAX_CAUSES: usize = 2;
 
 /// A likelihood-ratio p-value adjusted for `tried` hypotheses (Bonferroni, at most 1).
 pub fn adjusted(p: f64, tried: usize) -> f64 {

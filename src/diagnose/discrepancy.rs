@@ -224,16 +224,23 @@ pub fn estimable(fitted: &Fitted, measured: &MeasuredModes) -> (bool, bool) {
     (f >= LEAST_DOF, s >= LEAST_DOF)
 }
 
-/// Degrees of freedom of the discrepancy's estimate in `fitted`: the residual degrees of
-/// freedom of every kind whose tau is above 0; infinite when tau is 0 for both (the
-/// measurement error alone, known).
-pub fn dof(fitted: &Fitted, measured: &MeasuredModes) -> f64 {
+/// Degrees of freedom of the error variance estimated in `fitted` (the F tests' denominator):
+/// for every kind whose tau is above 0, its residual degrees of freedom n, as the total
+/// variance v = s^2 + tau^2 carries them (Satterthwaite: the measurement variance s^2 is known,
+/// tau^2 estimated on n, so v has n (v / tau^2)^2: a discrepancy small beside the measurement
+/// error leaves the variance nearly known), summed over the kinds; infinite when tau is 0 for
+/// both (the measurement error alone, known).
+pub fn dof(fitted: &Fitted, measured: &MeasuredModes, calibration: &Calibration) -> f64 {
     let (f, s) = residual_dof(fitted, measured);
+    let (frequency, shape) = squares(fitted, measured, calibration);
     let d = fitted.discrepancy;
-    let dof = [(d.frequency, f), (d.shape, s)]
+    let dof = [(d.frequency, f, &frequency), (d.shape, s, &shape)]
         .iter()
-        .filter(|(tau, _)| *tau > 0.0)
-        .map(|(_, n)| n.max(LEAST_DOF))
+        .filter(|(tau, _, _)| *tau > 0.0)
+        .map(|(tau, n, kind)| {
+            let t = tau * tau;
+            n.max(LEAST_DOF) * ((kind.mean_variance() + t) / t).powi(2)
+        })
         .sum::<f64>();
     if dof == 0.0 { f64::INFINITY } else { dof }
 }
@@ -309,7 +316,7 @@ fn alternate(
         current.discrepancy = next;
         fitted = fit(&current, Some(&fitted))?;
     }
-    fitted.discrepancy_dof = dof(&fitted, measured);
+    fitted.discrepancy_dof = dof(&fitted, measured, calibration);
     Ok(fitted)
 }
 

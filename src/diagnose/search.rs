@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
 use super::decide::{MAX_CAUSES, Path, Rival, adjusted, lr_p_value, select};
-use super::fit::Fitted;
+use super::fit::{Fitted, residuals};
 use super::progress::Pass;
 use super::report::Verdict;
 use super::yardstick;
@@ -42,6 +42,19 @@ pub struct Model {
     pub lrt: Option<f64>,
     /// Its p-value adjusted for the hypotheses tried up to its step.
     pub adjusted: Option<f64>,
+    /// What its test stood on.
+    pub test: Option<Test>,
+}
+
+/// What a model's likelihood-ratio test against the model it extends stands on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Test {
+    /// The measurement error: the model fits within it, so its residual is noise alone and
+    /// both models' chi^2 under the yardstick its residuals give are compared.
+    MeasurementError,
+    /// Each model's own discrepancy: the difference of their deviances.
+    Discrepancy,
 }
 
 impl Model {
@@ -94,6 +107,7 @@ pub fn search(
                 outcome,
                 lrt: None,
                 adjusted: None,
+                test: None,
             }
         })
         .collect();
@@ -109,7 +123,7 @@ pub fn search(
     models.extend(combinations);
     let mut tried = hypotheses + given.len();
     for m in &mut models {
-        judge(m, stage.base, tried);
+        judge(m, stage.base, tried, stage);
     }
     let rivals: Vec<Rival> = models.iter().map(rival).collect();
     let Some((first, contenders)) = select(&rivals) else {
@@ -166,6 +180,7 @@ pub fn search(
                     outcome,
                     lrt: None,
                     adjusted: None,
+                    test: None,
                 }
             })
             .collect();
@@ -173,7 +188,7 @@ pub fn search(
         let at = models.len();
         models.extend(fitted);
         for m in &mut models[at..] {
-            judge(m, &from, tried);
+            judge(m, &from, tried, stage);
         }
         let rivals: Vec<Rival> = models[at..].iter().map(rival).collect();
         match select(&rivals) {
@@ -274,20 +289,50 @@ fn together(
         outcome,
         lrt: None,
         adjusted: None,
+        test: None,
     }
 }
 
-/// The likelihood-ratio statistic of `m` against `from`, the model it extends, and its
-/// p-value adjusted for `tried` hypotheses.
-fn judge(m: &mut Model, from: &Fitted, tried: usize) {
-    if let Ok(fit) = &m.outcome {
-        let lrt = (from.deviance - fit.deviance).max(0.0);
-        m.lrt = Some(lrt);
-        m.adjusted = Some(adjusted(
-            lr_p_value(lrt, fit.added, fit.discrepancy_dof),
-            tried,
-        ));
-    }
+/// The likelihood-ratio test of `m` against `from`, the model it extends, its p-value adjusted
+/// for `tried` hypotheses (module `decide`): against the measurement error when `m` fits
+/// within it (judged under the yardstick its own residuals give), both models' chi^2 under that
+/// yardstick; else with each model's own discrepancy, their deviances.
+fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
+    let Ok(fit) = &m.outcome else {
+        return;
+    };
+    let measured = stage.measured;
+    let against_noise = fit.model.as_ref().and_then(|model| {
+        let e = yardstick::of_model(&m.name, model, measured, stage.calibration);
+        let (chi2, judgement) =
+            yardstick::judgement(&e, measured, &fit.residuals, fit.unknowns, fit.dof);
+        if !judgement.explains(&e) {
+            return None;
+        }
+        let (before, _) = yardstick::judgement(
+            &e,
+            measured,
+            &residuals(from, measured),
+            from.estimates.len(),
+            from.dof,
+        );
+        let lrt = (before - chi2).max(0.0);
+        Some((lrt, e.lrt_p_value(lrt, fit.added)))
+    });
+    let (lrt, p, test) = match against_noise {
+        Some((lrt, p)) => (lrt, p, Test::MeasurementError),
+        None => {
+            let lrt = (from.deviance - fit.deviance).max(0.0);
+            (
+                lrt,
+                lr_p_value(lrt, fit.added, fit.discrepancy_dof),
+                Test::Discrepancy,
+            )
+        }
+    };
+    m.lrt = Some(lrt);
+    m.adjusted = Some(adjusted(p, tried));
+    m.test = Some(test);
 }
 
 /// What the relative rules read of `m`.
