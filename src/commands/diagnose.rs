@@ -7,7 +7,7 @@ use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
 use jointid::diagnose::{
-    DiagnoseSettings, Noise, PairingRule, Pass, Step, Watch, diagnose_watched,
+    DiagnoseError, DiagnoseSettings, Noise, PairingRule, Pass, Step, Watch, diagnose_watched,
 };
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
@@ -19,6 +19,14 @@ use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
 
 use crate::commands::flagged;
 use crate::commands::report::stage_page;
+
+/// The library's settings and the flags that set them.
+const FLAGS: [(&str, &str); 4] = [
+    ("frequency_noise", "--frequency-noise"),
+    ("shape_noise", "--shape-noise"),
+    ("pairing_window", "--pairing-window"),
+    ("causes", "--causes"),
+];
 
 pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     let per_mode = match (args.n, args.m) {
@@ -47,17 +55,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
             .map(|c| c.split('+').map(|n| n.trim().to_string()).collect())
             .collect(),
     };
-    settings.check().map_err(|e| {
-        flagged(
-            e,
-            &[
-                ("frequency_noise", "--frequency-noise"),
-                ("shape_noise", "--shape-noise"),
-                ("pairing_window", "--pairing-window"),
-                ("causes", "--causes"),
-            ],
-        )
-    })?;
+    settings.check().map_err(|e| flagged(e, &FLAGS))?;
     let mut inputs = model_inputs(&args.model);
     inputs.push(args.measured.clone());
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
@@ -81,7 +79,11 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     };
     let report = diagnose_watched(&model, &measured, settings, watch);
     log.end();
-    let report = report.with_context(|| format!("{}", args.measured.display()))?;
+    let report = match report {
+        // A setting refused once the model is known (a cause that does not apply to it).
+        Err(DiagnoseError::Settings(e)) => return Err(flagged(e, &FLAGS)),
+        other => other.with_context(|| format!("{}", args.measured.display()))?,
+    };
     let mut staged = Vec::new();
     if let Some(path) = &args.json {
         staged.push(

@@ -6,9 +6,9 @@
 
 use super::candidate::{Tier, registry};
 use super::decide::{Decision, FIT_ALPHA, TREND_SIGMAS};
+use super::discrepancy;
 use super::fit::{Fitted, Noise, SHAPE_FLOOR};
 use super::noise::NoiseEstimate;
-use super::discrepancy;
 use super::report::{
     ErrorSummary, LeftOut, Remainder, Remaining, Report, ResidualPattern, Undetermined, Verdict,
     flatness, per_mode_corrections, remains,
@@ -110,7 +110,7 @@ pub fn assemble(f: Findings) -> Report {
             .iter()
             .map(|&i| f.scored[i].report.name.clone())
             .collect(),
-        discrepancy: after.discrepancy,
+        discrepancy: after.discrepancy.clone(),
         undetermined: undetermined(after, measured),
         remaining: remainder,
         left_out: f.left_out.clone(),

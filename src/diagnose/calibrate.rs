@@ -109,6 +109,7 @@ pub fn calibrate(
                 else {
                     return Err(FitError::Unpaired(e).into());
                 };
+                // Setting it aside would leave fewer modes than the joint has parameters.
                 if kept.modes().len() <= joints.max(1) {
                     return Err(FitError::Unpaired(e).into());
                 }
@@ -129,36 +130,22 @@ pub fn calibrate(
         .map(|left| left.mode)
         .filter(|&mode| {
             let trial = with(&kept, measured, mode);
-            pair(&base.modal, &trial, ctx.structure.rigid, &calibration.pairing).is_ok()
+            pair(
+                &base.modal,
+                &trial,
+                ctx.structure.rigid,
+                &calibration.pairing,
+            )
+            .is_ok()
         })
         .collect();
     let (measured, initial, base) = if back.is_empty() {
         (kept, initial, base)
     } else {
-        let all = back.iter().fold(kept.clone(), |m, &r| with(&m, measured, r));
-        // The model as given cannot pair the modes taken back: it is read with the pairs
-        // the calibrated joint gives.
-        let pairs = pair(&base.modal, &all, ctx.structure.rigid, &calibration.pairing)
-            .map_err(FitError::from)?;
-        let given = PairingRule {
-            given: all
-                .modes()
-                .iter()
-                .zip(&pairs.model_index)
-                .map(|(m, &s)| (m.mode, s + 1 - ctx.structure.rigid))
-                .collect(),
-            ..calibration.pairing.clone()
-        };
-        let read = Calibration {
-            pairing: given,
-            ..measurement.clone()
-        };
-        let joint_start = &base.solution[..joints];
-        let again = fit::as_given(ctx, &all, &read).and_then(|initial| {
-            let start = discrepancy::estimate(&initial, &all, &measurement);
-            Ok((initial, joint_only(ctx, &all, calibration, start, Some(joint_start))?))
-        });
-        match again {
+        let all = back
+            .iter()
+            .fold(kept.clone(), |m, &r| with(&m, measured, r));
+        match again(ctx, &all, calibration, &base) {
             Ok((initial, again)) => (all, initial, again),
             Err(_) => (kept, initial, base),
         }
@@ -183,6 +170,41 @@ pub fn calibrate(
         initial,
         base,
     })
+}
+
+/// The model as given and the joint calibrated again on `all`, the modes kept with those taken
+/// back, from the joint of `base`: the model as given cannot pair the modes taken back, so it
+/// is read with the pairs the calibrated joint gives.
+fn again(
+    ctx: &Arc<EffectContext>,
+    all: &MeasuredModes,
+    calibration: &Calibration,
+    base: &Fitted,
+) -> Result<(Fitted, Fitted), FitError> {
+    let rigid = ctx.structure.rigid;
+    let pairs = pair(&base.modal, all, rigid, &calibration.pairing)?;
+    let read = Calibration {
+        discrepancy: Discrepancy::default(),
+        pairing: PairingRule {
+            given: all
+                .modes()
+                .iter()
+                .zip(&pairs.model_index)
+                .map(|(m, &s)| (m.mode, s + 1 - rigid))
+                .collect(),
+            ..calibration.pairing.clone()
+        },
+        ..calibration.clone()
+    };
+    let measurement = Calibration {
+        discrepancy: Discrepancy::default(),
+        ..calibration.clone()
+    };
+    let initial = fit::as_given(ctx, all, &read)?;
+    let start = discrepancy::estimate(&initial, all, &measurement);
+    let joints = ctx.structure.identified().len();
+    let base = joint_only(ctx, all, calibration, start, Some(&base.solution[..joints]))?;
+    Ok((initial, base))
 }
 
 /// The joint-only fit of `measured` with its own discrepancy (from `start`), from the nominal

@@ -112,7 +112,7 @@ pub fn select(rivals: &[Rival]) -> Option<(usize, Vec<usize>)> {
     let close = significant
         .into_iter()
         .filter(|&i| i != best && within(best, i))
-        .filter(|&i| !(rivals[i].dependent && !rivals[best].dependent))
+        .filter(|&i| !rivals[i].dependent || rivals[best].dependent)
         .collect();
     Some((best, close))
 }
@@ -232,7 +232,9 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
     let count = if tried == candidates {
         format!("{tried} candidates")
     } else {
-        format!("{tried} hypotheses ({candidates} candidates, a scan counting each of its members, every combination tried counting one)")
+        format!(
+            "{tried} hypotheses ({candidates} candidates, a scan counting each of its members, every combination tried counting one)"
+        )
     };
     let yardstick = if estimate.from_data {
         "the data's own standard errors (known: chi^2 tests)".to_string()
@@ -315,9 +317,16 @@ mod tests {
 
     #[test]
     fn verdicts_follow_the_rules() {
-        let names = [Verdict::Effect, Verdict::FrequencyDependent, Verdict::Effect];
+        let names = [
+            Verdict::Effect,
+            Verdict::FrequencyDependent,
+            Verdict::Effect,
+        ];
         let nothing = Path::default();
-        assert_eq!(decide(&nothing, |_| true, true, &names).verdict, Verdict::None);
+        assert_eq!(
+            decide(&nothing, |_| true, true, &names).verdict,
+            Verdict::None
+        );
         assert_eq!(
             decide(&nothing, |_| true, false, &names).verdict,
             Verdict::Unexplained
@@ -327,7 +336,10 @@ mod tests {
             contenders: Vec::new(),
         };
         let d = decide(&one, |_| true, false, &names);
-        assert_eq!((d.verdict, d.best, d.causes), (Verdict::Effect, Some(0), vec![0]));
+        assert_eq!(
+            (d.verdict, d.best, d.causes),
+            (Verdict::Effect, Some(0), vec![0])
+        );
         let d = decide(&one, |_| false, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(0)));
         let dependent = Path {
@@ -342,7 +354,10 @@ mod tests {
             contenders: Vec::new(),
         };
         let d = decide(&two, |i| i == 3, false, &names);
-        assert_eq!((d.verdict, d.best, d.causes), (Verdict::Effect, Some(3), vec![0, 3]));
+        assert_eq!(
+            (d.verdict, d.best, d.causes),
+            (Verdict::Effect, Some(3), vec![0, 3])
+        );
         let d = decide(&two, |_| false, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(3)));
         // Contenders: ambiguous when the best is adequate, unexplained when not.

@@ -6,7 +6,9 @@
 //! standard deviation s_i (stated, or the data's own standard errors: module `fit`), and the
 //! model's discrepancy, of unknown standard deviation tau per kind of quantity: tau_f for the
 //! frequencies (relative to them), tau_s for the shape components (a fraction of each mode's
-//! measured peak). The variance of residual i is v_i = s_i^2 + tau_k^2, and the deviance
+//! measured peak), one per mode where every mode has the sensors to estimate its own
+//! ([`LEAST_MODE_DOF`]: a mode that only the structure's missing physics bends out of the beam
+//! model's shapes then carries its own). The variance of residual i is v_i = s_i^2 + tau_k^2, and the deviance
 //!
 //! ```text
 //!   -2 ln L(theta, tau) = sum_i [ e_i(theta)^2 / v_i + ln v_i ]      (+ a constant)
@@ -35,6 +37,7 @@
 
 use super::fit::{
     Calibration, Discrepancy, FitError, Fitted, Residuals, measurement_sigmas, residuals,
+    with_limits,
 };
 use crate::measured::MeasuredModes;
 
@@ -68,7 +71,10 @@ impl Squares {
     fn derivatives(&self, t: f64) -> (f64, f64) {
         self.pairs.iter().fold((0.0, 0.0), |(d1, d2), &(e2, s2)| {
             let v = (s2 + t).max(f64::MIN_POSITIVE);
-            (d1 + 1.0 / v - e2 / (v * v), d2 + 2.0 * e2 / (v * v * v) - 1.0 / (v * v))
+            (
+                d1 + 1.0 / v - e2 / (v * v),
+                d2 + 2.0 * e2 / (v * v * v) - 1.0 / (v * v),
+            )
         })
     }
 
@@ -78,21 +84,22 @@ impl Squares {
     }
 }
 
-/// The residuals of `fitted` split by kind: (frequencies, shapes).
+/// The residuals of `fitted` split by kind: the frequencies, and the shapes mode by mode.
 pub fn squares(
     fitted: &Fitted,
     measured: &MeasuredModes,
     calibration: &Calibration,
-) -> (Squares, Squares) {
+) -> (Squares, Vec<Squares>) {
     squares_of(&residuals(fitted, measured), measured, calibration)
 }
 
-/// The residuals `res` split by kind, with the measurement variances of `calibration`.
+/// The residuals `res` split by kind (the shapes mode by mode), with the measurement
+/// variances of `calibration`.
 pub fn squares_of(
     res: &Residuals,
     measured: &MeasuredModes,
     calibration: &Calibration,
-) -> (Squares, Squares) {
+) -> (Squares, Vec<Squares>) {
     let (sigma_f, sigma) = measurement_sigmas(measured, calibration);
     let frequency = res
         .frequency
@@ -100,17 +107,29 @@ pub fn squares_of(
         .zip(&sigma_f)
         .map(|(e, s)| (e * e, s * s))
         .collect();
-    let mut shape = Vec::with_capacity(res.shape.len());
+    let mut shapes = Vec::with_capacity(sigma.len());
     let mut at = 0;
     for (m, sigma) in measured.modes().iter().zip(&sigma) {
         let peak = m.peak().max(f64::MIN_POSITIVE);
+        let mut pairs = Vec::with_capacity(sigma.len());
         for s in sigma {
             let e = res.shape[at].1;
-            shape.push((e * e, (s / peak).powi(2)));
+            pairs.push((e * e, (s / peak).powi(2)));
             at += 1;
         }
+        shapes.push(Squares { pairs });
     }
-    (Squares { pairs: frequency }, Squares { pairs: shape })
+    (Squares { pairs: frequency }, shapes)
+}
+
+/// Every mode's shape squares together.
+fn joined(shapes: &[Squares]) -> Squares {
+    Squares {
+        pairs: shapes
+            .iter()
+            .flat_map(|s| s.pairs.iter().copied())
+            .collect(),
+    }
 }
 
 /// The discrepancy variance t >= 0 that minimises [`Squares::deviance`]: the best of t = 0 and
@@ -130,7 +149,9 @@ pub fn variance(squares: &Squares) -> f64 {
     }
     let (lo, hi) = (
         (1e-6 * smallest.min(largest)).ln(),
-        (2.0 * largest).ln().max((1e-6 * smallest.min(largest)).ln() + 1.0),
+        (2.0 * largest)
+            .ln()
+            .max((1e-6 * smallest.min(largest)).ln() + 1.0),
     );
     const GRID: usize = 80;
     let step = (hi - lo) / GRID as f64;
@@ -154,7 +175,7 @@ pub fn variance(squares: &Squares) -> f64 {
     let mut t = (0.5 * (a + b)).exp();
     for _ in 0..4 {
         let (slope, curvature) = squares.derivatives(t);
-        if !(curvature > 0.0) {
+        if curvature.is_nan() || curvature <= 0.0 {
             break;
         }
         let next = t - slope / curvature;
@@ -169,17 +190,69 @@ pub fn variance(squares: &Squares) -> f64 {
     }
 }
 
+/// Which discrepancies the data can estimate for a model: the frequencies', the shapes', and
+/// the shapes' mode by mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Freedom {
+    /// The frequencies' ([`LEAST_DOF`]).
+    pub frequency: bool,
+    /// The shapes' ([`LEAST_DOF`]).
+    pub shape: bool,
+    /// One per mode: every mode has [`LEAST_MODE_DOF`] shape degrees of freedom.
+    pub per_mode: bool,
+}
+
+/// The discrepancy that maximises the likelihood of the residuals `squares` (frequencies,
+/// shapes mode by mode), the model's unknowns held, where `freedom` lets it be estimated
+/// (else 0).
+fn most_likely((frequency, shapes): &(Squares, Vec<Squares>), freedom: Freedom) -> Discrepancy {
+    let frequency = if freedom.frequency {
+        variance(frequency).sqrt()
+    } else {
+        0.0
+    };
+    if !freedom.shape {
+        return Discrepancy {
+            frequency,
+            ..Discrepancy::default()
+        };
+    }
+    if freedom.per_mode {
+        let modes: Vec<f64> = shapes.iter().map(|s| variance(s).sqrt()).collect();
+        let shape = (modes.iter().map(|t| t * t).sum::<f64>() / modes.len().max(1) as f64).sqrt();
+        return Discrepancy {
+            frequency,
+            shape,
+            modes,
+        };
+    }
+    Discrepancy {
+        frequency,
+        shape: variance(&joined(shapes)).sqrt(),
+        modes: Vec::new(),
+    }
+}
+
+/// The deviance of the residuals `squares` under the discrepancy `d`.
+fn deviance_at((frequency, shapes): &(Squares, Vec<Squares>), d: &Discrepancy) -> f64 {
+    frequency.deviance(d.frequency * d.frequency)
+        + shapes
+            .iter()
+            .enumerate()
+            .map(|(r, s)| s.deviance(d.shape_of(r).powi(2)))
+            .sum::<f64>()
+}
+
 /// The discrepancy that maximises the likelihood of `fitted`'s residuals, its unknowns held.
 pub fn estimate(
     fitted: &Fitted,
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> Discrepancy {
-    let (frequency, shape) = squares(fitted, measured, calibration);
-    Discrepancy {
-        frequency: variance(&frequency).sqrt(),
-        shape: variance(&shape).sqrt(),
-    }
+    most_likely(
+        &squares(fitted, measured, calibration),
+        freedom(fitted, measured),
+    )
 }
 
 /// The deviance of `fitted`'s residuals with the discrepancy that maximises their likelihood,
@@ -189,16 +262,27 @@ pub fn profile_deviance(
     measured: &MeasuredModes,
     calibration: &Calibration,
 ) -> f64 {
-    let (frequency, shape) = squares(fitted, measured, calibration);
-    frequency.deviance(variance(&frequency)) + shape.deviance(variance(&shape))
+    let squares = squares(fitted, measured, calibration);
+    deviance_at(&squares, &most_likely(&squares, freedom(fitted, measured)))
 }
 
-/// Whether `next` is `current` to [`TOLERANCE`] of each kind's mean total variance.
-fn settled(next: Discrepancy, current: Discrepancy, frequency: &Squares, shape: &Squares) -> bool {
+/// Whether `next` is `current` to [`TOLERANCE`] of each kind's mean total variance (of each
+/// mode's, one per mode).
+fn settled(
+    next: &Discrepancy,
+    current: &Discrepancy,
+    (frequency, shapes): &(Squares, Vec<Squares>),
+) -> bool {
     let close = |a: f64, b: f64, s: &Squares| {
         (a * a - b * b).abs() <= TOLERANCE * (a * a + s.mean_variance()).max(f64::MIN_POSITIVE)
     };
-    close(next.frequency, current.frequency, frequency) && close(next.shape, current.shape, shape)
+    let all = joined(shapes);
+    close(next.frequency, current.frequency, frequency)
+        && close(next.shape, current.shape, &all)
+        && shapes
+            .iter()
+            .enumerate()
+            .all(|(r, s)| close(next.shape_of(r), current.shape_of(r), s))
 }
 
 /// The residual degrees of freedom of each kind in `fitted`: (frequencies, shapes), each its
@@ -218,30 +302,69 @@ pub fn residual_dof(fitted: &Fitted, measured: &MeasuredModes) -> (f64, f64) {
 /// then held at 0 and the report says so, never guessed.
 pub const LEAST_DOF: f64 = 1.0;
 
-/// Which kinds' discrepancy the data can estimate in `fitted`: (frequencies, shapes).
-pub fn estimable(fitted: &Fitted, measured: &MeasuredModes) -> (bool, bool) {
+/// Smallest shape degrees of freedom of every mode for one discrepancy per mode (its values
+/// less its scale and its share of the model's unknowns): with fewer (three or four sensors)
+/// one discrepancy is shared by the shapes of all modes.
+pub const LEAST_MODE_DOF: f64 = 3.0;
+
+/// The shape degrees of freedom of every mode of `fitted` (module docs of [`LEAST_MODE_DOF`]).
+fn mode_dof(fitted: &Fitted, measured: &MeasuredModes) -> Vec<f64> {
+    let n_f = measured.modes().len() as f64;
+    let n_s: f64 = measured.modes().iter().map(|m| m.points.len() as f64).sum();
+    let unknowns = fitted.estimates.len() as f64;
+    measured
+        .modes()
+        .iter()
+        .map(|m| {
+            let n = m.points.len() as f64;
+            n - 1.0 - unknowns * n / (n_f + n_s)
+        })
+        .collect()
+}
+
+/// Which discrepancies the data can estimate in `fitted`.
+pub fn freedom(fitted: &Fitted, measured: &MeasuredModes) -> Freedom {
     let (f, s) = residual_dof(fitted, measured);
-    (f >= LEAST_DOF, s >= LEAST_DOF)
+    let shape = s >= LEAST_DOF;
+    Freedom {
+        frequency: f >= LEAST_DOF,
+        shape,
+        per_mode: shape
+            && mode_dof(fitted, measured)
+                .iter()
+                .all(|d| *d >= LEAST_MODE_DOF),
+    }
 }
 
 /// Degrees of freedom of the error variance estimated in `fitted` (the F tests' denominator):
-/// for every kind whose tau is above 0, its residual degrees of freedom n, as the total
-/// variance v = s^2 + tau^2 carries them (Satterthwaite: the measurement variance s^2 is known,
-/// tau^2 estimated on n, so v has n (v / tau^2)^2: a discrepancy small beside the measurement
-/// error leaves the variance nearly known), summed over the kinds; infinite when tau is 0 for
-/// both (the measurement error alone, known).
+/// for every discrepancy above 0 (the frequencies', the shapes' or each mode's), the residual
+/// degrees of freedom n it was estimated on, as the total variance v = s^2 + tau^2 carries them
+/// (Satterthwaite: the measurement variance s^2 is known, tau^2 estimated on n, so v has
+/// n (v / tau^2)^2: a discrepancy small beside the measurement error leaves the variance nearly
+/// known), summed; infinite when every discrepancy is 0 (the measurement error alone, known).
 pub fn dof(fitted: &Fitted, measured: &MeasuredModes, calibration: &Calibration) -> f64 {
     let (f, s) = residual_dof(fitted, measured);
-    let (frequency, shape) = squares(fitted, measured, calibration);
-    let d = fitted.discrepancy;
-    let dof = [(d.frequency, f, &frequency), (d.shape, s, &shape)]
-        .iter()
-        .filter(|(tau, _, _)| *tau > 0.0)
-        .map(|(tau, n, kind)| {
-            let t = tau * tau;
+    let (frequency, shapes) = squares(fitted, measured, calibration);
+    let d = &fitted.discrepancy;
+    let carried = |tau: f64, n: f64, kind: &Squares| {
+        let t = tau * tau;
+        if t > 0.0 {
             n.max(LEAST_DOF) * ((kind.mean_variance() + t) / t).powi(2)
-        })
-        .sum::<f64>();
+        } else {
+            0.0
+        }
+    };
+    let shape_dof = if d.modes.is_empty() {
+        carried(d.shape, s, &joined(&shapes))
+    } else {
+        mode_dof(fitted, measured)
+            .iter()
+            .zip(&shapes)
+            .enumerate()
+            .map(|(r, (n, kind))| carried(d.shape_of(r), *n, kind))
+            .sum()
+    };
+    let dof = carried(d.frequency, f, &frequency) + shape_dof;
     if dof == 0.0 { f64::INFINITY } else { dof }
 }
 
@@ -252,25 +375,38 @@ pub fn dof(fitted: &Fitted, measured: &MeasuredModes, calibration: &Calibration)
 /// the fit of least deviance is kept: the deviance over (theta, tau) can have two basins, one
 /// where a large discrepancy hides what an effect would explain in the frequencies, one where
 /// the effect is fitted and the discrepancy small, and each start finds its own. The returned
-/// fit carries its discrepancy, its deviance under it and the discrepancy's degrees of
-/// freedom.
+/// fit carries its discrepancy, its deviance under it, the discrepancy's degrees of freedom
+/// and its joints' limits (module `fit`'s `limits`).
 pub fn fit_with(
     measured: &MeasuredModes,
     calibration: &Calibration,
     start: Discrepancy,
     mut fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
 ) -> Result<Fitted, FitError> {
+    let zero = start.is_zero();
     let first = alternate(measured, calibration, start, &mut fit);
-    if start == Discrepancy::default() {
-        return first;
-    }
-    let second = alternate(measured, calibration, Discrepancy::default(), &mut fit);
-    match (first, second) {
-        (Ok(a), Ok(b)) => Ok(if b.deviance < a.deviance { b } else { a }),
-        (Ok(a), Err(_)) => Ok(a),
-        (Err(_), Ok(b)) => Ok(b),
-        (Err(e), Err(_)) => Err(e),
-    }
+    let kept = if zero {
+        first?
+    } else {
+        let second = alternate(measured, calibration, Discrepancy::default(), &mut fit);
+        match (first, second) {
+            (Ok(a), Ok(b)) => {
+                if b.deviance < a.deviance {
+                    b
+                } else {
+                    a
+                }
+            }
+            (Ok(a), Err(_)) => a,
+            (Err(_), Ok(b)) => b,
+            (Err(e), Err(_)) => return Err(e),
+        }
+    };
+    let under = Calibration {
+        discrepancy: kept.discrepancy.clone(),
+        ..calibration.clone()
+    };
+    Ok(with_limits(kept, measured, &under))
 }
 
 /// The alternation of [`fit_with`] from the discrepancy `start`.
@@ -281,36 +417,36 @@ fn alternate(
     fit: &mut impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
 ) -> Result<Fitted, FitError> {
     let mut current = Calibration {
-        discrepancy: start,
+        discrepancy: start.clone(),
         ..calibration.clone()
     };
     let mut fitted = fit(&current, None)?;
-    let (frequency_free, shape_free) = estimable(&fitted, measured);
-    if !(frequency_free && shape_free) {
-        // A kind without residual freedom: its discrepancy held at 0 from the start.
-        current.discrepancy = Discrepancy {
-            frequency: if frequency_free { start.frequency } else { 0.0 },
-            shape: if shape_free { start.shape } else { 0.0 },
-        };
-        if current.discrepancy != start {
-            fitted = fit(&current, None)?;
-        }
+    let freedom = freedom(&fitted, measured);
+    // What the data cannot estimate is held at 0 from the start; one discrepancy per mode
+    // where they can estimate that, else one for the shapes of all modes.
+    let held = Discrepancy {
+        frequency: if freedom.frequency {
+            start.frequency
+        } else {
+            0.0
+        },
+        shape: if freedom.shape { start.shape } else { 0.0 },
+        modes: if freedom.shape && freedom.per_mode {
+            (0..measured.modes().len())
+                .map(|r| start.shape_of(r))
+                .collect()
+        } else {
+            Vec::new()
+        },
+    };
+    if held != start {
+        current.discrepancy = held;
+        fitted = fit(&current, None)?;
     }
     for _ in 0..ROUNDS {
-        let (frequency, shape) = squares(&fitted, measured, calibration);
-        let next = Discrepancy {
-            frequency: if frequency_free {
-                variance(&frequency).sqrt()
-            } else {
-                0.0
-            },
-            shape: if shape_free {
-                variance(&shape).sqrt()
-            } else {
-                0.0
-            },
-        };
-        if settled(next, current.discrepancy, &frequency, &shape) {
+        let squares = squares(&fitted, measured, calibration);
+        let next = most_likely(&squares, freedom);
+        if settled(&next, &current.discrepancy, &squares) {
             break;
         }
         current.discrepancy = next;
@@ -335,7 +471,11 @@ mod tests {
         };
         let mean = e.iter().map(|e| e * e).sum::<f64>() / 6.0;
         let t = variance(&squares);
-        assert!((t - (mean - s2)).abs() < 1e-9 * mean, "{t} vs {}", mean - s2);
+        assert!(
+            (t - (mean - s2)).abs() < 1e-9 * mean,
+            "{t} vs {}",
+            mean - s2
+        );
         let within = Squares {
             pairs: e.iter().map(|e| (0.1 * e * e, 1e-5)).collect(),
         };
@@ -368,7 +508,10 @@ mod tests {
             .iter()
             .map(|&(e2, s2)| 2.0 * e2 / (s2 + t).powi(3) - 1.0 / (s2 + t).powi(2))
             .sum();
-        assert!((slope / curvature).abs() < 1e-8 * t, "{slope} {curvature} {t}");
+        assert!(
+            (slope / curvature).abs() < 1e-8 * t,
+            "{slope} {curvature} {t}"
+        );
         let at = squares.deviance(t);
         for i in 0..2000 {
             let u = 1e-9 * 1.02_f64.powi(i);

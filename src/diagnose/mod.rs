@@ -178,9 +178,7 @@ pub fn diagnose_watched(
         estimate: &estimate,
         measured,
     };
-    let base_explains = judge
-        .of_model(&calibrated.base)
-        .explains(&estimate);
+    let base_explains = judge.of_model(&calibrated.base).explains(&estimate);
     let (path, hypotheses) = (found.path.clone(), found.hypotheses);
     let scored = score::score(found, &judge);
     let names: Vec<Verdict> = scored.iter().map(|s| s.verdict).collect();
@@ -216,22 +214,27 @@ fn given_causes(
             combination
                 .iter()
                 .map(|name| {
-                    library.iter().position(|c| c.name() == name).ok_or_else(|| {
-                        let tier = registry()
-                            .iter()
-                            .find(|c| c.name() == name)
-                            .map(|c| c.tier());
-                        let why = if tier == Some(Tier::Extended) {
-                            format!("{name} is a candidate of the extended tier: add --extended")
-                        } else {
-                            format!("{name} does not apply to this model")
-                        };
-                        DiagnoseError::Settings(crate::input::SettingError::new(
-                            "causes",
-                            combination.join("+"),
-                            why,
-                        ))
-                    })
+                    library
+                        .iter()
+                        .position(|c| c.name() == name)
+                        .ok_or_else(|| {
+                            let tier = registry()
+                                .iter()
+                                .find(|c| c.name() == name)
+                                .map(|c| c.tier());
+                            let why = if tier == Some(Tier::Extended) {
+                                format!(
+                                    "{name} is a candidate of the extended tier: add --extended"
+                                )
+                            } else {
+                                format!("{name} does not apply to this model")
+                            };
+                            DiagnoseError::Settings(crate::input::SettingError::new(
+                                "causes",
+                                combination.join("+"),
+                                why,
+                            ))
+                        })
                 })
                 .collect()
         })

@@ -75,14 +75,14 @@ fn check_causes(combination: &[String]) -> Result<(), SettingError> {
             return Err(SettingError::new(
                 "causes",
                 &value,
-                &format!("{name} is no candidate that combines; {allowed}"),
+                format!("{name} is no candidate that combines; {allowed}"),
             ));
         }
         if combination[..i].contains(name) {
             return Err(SettingError::new(
                 "causes",
                 &value,
-                &format!("{name} is named twice; {allowed}"),
+                format!("{name} is named twice; {allowed}"),
             ));
         }
     }
@@ -129,7 +129,10 @@ mod tests {
             (&["shear", "shear"][..], "shear is named twice"),
             (&["shear", "glue"][..], "glue is no candidate that combines"),
             (&["shear"][..], "two or more of"),
-            (&["shear", "local_stiffness"][..], "local_stiffness is no candidate"),
+            (
+                &["shear", "local_stiffness"][..],
+                "local_stiffness is no candidate",
+            ),
         ] {
             let e = with(causes).check().unwrap_err();
             assert_eq!(e.setting, "causes");

@@ -4,12 +4,12 @@ use std::io::{self, Write};
 
 use super::table::{plus_minus, sci, write_table};
 use crate::diagnose::noise::LARGEST_FACTOR;
-use crate::diagnose::{Estimate, LimitKind};
 use crate::diagnose::report::Profile;
 use crate::diagnose::report::{
     ErrorSummary, Flatness, Lacking, Misfit, ModeCorrection, Remaining, Source,
 };
 use crate::diagnose::{AMBIGUITY_MARGIN, Report, Verdict};
+use crate::diagnose::{Estimate, LimitKind};
 
 fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
     vec![
@@ -557,6 +557,7 @@ pub fn candidate_rows(r: &Report) -> Vec<Vec<String>> {
             plus_minus(c.size.unwrap_or(0.0), c.size_se.unwrap_or(0.0)),
             format!("{:.1}/{}", c.chi2.unwrap_or(0.0), c.dof.unwrap_or(0)),
             c.discrepancy
+                .as_ref()
                 .map(|d| format!("{:.3}, {:.3}", 100.0 * d.frequency, 100.0 * d.shape))
                 .unwrap_or_default(),
             format!("{:.1}", c.lrt.unwrap_or(0.0)),

@@ -147,7 +147,10 @@ fn a_lap_outside_the_library_is_partial_or_unexplained_with_its_error_pattern_an
             // What remains beyond the noise with the named model: less than the calibrated
             // joint's misfit, in a symmetric mode's frequency.
             let remaining = &r["remaining"];
-            assert!(number(&remaining["removed"]) > 0.5, "seed {seed}: {remaining}");
+            assert!(
+                number(&remaining["removed"]) > 0.5,
+                "seed {seed}: {remaining}"
+            );
             let modes: Vec<u64> = remaining["modes"]
                 .as_array()
                 .unwrap()

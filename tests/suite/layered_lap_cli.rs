@@ -176,3 +176,81 @@ fn the_diagnosis_is_the_same_on_any_number_of_threads() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A lapped chain whose overlap the user guessed otherwise than the specimen's, diagnosed with
+/// `--extended`: the search of the local candidates (a stiffness of one element, a region at
+/// the joint) took the point joint's k2 to 4e158, where the eigensolver's Lanczos vectors went
+/// dependent and its refinement indexed a column that did not exist (exit 101). The joints are
+/// now held between free and rigid; the diagnosis ends with a verdict. (The data are the
+/// chain's own lap of 0.08 m, `jointid simulate`: this tests the search, not the physics.)
+#[test]
+#[ignore = "a lapped 5 mm chain searched with --extended: 14 s in release, .ci/run runs it there"]
+fn a_lapped_chain_diagnosed_with_extended_candidates_ends_with_a_verdict() {
+    let dir = scratch("layered-lap", "extended");
+    let chain = |joint: &str, lap: &str| {
+        let beam = "[[beam]]\nlength = 0.6\nelements = 120\nyoungs_modulus = 7.0e10\ndensity = 2700.0\narea = 1.5e-4\nsecond_moment = 4.5e-10\n";
+        let sensors = "[[sensor]]\nx = 0.0\nlabel = \"a1\"\n[[sensor]]\nx = 0.444\nlabel = \"a2\"\n[[sensor]]\nx = 1.2\nlabel = \"a3\"\n";
+        format!("{beam}{beam}[[joint]]\n{joint}[joint.lap]\n{lap}{sensors}")
+    };
+    let truth = dir.join("truth.toml");
+    let model = dir.join("model.toml");
+    std::fs::write(
+        &truth,
+        chain(
+            "kind = \"lap\"\n",
+            "length = 0.08\nk_n = 1.0e10\nk_s = 1.0e8\n",
+        ),
+    )
+    .unwrap();
+    std::fs::write(
+        &model,
+        chain(
+            "k1 = 1.0e9\nk2 = 1.0e5\n",
+            "length = 0.12\nlayers = \"half\"\n",
+        ),
+    )
+    .unwrap();
+    let measured = dir.join("measured.csv");
+    jointid_ok(&[
+        "simulate",
+        "--model",
+        s(&truth),
+        "--modes",
+        "6",
+        "--measure",
+        "sensors",
+        "--shape-noise",
+        "0.01",
+        "--frequency-noise",
+        "0.001",
+        "--seed",
+        "1",
+        "--out",
+        s(&measured),
+    ]);
+    let json = dir.join("report.json");
+    jointid_ok(&[
+        "diagnose",
+        "--model",
+        s(&model),
+        "--measured",
+        s(&measured),
+        "--frequency-noise",
+        "0.002",
+        "--shape-noise",
+        "0.05",
+        "--extended",
+        "--quiet",
+        "--json",
+        s(&json),
+    ]);
+    let r: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(r["verdict"].is_string(), "{r}");
+    // Every joint parameter of every model within its range: finite, positive.
+    for c in r["candidates"].as_array().unwrap() {
+        for p in c["parameters"].as_array().unwrap() {
+            assert!(p["value"].as_f64().is_some_and(f64::is_finite), "{p}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

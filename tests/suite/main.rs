@@ -33,6 +33,7 @@ mod frequency_joint;
 mod frequency_only;
 mod fuzz;
 mod identification;
+mod lap3d;
 mod lap_beam;
 mod large_models;
 mod layered_lap;

@@ -72,12 +72,15 @@ pub fn combine(
         candidate: name,
         variant: None,
     };
-    let fitted = discrepancy::fit_with(measured, stage.calibration, from.discrepancy, |cal, start| {
-        match start {
+    let fitted = discrepancy::fit_with(
+        measured,
+        stage.calibration,
+        from.discrepancy.clone(),
+        |cal, start| match start {
             Some(start) => fit::refit(&ctx, measured, cal, &effects, start, &mut told),
             None => fit::fit_from(&ctx, measured, cal, &effects, &x0, &mut told),
-        }
-    })?;
+        },
+    )?;
     let joints = fitted.configured.structure.identified_indices().len();
     // Every effect's size judged; the added cause's parameters and size reported.
     let mut at = joints;
@@ -91,11 +94,19 @@ pub fn combine(
         last = (parameters, size);
         at += k;
     }
-    let holds_lap = fitted.configured.ctx.structure.sites.joints.iter().any(|j| j.lap);
+    let holds_lap = fitted
+        .configured
+        .ctx
+        .structure
+        .sites
+        .joints
+        .iter()
+        .any(|j| j.lap);
     if holds_lap {
         excluded = excluded.or_else(|| {
-            axial_pair(&fitted)
-                .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"))
+            axial_pair(&fitted).map(|r| {
+                format!("the fit pairs measured mode {r} with an axial mode of the layers")
+            })
         });
     }
     let (parameters, size, added_unknowns, describe) = match added {

@@ -66,12 +66,15 @@ pub(super) fn fit_effect(
     };
     let x0 = fit::extended(stage.base, effect.parameters(ctx).len());
     let fitted = if own_discrepancy {
-        discrepancy::fit_with(measured, stage.calibration, stage.start(), |cal, from| {
-            match from {
+        discrepancy::fit_with(
+            measured,
+            stage.calibration,
+            stage.start(),
+            |cal, from| match from {
                 Some(from) => fit::refit(ctx, measured, cal, effects, from, &mut told),
                 None => fit::fit_from(ctx, measured, cal, effects, &x0, &mut told),
-            }
-        })?
+            },
+        )?
     } else {
         let calibration = Calibration {
             discrepancy: stage.start(),

@@ -179,12 +179,15 @@ impl Candidate for LayeredLap {
             variant: None,
         };
         let ctx = start(stage, structure)?;
-        let fitted = discrepancy::fit_with(measured, stage.calibration, stage.start(), |cal, from| {
-            match from {
+        let fitted = discrepancy::fit_with(
+            measured,
+            stage.calibration,
+            stage.start(),
+            |cal, from| match from {
                 Some(from) => fit::refit(&ctx, measured, cal, &[], from, &mut told),
                 None => fit::fit(&ctx, measured, cal, &[], &mut told),
-            }
-        })?;
+            },
+        )?;
         let (parameters, added, size) = summary(&fitted);
         let excluded = axial_pair(&fitted)
             .map(|r| format!("the fit pairs measured mode {r} with an axial mode of the layers"));
@@ -204,28 +207,28 @@ impl Candidate for LayeredLap {
 /// to the point joint's model (one for the overlap's given geometry, one per fitted k_r), and
 /// the size (k_s of the first lap) with its standard error.
 pub(super) fn summary(fitted: &Fitted) -> (Vec<fit::Estimate>, usize, (f64, f64)) {
-        let laps = lap_parameters(&fitted.configured.structure);
-        // The estimates are the identified parameters' in model order (a fixed k_n or k_s
-        // has none).
-        let estimate = |i: usize| {
-            let identified = fitted.configured.structure.identified_indices();
-            let at = identified.iter().position(|&p| p == i)?;
-            Some(fitted.estimates[at].clone())
-        };
-        let parameters: Vec<fit::Estimate> = laps
-            .iter()
-            .flatten()
-            .flatten()
-            .filter_map(|&i| estimate(i))
-            .collect();
-        // One added parameter for the overlap's given geometry, one per fitted k_r.
-        let added = 1 + laps
-            .iter()
-            .filter_map(|l| l[2])
-            .filter(|&i| estimate(i).is_some())
-            .count();
-        let first_ks = laps.first().and_then(|l| l[1]);
-        let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
-        let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
+    let laps = lap_parameters(&fitted.configured.structure);
+    // The estimates are the identified parameters' in model order (a fixed k_n or k_s
+    // has none).
+    let estimate = |i: usize| {
+        let identified = fitted.configured.structure.identified_indices();
+        let at = identified.iter().position(|&p| p == i)?;
+        Some(fitted.estimates[at].clone())
+    };
+    let parameters: Vec<fit::Estimate> = laps
+        .iter()
+        .flatten()
+        .flatten()
+        .filter_map(|&i| estimate(i))
+        .collect();
+    // One added parameter for the overlap's given geometry, one per fitted k_r.
+    let added = 1 + laps
+        .iter()
+        .filter_map(|l| l[2])
+        .filter(|&i| estimate(i).is_some())
+        .count();
+    let first_ks = laps.first().and_then(|l| l[1]);
+    let size = first_ks.map_or(0.0, |i| fitted.configured.structure.parameters[i].value);
+    let size_se = first_ks.and_then(estimate).map_or(0.0, |e| e.se);
     (parameters, added, (size, size_se))
 }

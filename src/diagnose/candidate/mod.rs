@@ -65,7 +65,7 @@ pub struct Stage<'a> {
 impl Stage<'_> {
     /// The discrepancy a candidate's fit starts from: the joint-only fit's.
     pub fn start(&self) -> Discrepancy {
-        self.base.discrepancy
+        self.base.discrepancy.clone()
     }
 }
 
@@ -121,7 +121,7 @@ impl Fit {
             size,
             describe,
             deviance: fitted.deviance,
-            discrepancy: fitted.discrepancy,
+            discrepancy: fitted.discrepancy.clone(),
             discrepancy_dof: fitted.discrepancy_dof,
             dof: fitted.dof,
             added,

@@ -61,12 +61,29 @@ pub struct Noise {
 
 /// The model discrepancy of an error model: what a model misses beyond the measurement error,
 /// as standard deviations added in quadrature to it (module `discrepancy`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct Discrepancy {
     /// Of every frequency, relative to it (the model's f / f_meas - 1).
     pub frequency: f64,
-    /// Of every shape component, as a fraction of its mode's measured peak.
+    /// Of every shape component, as a fraction of its mode's measured peak (with one per mode:
+    /// their root mean square).
     pub shape: f64,
+    /// Per measured mode, that of its shape components, where every mode has the values to
+    /// estimate its own (empty: `shape` for every mode).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub modes: Vec<f64>,
+}
+
+impl Discrepancy {
+    /// Of the shape components of measured mode `r`.
+    pub fn shape_of(&self, r: usize) -> f64 {
+        self.modes.get(r).copied().unwrap_or(self.shape)
+    }
+
+    /// Whether it is zero.
+    pub fn is_zero(&self) -> bool {
+        self.frequency == 0.0 && self.shape == 0.0 && self.modes.iter().all(|t| *t == 0.0)
+    }
 }
 
 /// What a calibration needs besides the model and the data.
@@ -92,10 +109,15 @@ pub struct Calibration {
 /// to it, and of each shape component.
 pub fn sigmas(measured: &MeasuredModes, calibration: &Calibration) -> (Vec<f64>, Vec<Vec<f64>>) {
     let (mut sigma_f, mut sigma) = measurement_sigmas(measured, calibration);
-    let d = calibration.discrepancy;
-    for ((f, s), m) in sigma_f.iter_mut().zip(&mut sigma).zip(measured.modes()) {
+    let d = &calibration.discrepancy;
+    for (r, ((f, s), m)) in sigma_f
+        .iter_mut()
+        .zip(&mut sigma)
+        .zip(measured.modes())
+        .enumerate()
+    {
         *f = f.hypot(d.frequency);
-        let floor = d.shape * m.peak();
+        let floor = d.shape_of(r) * m.peak();
         s.iter_mut().for_each(|v| *v = v.hypot(floor));
     }
     (sigma_f, sigma)
@@ -317,7 +339,7 @@ impl<'a> Problem<'a> {
             sigma,
             joint_p0: ctx.structure.identified().iter().map(|p| p.value).collect(),
             ranges: ranges(&ctx.structure),
-            discrepancy: calibration.discrepancy,
+            discrepancy: calibration.discrepancy.clone(),
             covering: AtomicUsize::new(0),
         }
     }
@@ -641,7 +663,14 @@ pub fn fit_from(
     x0: &[f64],
     observer: &mut dyn Observer,
 ) -> Result<Fitted, FitError> {
-    run(ctx, measured, calibration, effects, Some(observer), Some(x0))
+    run(
+        ctx,
+        measured,
+        calibration,
+        effects,
+        Some(observer),
+        Some(x0),
+    )
 }
 
 /// The start of a fit that extends `from` by `added` unknowns appended after its effects'
@@ -652,6 +681,43 @@ pub fn extended(from: &Fitted, added: usize) -> Vec<f64> {
     x.extend(std::iter::repeat_n(0.0, added));
     x.extend(&from.scales);
     x
+}
+
+/// `fitted` (a fit of its own configuration's effects under `calibration`) with the joints
+/// that the data cannot tell from a limit marked ([`Estimate::limit`], module `limits`).
+pub fn with_limits(
+    mut fitted: Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> Fitted {
+    if !fitted.own.is_empty() {
+        // The frequency-dependent joint's modes are read from their own models.
+        return fitted;
+    }
+    let effects: Vec<Arc<dyn Effect>> = fitted
+        .configured
+        .effects
+        .iter()
+        .map(|(e, _)| e.clone())
+        .collect();
+    let ctx = fitted.configured.ctx.clone();
+    let problem = Problem::new(&ctx, measured, calibration, &effects);
+    let Ok(eval) = problem.evaluate(&fitted.solution, &fitted.pairing) else {
+        return fitted;
+    };
+    let jac = problem.jacobian(&fitted.solution, &eval, &fitted.pairing);
+    let covariance = covariance(jac.as_ref(), fitted.solution.len());
+    let at = chi2(&eval.residual);
+    for (i, e) in fitted
+        .estimates
+        .iter_mut()
+        .take(problem.joint_count())
+        .enumerate()
+    {
+        let se = covariance[(i, i)].max(0.0).sqrt();
+        e.limit = limits::limit(&problem, &fitted.solution, &fitted.pairing, i, at, se);
+    }
+    fitted
 }
 
 /// An observer told the iterations of one Levenberg-Marquardt run after `before` of earlier
@@ -861,13 +927,6 @@ fn finish(
     let covariance = covariance(jac.as_ref(), n);
     let chi2 = chi2(&eval.residual);
     let mut estimates = joint_estimates(&eval.configured.structure, &covariance);
-    // A fit's joints at their limits (a start evaluated, not fitted, has none).
-    if iterations > 0 {
-        for (i, e) in estimates.iter_mut().enumerate() {
-            let se = covariance[(i, i)].max(0.0).sqrt();
-            e.limit = limits::limit(problem, &x, &pairing, i, chi2, se);
-        }
-    }
     let j = problem.joint_count();
     let scales = problem.scales();
     for (k, p) in eval.configured.effect_parameters().iter().enumerate() {
@@ -882,7 +941,7 @@ fn finish(
     let scales = x[j + problem.effect_count()..].to_vec();
     let deviance = deviance(chi2, problem.measured, &problem.sigma_f, &problem.sigma);
     Fitted {
-        discrepancy: problem.discrepancy,
+        discrepancy: problem.discrepancy.clone(),
         deviance,
         discrepancy_dof: f64::INFINITY,
         scales,

@@ -79,10 +79,7 @@ impl Candidate for FrequencyDependence {
             .and_then(Result::ok);
         let comparison = per.as_ref().map(|p| {
             let lrt = (shared.fitted.deviance - p.fitted.deviance).max(0.0);
-            (
-                lrt,
-                lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof),
-            )
+            (lrt, lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof))
         });
         let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
         let words = match comparison {
@@ -255,7 +252,7 @@ fn finish(
         .collect();
     let chi2 = fit::chi2(&state.residual);
     let fitted = Fitted {
-        discrepancy: problem.discrepancy,
+        discrepancy: problem.discrepancy.clone(),
         deviance: problem.deviance(chi2),
         discrepancy_dof: f64::INFINITY,
         configured: Configured {

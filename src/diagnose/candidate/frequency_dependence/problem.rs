@@ -107,7 +107,7 @@ impl<'a> Problem<'a> {
             sigma_f,
             sigma,
             ranges,
-            discrepancy: calibration.discrepancy,
+            discrepancy: calibration.discrepancy.clone(),
             count,
             settled: Mutex::new(vec![None; modes.len()]),
         }
