@@ -450,7 +450,12 @@ fn alternate(
             break;
         }
         current.discrepancy = next;
-        fitted = fit(&current, Some(&fitted))?;
+        match fit(&current, Some(&fitted)) {
+            Ok(next) => fitted = next,
+            // A refit that fails under the new discrepancy leaves the last one: a fit of the
+            // model under the discrepancy before, whose deviance is its own.
+            Err(_) => break,
+        }
     }
     fitted.discrepancy_dof = dof(&fitted, measured, calibration);
     Ok(fitted)

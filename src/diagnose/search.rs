@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
 use super::decide::{MAX_CAUSES, Path, Rival, adjusted, lr_p_value, select};
-use super::fit::{Fitted, residuals};
+use super::fit::{Fitted, refitted_chi2, residuals};
 use super::progress::Pass;
 use super::report::Verdict;
 use super::yardstick;
@@ -309,13 +309,17 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
         if !judgement.explains(&e) {
             return None;
         }
-        let (before, _) = yardstick::judgement(
+        // The model extended, as fitted under its own discrepancy, and refitted under the
+        // yardstick to first order: its least chi^2 there, so that the statistic is the
+        // likelihood ratio under the yardstick.
+        let (own, _) = yardstick::judgement(
             &e,
             measured,
             &residuals(from, measured),
             from.estimates.len(),
             from.dof,
         );
+        let before = refitted_chi2(from, measured, &e.calibration()).map_or(own, |c| c.min(own));
         let lrt = (before - chi2).max(0.0);
         Some((lrt, e.lrt_p_value(lrt, fit.added)))
     });

@@ -720,6 +720,38 @@ pub fn with_limits(
     fitted
 }
 
+/// chi^2 under `calibration` of the model of `fitted` refitted under it to first order: one
+/// Gauss-Newton step of all its unknowns from `fitted`'s optimum (made under another
+/// calibration), the bounds set aside (the step can only lower the value); None for a model
+/// whose modes are read from their own models (the frequency-dependent joint) or that has no
+/// eigensolution there.
+pub fn refitted_chi2(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> Option<f64> {
+    if !fitted.own.is_empty() {
+        return None;
+    }
+    let effects: Vec<Arc<dyn Effect>> = fitted
+        .configured
+        .effects
+        .iter()
+        .map(|(e, _)| e.clone())
+        .collect();
+    let ctx = fitted.configured.ctx.clone();
+    let problem = Problem::new(&ctx, measured, calibration, &effects);
+    let eval = problem.evaluate(&fitted.solution, &fitted.pairing).ok()?;
+    let jac = problem.jacobian(&fitted.solution, &eval, &fitted.pairing);
+    let r = Mat::from_fn(eval.residual.len(), 1, |i, _| -eval.residual[i]);
+    let step = optim::lstsq::solve(jac.as_ref(), r.as_ref());
+    let fitted_part = &jac * &step.x;
+    let after: f64 = (0..eval.residual.len())
+        .map(|i| (eval.residual[i] + fitted_part[(i, 0)]).powi(2))
+        .sum();
+    Some(after.min(chi2(&eval.residual)))
+}
+
 /// An observer told the iterations of one Levenberg-Marquardt run after `before` of earlier
 /// runs, numbered on from them.
 struct NumberedOn<'o> {
