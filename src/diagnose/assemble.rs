@@ -149,8 +149,10 @@ fn remainder(
     summary: &ErrorSummary,
 ) -> Remainder {
     Remainder {
+        // A model fitted with its own discrepancy may trade one kind of misfit for another
+        // and end above the joint-only fit's chi^2: it removes nothing of it then.
         removed: if before > 0.0 {
-            1.0 - summary.chi2 / before
+            (1.0 - summary.chi2 / before).clamp(0.0, 1.0)
         } else {
             0.0
         },

@@ -72,7 +72,10 @@ pub(super) fn fit_effect(
             stage.start(),
             |cal, from| match from {
                 Some(from) => fit::refit(ctx, measured, cal, effects, from, &mut told),
-                None => fit::fit_from(ctx, measured, cal, effects, &x0, &mut told),
+                // From the joint-only optimum, or, where the solver does not settle from there
+                // (a valley along a bound), from the nominal joint.
+                None => fit::fit_from(ctx, measured, cal, effects, &x0, &mut told)
+                    .or_else(|_| fit::fit(ctx, measured, cal, effects, &mut told)),
             },
         )?
     } else {

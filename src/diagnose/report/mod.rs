@@ -136,7 +136,7 @@ impl CandidateReport {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Remainder {
     /// The share of the joint-only fit's misfit (its chi^2 under the measurement error) that
-    /// the named model removes: 1 - chi^2(after) / chi^2(before).
+    /// the named model removes: 1 - chi^2(after) / chi^2(before), at least 0.
     pub removed: f64,
     /// chi^2 of the named model under the measurement error, and its degrees of freedom.
     pub chi2: f64,
