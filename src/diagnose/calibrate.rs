@@ -164,6 +164,12 @@ pub fn calibrate(
             after: base.deviance,
         });
     }
+    // The model as given with the discrepancy of its residuals, for the report.
+    let initial = Fitted {
+        discrepancy: discrepancy::estimate(&initial, &measured, &measurement),
+        deviance: given,
+        ..initial
+    };
     Ok(Calibrated {
         measured,
         left_out,

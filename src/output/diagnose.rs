@@ -20,6 +20,11 @@ fn summary_line(label: &str, s: &ErrorSummary) -> Vec<String> {
         format!("{:.1}/{}", s.chi2, s.dof),
         format!("{:.2}", s.chi2_per_dof),
         format!("{:.2e}", s.p_value),
+        format!(
+            "{:.3}, {:.3}",
+            100.0 * s.discrepancy.frequency,
+            100.0 * s.discrepancy.shape
+        ),
     ]
 }
 
@@ -461,7 +466,7 @@ fn warnings(out: &mut dyn Write, r: &Report) -> io::Result<()> {
 }
 
 /// The columns of [`summary_rows`].
-pub const SUMMARY_HEADERS: [&str; 7] = [
+pub const SUMMARY_HEADERS: [&str; 8] = [
     "model",
     "f RMS (%)",
     "min MAC",
@@ -469,6 +474,7 @@ pub const SUMMARY_HEADERS: [&str; 7] = [
     "chi^2/dof",
     "ratio",
     "P(fit)",
+    "discr. f, s (%)",
 ];
 
 /// The errors of the model as given, with the joint calibrated and after, one row each.

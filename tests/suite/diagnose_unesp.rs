@@ -71,6 +71,7 @@ fn unesp_bert_gets_a_verdict_its_errors_and_the_joint_trend() {
             [
                 "none",
                 "effect",
+                "partial",
                 "ambiguous",
                 "unexplained",
                 "frequency_dependent"
@@ -96,7 +97,13 @@ fn unesp_bert_gets_a_verdict_its_errors_and_the_joint_trend() {
             rms(initial),
             rms(before)
         );
-        assert!(rms(after) <= rms(before) * (1.0 + 1e-9), "{level}");
+        if verdict == "partial" {
+            // The named model's own fit may trade frequency for shape misfit: the report says
+            // what remains beyond the measurement error.
+            assert!(r["remaining"]["modes"].is_array(), "{level}");
+        } else {
+            assert!(rms(after) <= rms(before) * (1.0 + 1e-9), "{level}");
+        }
         for e in [before, after] {
             for m in e["modes"].as_array().unwrap() {
                 let mac = number(&m["mac"]);

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::diagnose::fit::{Estimate, Fitted, chi2_of, residuals};
+use crate::diagnose::fit::{Discrepancy, Estimate, Fitted, chi2_of, residuals};
 use crate::diagnose::noise::NoiseEstimate;
 use crate::diagnose::pairing::mac;
 use crate::measured::MeasuredModes;
@@ -50,6 +50,9 @@ pub struct ErrorSummary {
     pub chi2_per_dof: f64,
     /// P(chi^2_dof > chi^2): the goodness of fit.
     pub p_value: f64,
+    /// The model's discrepancy: what it misses beyond the measurement error (for the model as
+    /// given, that of its residuals).
+    pub discrepancy: Discrepancy,
     /// The fitted parameters (joints, then effect), with standard errors.
     pub parameters: Vec<Estimate>,
     /// Mode by mode.
@@ -108,6 +111,7 @@ impl ErrorSummary {
             dof: fitted.dof,
             chi2_per_dof: chi2 / fitted.dof as f64,
             p_value: noise.fit_p_value(chi2, fitted.dof),
+            discrepancy: fitted.discrepancy.clone(),
             parameters: fitted.estimates.clone(),
             modes,
         }
