@@ -381,11 +381,35 @@ pub fn fit_with(
     measured: &MeasuredModes,
     calibration: &Calibration,
     start: Discrepancy,
+    fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
+) -> Result<Fitted, FitError> {
+    fit_from_starts(measured, calibration, start, true, fit)
+}
+
+/// As [`fit_with`], from the discrepancy `start` alone: for a model whose every evaluation
+/// solves each mode again at its own frequency (the frequency-dependent joint), where a second
+/// alternation would double the candidate's cost.
+pub fn fit_with_start(
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    start: Discrepancy,
+    fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
+) -> Result<Fitted, FitError> {
+    fit_from_starts(measured, calibration, start, false, fit)
+}
+
+/// The alternation from `start`, and from zero too when `both` (module docs of [`fit_with`]);
+/// the fit of least deviance with its joints' limits.
+fn fit_from_starts(
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    start: Discrepancy,
+    both: bool,
     mut fit: impl FnMut(&Calibration, Option<&Fitted>) -> Result<Fitted, FitError>,
 ) -> Result<Fitted, FitError> {
-    let zero = start.is_zero();
+    let single = start.is_zero() || !both;
     let first = alternate(measured, calibration, start, &mut fit);
-    let kept = if zero {
+    let kept = if single {
         first?
     } else {
         let second = alternate(measured, calibration, Discrepancy::default(), &mut fit);

@@ -31,7 +31,7 @@ pub use problem::ALPHA_MAX;
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
 use crate::diagnose::decide::{ALPHA, lr_p_value};
 use crate::diagnose::discrepancy;
-use crate::diagnose::fit::{self, Calibration, Estimate, FitError, Fitted, OwnModel};
+use crate::diagnose::fit::{self, Calibration, Discrepancy, Estimate, FitError, Fitted, OwnModel};
 use crate::diagnose::progress::Iterations;
 use crate::diagnose::report::Verdict;
 use crate::modal::ModalSolution;
@@ -134,17 +134,19 @@ fn spread(x: &[f64], joints: usize) -> Vec<f64> {
 }
 
 /// The variant (`per_parameter` or shared alpha) fitted on `stage` with its own discrepancy
-/// (module `discrepancy`), from `from`, or from the stage's calibrated joint with alpha = 0.
+/// (module `discrepancy`, from none: a joint that does change with frequency fits to the
+/// measurement error, and a start at the joint-only fit's discrepancy can settle short of it),
+/// from `from`, or from the stage's calibrated joint with alpha = 0.
 fn fit_variant(
     stage: &Stage,
     per_parameter: bool,
     from: Option<Vec<f64>>,
 ) -> Result<Variant, FitError> {
     let mut last = None;
-    let fitted = discrepancy::fit_with(
+    let fitted = discrepancy::fit_with_start(
         stage.measured,
         stage.calibration,
-        stage.start(),
+        Discrepancy::default(),
         |calibration, earlier| {
             let x = earlier.map(|f| f.solution.clone()).or_else(|| from.clone());
             let variant = fit_under(stage, calibration, per_parameter, x)?;
