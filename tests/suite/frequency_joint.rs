@@ -194,6 +194,7 @@ fn noisy_data_give_the_truth_within_three_standard_errors() {
 /// elements, 140 DOFs): the per-mode corrections solve the sub-basis of n pairs they need
 /// (n = 70 sensors here, more than any fit computes; before, they were left out).
 #[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
 fn a_shared_alpha_is_recovered_exactly_on_a_model_solved_sparsely() {
     let model = Chain::free(
         vec![steel_bar(0.2, 28), steel_bar(0.3, 40)],

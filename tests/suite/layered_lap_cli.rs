@@ -58,6 +58,7 @@ fn layered_lap(report: &Value) -> &Value {
 /// the 2D model's 2.5e9: the layers are Euler-Bernoulli beams, the 2D solids also shear
 /// (checked here to stay below the truth, not asserted equal).
 #[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
 fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
     let (_, report) = diagnosed("uniform", &["--shape-noise", "0.01"]);
     let lap = layered_lap(&report);
@@ -76,6 +77,7 @@ fn the_independent_half_lap_is_fitted_by_the_layered_lap() {
 /// k_s and the notched roots' k_r fitted) and its frequency RMS error after is within 1%
 /// (0.07%); the table of before and after is printed.
 #[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
 fn the_bolted_lap_is_named_and_closes_the_loop() {
     let (out, report) = diagnosed(
         "bolted",
@@ -150,6 +152,7 @@ fn overlaps_longer_than_the_beams_or_not_positive_are_refused() {
 /// fitted in parallel, and its eigensolutions and eigenpair derivatives split their work into
 /// blocks that do not depend on the number of threads.
 #[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
 fn the_diagnosis_is_the_same_on_any_number_of_threads() {
     let dir = scratch("layered-lap", "threads");
     let model = dir.join("model.toml");

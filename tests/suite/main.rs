@@ -4,9 +4,10 @@
 //!
 //! Two kinds of test are `#[ignore]`d, each with its reason, so that `cargo test --locked`
 //! shows them as ignored instead of passing them silently; `.ci/run` runs both in release:
-//! - the long battery (every case of `diagnose_battery`, minutes unoptimised; the crate is
-//!   built at opt-level 1 for tests, which brings the rest, `lap_beam` and `candidates`
-//!   among them, to seconds): `cargo test --release --locked -- --ignored --skip unesp`;
+//! - the long tests (the diagnosis battery, the lapped beams and 3D laps diagnosed, the
+//!   Monte-Carlo calibration checks: tens of seconds each unoptimised, seconds in release;
+//!   the crate is built at opt-level 1 for tests, which brings the rest to seconds):
+//!   `cargo test --release --locked -- --ignored --skip unesp`;
 //! - the tests on the real UNESP-BERT files in `../shared/data/unesp-bert/` (never copied into
 //!   the project: their licence), every one with `unesp` in its name: `cargo test --release
 //!   --locked -- --ignored unesp` where the folder is present.
