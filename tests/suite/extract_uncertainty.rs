@@ -14,9 +14,9 @@
 //! standard deviation across realisations, for the frequency, the damping ratio and the shape
 //! values (the median over the mode's components of that ratio); and the 95% interval
 //! (estimate +- 1.96 se) covering the truth in 85-100% of the realisations.
-//! `forty_realisations_are_calibrated` (one situation) runs in the default `cargo test`;
-//! `calibration_table` (ignored; bench/extract_uncertainty.sh runs it in release, and .ci/run
-//! with the long batteries) prints the full table of 40 realisations in each of four
+//! Both are ignored in the default `cargo test` (tens of seconds unoptimised) and run by
+//! .ci/run in release with the long batteries: `forty_realisations_are_calibrated` (one
+//! situation), and `calibration_table` (bench/extract_uncertainty.sh runs it too), which prints the full table of 40 realisations in each of four
 //! situations.
 
 use crate::common::frf::{Rng, System, frf_set, lines, prescribed, receptance, shape_at};
