@@ -78,6 +78,7 @@ pub mod fixtures {
                 density: 7850.0,
                 area: 2.4e-3,
                 second_moment: 3.2e-7,
+                shear: None,
             },
         )
     }

@@ -28,7 +28,7 @@ pub use dofs::{Direction, DofInfo, DofMap, LineElement};
 pub use matrix::SymMatrix;
 pub use observation::{LocateError, Observation, observe};
 pub use sites::{
-    ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite, Section, Sites, SupportSite,
+    ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite, Section, Shear, Sites, SupportSite,
 };
 pub use sparse::SparseSym;
 

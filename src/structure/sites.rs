@@ -16,6 +16,17 @@ pub struct Section {
     pub area: f64,
     /// Second moment of area I, m^4.
     pub second_moment: f64,
+    /// Shear deformation and rotary inertia (a Timoshenko beam); `None`: Euler-Bernoulli.
+    pub shear: Option<Shear>,
+}
+
+/// The shear properties of a Timoshenko section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shear {
+    /// Shear correction factor kappa (5/6 for a solid rectangle).
+    pub factor: f64,
+    /// Shear modulus G, Pa.
+    pub modulus: f64,
 }
 
 impl Section {
@@ -32,6 +43,19 @@ impl Section {
     /// Squared radius of gyration I / A, m^2.
     pub fn gyration_squared(&self) -> f64 {
         self.second_moment / self.area
+    }
+
+    /// Shear rigidity kappa G A, N; `None` for an Euler-Bernoulli section.
+    pub fn shear_rigidity(&self) -> Option<f64> {
+        self.shear.map(|s| s.factor * s.modulus * self.area)
+    }
+
+    /// The same section without shear deformation or rotary inertia.
+    pub fn euler_bernoulli(&self) -> Self {
+        Self {
+            shear: None,
+            ..*self
+        }
     }
 }
 

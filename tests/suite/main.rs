@@ -55,6 +55,7 @@ mod solid;
 mod sparse_solver;
 mod study;
 mod study_measured_noise;
+mod timoshenko;
 mod uff_formats;
 mod uff_pyuff;
 mod uff_robustness;

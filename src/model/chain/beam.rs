@@ -1,8 +1,10 @@
-//! Euler-Bernoulli beam elements: Hermite cubic shape functions, consistent mass.
+//! Beam elements: Euler-Bernoulli (Hermite cubic shape functions, consistent mass), or
+//! Timoshenko where the section declares its shear (shear deformation and rotary inertia).
 //!
 //! Element DOFs are `(w_1, theta_1, w_2, theta_2)`: transverse displacement then rotation at
-//! each end. The matrices are the textbook forms (e.g. Przemieniecki, *Theory of Matrix
-//! Structural Analysis*, ch. 5 and 11):
+//! each end (of the cross-section, for a Timoshenko element). The Euler-Bernoulli matrices are
+//! the textbook forms (e.g. Przemieniecki, *Theory of Matrix Structural Analysis*, ch. 5 and
+//! 11):
 //!
 //! ```text
 //!            EI  [ 12    6l   -12    6l  ]            rho A l [ 156   22l    54   -13l ]
@@ -10,11 +12,33 @@
 //!           l^3  [-12   -6l    12   -6l  ]              420   [ 54    13l   156   -22l ]
 //!                [ 6l   2l^2  -6l   4l^2 ]                    [-13l  -3l^2  -22l   4l^2 ]
 //! ```
+//!
+//! The Timoshenko element interpolates w and the rotation with the polynomials that solve the
+//! static equations exactly (interdependent interpolation), with phi = 12 EI / (kappa G A l^2):
+//!
+//! ```text
+//!               EI       [ 12    6l           -12    6l         ]
+//!   k_e  =  ----------   [ 6l   (4 + phi)l^2  -6l   (2 - phi)l^2 ]
+//!           (1+phi) l^3  [-12   -6l            12   -6l          ]
+//!                        [ 6l   (2 - phi)l^2  -6l   (4 + phi)l^2 ]
+//!
+//!   m_e = rho A l / (1+phi)^2 [t] + rho I / ((1+phi)^2 l) [r], symmetric, with
+//!     t11 = t33 = 13/35 + 7 phi/10 + phi^2/3        t13 = 9/70 + 3 phi/10 + phi^2/6
+//!     t12 = -t34 = (11/210 + 11 phi/120 + phi^2/24) l
+//!     t23 = -t14 = (13/420 + 3 phi/40 + phi^2/24) l
+//!     t22 = t44 = (1/105 + phi/60 + phi^2/120) l^2  t24 = -(1/140 + phi/60 + phi^2/120) l^2
+//!     r11 = r33 = -r13 = 6/5                        r12 = r14 = -r23 = -r34 = (1/10 - phi/2) l
+//!     r22 = r44 = (2/15 + phi/6 + phi^2/3) l^2      r24 = (-1/30 - phi/6 + phi^2/6) l^2
+//! ```
+//!
+//! (the consistent mass of those shape functions: Friedman and Kosmatka, *Computers &
+//! Structures* 47, 1993). At phi = 0, k_e and t are the Euler-Bernoulli forms and r the
+//! rotary inertia of a Rayleigh beam.
 
 /// A 4x4 element matrix, row-major.
 pub type ElementMatrix = [[f64; 4]; 4];
 
-pub use crate::structure::Section;
+pub use crate::structure::{Section, Shear};
 
 /// A length of a beam with another section (a stepped beam: a lap region, a reinforcement).
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +69,8 @@ pub struct Beam {
     pub area: f64,
     /// Second moment of area I, m^4.
     pub second_moment: f64,
+    /// Shear deformation and rotary inertia (a Timoshenko beam); `None`: Euler-Bernoulli.
+    pub shear: Option<Shear>,
     /// Stepped lengths, ascending, not overlapping.
     pub segments: Vec<Segment>,
 }
@@ -59,6 +85,7 @@ impl Beam {
             density: section.density,
             area: section.area,
             second_moment: section.second_moment,
+            shear: section.shear,
             segments: Vec::new(),
         }
     }
@@ -70,6 +97,7 @@ impl Beam {
             density: self.density,
             area: self.area,
             second_moment: self.second_moment,
+            shear: self.shear,
         }
     }
 
@@ -115,15 +143,24 @@ impl Beam {
     }
 }
 
+/// phi = 12 EI / (kappa G A l^2) of an element of length `l`: 0 for Euler-Bernoulli.
+pub fn shear_ratio(section: &Section, l: f64) -> f64 {
+    section
+        .shear_rigidity()
+        .map_or(0.0, |ga| 12.0 * section.bending_stiffness() / (ga * l * l))
+}
+
 /// Stiffness matrix of an element of length `l` (see the module docs).
 pub fn element_stiffness(section: &Section, l: f64) -> ElementMatrix {
-    let c = section.bending_stiffness() / (l * l * l);
+    let phi = shear_ratio(section, l);
+    let c = section.bending_stiffness() / ((1.0 + phi) * l * l * l);
+    let (near, far) = ((4.0 + phi) * l * l, (2.0 - phi) * l * l);
     scale(
         [
             [12.0, 6.0 * l, -12.0, 6.0 * l],
-            [6.0 * l, 4.0 * l * l, -6.0 * l, 2.0 * l * l],
+            [6.0 * l, near, -6.0 * l, far],
             [-12.0, -6.0 * l, 12.0, -6.0 * l],
-            [6.0 * l, 2.0 * l * l, -6.0 * l, 4.0 * l * l],
+            [6.0 * l, far, -6.0 * l, near],
         ],
         c,
     )
@@ -131,16 +168,48 @@ pub fn element_stiffness(section: &Section, l: f64) -> ElementMatrix {
 
 /// Consistent mass matrix of an element of length `l` (see the module docs).
 pub fn element_mass(section: &Section, l: f64) -> ElementMatrix {
-    let c = section.mass_per_length() * l / 420.0;
-    scale(
+    let Some(_) = section.shear else {
+        let c = section.mass_per_length() * l / 420.0;
+        return scale(
+            [
+                [156.0, 22.0 * l, 54.0, -13.0 * l],
+                [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
+                [54.0, 13.0 * l, 156.0, -22.0 * l],
+                [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+            ],
+            c,
+        );
+    };
+    let p = shear_ratio(section, l);
+    let (p2, l2) = (p * p, l * l);
+    let t11 = 13.0 / 35.0 + 7.0 * p / 10.0 + p2 / 3.0;
+    let t13 = 9.0 / 70.0 + 3.0 * p / 10.0 + p2 / 6.0;
+    let t12 = (11.0 / 210.0 + 11.0 * p / 120.0 + p2 / 24.0) * l;
+    let t23 = (13.0 / 420.0 + 3.0 * p / 40.0 + p2 / 24.0) * l;
+    let t22 = (1.0 / 105.0 + p / 60.0 + p2 / 120.0) * l2;
+    let t24 = -(1.0 / 140.0 + p / 60.0 + p2 / 120.0) * l2;
+    let translation = scale(
         [
-            [156.0, 22.0 * l, 54.0, -13.0 * l],
-            [22.0 * l, 4.0 * l * l, 13.0 * l, -3.0 * l * l],
-            [54.0, 13.0 * l, 156.0, -22.0 * l],
-            [-13.0 * l, -3.0 * l * l, -22.0 * l, 4.0 * l * l],
+            [t11, t12, t13, -t23],
+            [t12, t22, t23, t24],
+            [t13, t23, t11, -t12],
+            [-t23, t24, -t12, t22],
         ],
-        c,
-    )
+        section.mass_per_length() * l / ((1.0 + p) * (1.0 + p)),
+    );
+    let r12 = (0.1 - 0.5 * p) * l;
+    let r22 = (2.0 / 15.0 + p / 6.0 + p2 / 3.0) * l2;
+    let r24 = (-1.0 / 30.0 - p / 6.0 + p2 / 6.0) * l2;
+    let rotation = scale(
+        [
+            [1.2, r12, -1.2, r12],
+            [r12, r22, -r12, r24],
+            [-1.2, -r12, 1.2, -r12],
+            [r12, r24, -r12, r22],
+        ],
+        section.density * section.second_moment / ((1.0 + p) * (1.0 + p) * l),
+    );
+    std::array::from_fn(|i| std::array::from_fn(|j| translation[i][j] + rotation[i][j]))
 }
 
 fn scale(mut a: ElementMatrix, c: f64) -> ElementMatrix {
@@ -165,6 +234,7 @@ mod tests {
             density: 210.0,
             area: 1.0,
             second_moment: 1.0,
+            shear: None,
             segments: Vec::new(),
         }
     }
@@ -225,6 +295,78 @@ mod tests {
             for row in &k {
                 let f: f64 = row.iter().zip(&u).map(|(a, b)| a * b).sum();
                 assert!(f.abs() < 1e-12 * k[0][0], "{f}");
+            }
+        }
+    }
+
+    /// A Timoshenko section with phi = `phi` on elements of length `l` (EI = 8, GA from phi).
+    fn timoshenko(phi: f64, l: f64) -> Section {
+        let ei = 8.0;
+        Section {
+            youngs_modulus: 8.0,
+            density: 210.0,
+            area: 1.0,
+            second_moment: 1.0,
+            shear: Some(Shear {
+                factor: 1.0,
+                modulus: 12.0 * ei / (phi * l * l),
+            }),
+        }
+    }
+
+    fn quadratic(a: &ElementMatrix, u: &[f64; 4]) -> f64 {
+        (0..4)
+            .map(|i| (0..4).map(|j| u[i] * a[i][j] * u[j]).sum::<f64>())
+            .sum()
+    }
+
+    #[test]
+    fn a_timoshenko_element_is_stiffness_free_on_rigid_motions_and_carries_its_mass() {
+        let l = 0.2;
+        for phi in [1e-3, 0.3, 4.0] {
+            let s = timoshenko(phi, l);
+            assert!((shear_ratio(&s, l) - phi).abs() < 1e-12 * phi);
+            let k = element_stiffness(&s, l);
+            for u in [[1.0, 0.0, 1.0, 0.0], [0.0, 1.0, l, 1.0]] {
+                for row in &k {
+                    let f: f64 = row.iter().zip(&u).map(|(a, b)| a * b).sum();
+                    assert!(f.abs() < 1e-12 * k[1][1], "phi {phi}: {f}");
+                }
+            }
+            // A translation moves the element's mass rho A l and turns no section.
+            let m = element_mass(&s, l);
+            let e = quadratic(&m, &[1.0, 0.0, 1.0, 0.0]);
+            let expected = s.mass_per_length() * l;
+            assert!((e - expected).abs() < 1e-12 * expected, "phi {phi}: {e}");
+            // A rigid rotation about the first node: the translation's inertia about it,
+            // rho A l^3 / 3, plus the sections' rotary inertia rho I l.
+            let e = quadratic(&m, &[0.0, 1.0, l, 1.0]);
+            let expected = s.mass_per_length() * l.powi(3) / 3.0 + s.density * s.second_moment * l;
+            assert!((e - expected).abs() < 1e-12 * expected, "phi {phi}: {e}");
+        }
+    }
+
+    #[test]
+    fn without_shear_flexibility_the_timoshenko_element_is_the_rayleigh_beam() {
+        // phi -> 0: the Euler-Bernoulli stiffness, and the Euler-Bernoulli mass plus the
+        // rotary inertia rho I / (30 l) [36, 3l, -36, 3l; ...].
+        let l = 0.2;
+        let s = timoshenko(1e-12, l);
+        let eb = s.euler_bernoulli();
+        let (k, k0) = (element_stiffness(&s, l), element_stiffness(&eb, l));
+        let (m, m0) = (element_mass(&s, l), element_mass(&eb, l));
+        let c = s.density * s.second_moment / (30.0 * l);
+        let rotary = [
+            [36.0, 3.0 * l, -36.0, 3.0 * l],
+            [3.0 * l, 4.0 * l * l, -3.0 * l, -l * l],
+            [-36.0, -3.0 * l, 36.0, -3.0 * l],
+            [3.0 * l, -l * l, -3.0 * l, 4.0 * l * l],
+        ];
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!((k[i][j] - k0[i][j]).abs() < 1e-9 * k0[1][1], "k {i} {j}");
+                let want = m0[i][j] + c * rotary[i][j];
+                assert!((m[i][j] - want).abs() < 1e-9 * m0[0][0], "m {i} {j}");
             }
         }
     }

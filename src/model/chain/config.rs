@@ -14,6 +14,9 @@
 //! density = 7850.0           # kg/m^3
 //! area = 2.4e-3              # m^2
 //! second_moment = 3.2e-7     # m^4
+//! # shear_factor = 0.8333    # optional: a Timoshenko beam (shear deformation and rotary
+//! #                          # inertia), kappa; then shear_modulus (G, Pa) or poisson (nu,
+//! #                          # G = E / (2 (1 + nu))); segments keep the beam's
 //! [[beam.segment]]           # a stepped length of this beam (m from its start)
 //! from = 0.16
 //! to = 0.20
@@ -50,12 +53,12 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::Chain;
-use super::beam::{Beam, Section, Segment};
+use super::beam::{Beam, Section, Segment, Shear};
 use super::joint::Joint;
 use super::lap::{ROOT_PARAMETER, RawLap, lap};
 use super::setup::{PointMass, Sensor};
 use super::support::{Support, SupportCheck};
-use crate::input::{FieldCheck, InputError, TaggedTable};
+use crate::input::{FieldCheck, InputError, Number, TaggedTable};
 use crate::structure::{Direction, Role};
 
 /// Largest number of beams: the identification takes at most
@@ -103,6 +106,9 @@ struct RawBeam {
     density: f64,
     area: f64,
     second_moment: f64,
+    shear_factor: Option<f64>,
+    shear_modulus: Option<f64>,
+    poisson: Option<f64>,
     #[serde(default)]
     segment: Vec<RawSegment>,
 }
@@ -423,11 +429,14 @@ fn beam(
             ));
         }
     };
+    let youngs_modulus = check.positive(p("youngs_modulus"), b.youngs_modulus, "Pa")?;
+    let shear = shear(b, i, check)?;
     let own = Section {
-        youngs_modulus: check.positive(p("youngs_modulus"), b.youngs_modulus, "Pa")?,
+        youngs_modulus,
         density: check.positive(p("density"), b.density, "kg/m^3")?,
         area: check.positive(p("area"), b.area, "m^2")?,
         second_moment: check.positive(p("second_moment"), b.second_moment, "m^4")?,
+        shear: shear.map(|s| s.at(youngs_modulus)),
     };
     let mut segments: Vec<Segment> = Vec::with_capacity(b.segment.len());
     for (k, g) in b.segment.iter().enumerate() {
@@ -452,14 +461,16 @@ fn beam(
         let or = |v: Option<f64>, field: &str, own: f64, unit: &str| {
             v.map_or(Ok(own), |v| check.positive(q(field), v, unit))
         };
+        let youngs_modulus = or(g.youngs_modulus, "youngs_modulus", own.youngs_modulus, "Pa")?;
         segments.push(Segment {
             from,
             to: g.to,
             section: Section {
-                youngs_modulus: or(g.youngs_modulus, "youngs_modulus", own.youngs_modulus, "Pa")?,
+                youngs_modulus,
                 density: or(g.density, "density", own.density, "kg/m^3")?,
                 area: or(g.area, "area", own.area, "m^2")?,
                 second_moment: or(g.second_moment, "second_moment", own.second_moment, "m^4")?,
+                shear: shear.map(|s| s.at(youngs_modulus)),
             },
         });
     }
@@ -478,6 +489,72 @@ fn beam(
     let mut beam = Beam::uniform(length, elements, own);
     beam.segments = segments;
     Ok(beam)
+}
+
+/// A beam's declared shear: kappa, and G given or from Poisson's ratio and each section's E.
+#[derive(Debug, Clone, Copy)]
+enum DeclaredShear {
+    Modulus { factor: f64, modulus: f64 },
+    Poisson { factor: f64, poisson: f64 },
+}
+
+impl DeclaredShear {
+    /// The shear of a section of Young's modulus `e`.
+    fn at(self, e: f64) -> Shear {
+        match self {
+            Self::Modulus { factor, modulus } => Shear { factor, modulus },
+            Self::Poisson { factor, poisson } => Shear {
+                factor,
+                modulus: e / (2.0 * (1.0 + poisson)),
+            },
+        }
+    }
+}
+
+/// Beam `i`'s declared shear, `None` for an Euler-Bernoulli beam.
+fn shear(b: &RawBeam, i: usize, check: &FieldCheck) -> Result<Option<DeclaredShear>, InputError> {
+    let p = |field: &str| format!("beam[{i}].{field}");
+    let Some(factor) = b.shear_factor else {
+        for (field, value) in [("shear_modulus", b.shear_modulus), ("poisson", b.poisson)] {
+            if let Some(v) = value {
+                return Err(check.invalid(
+                    p(field),
+                    Number(v),
+                    "it needs shear_factor (kappa), which makes the beam a Timoshenko beam",
+                ));
+            }
+        }
+        return Ok(None);
+    };
+    let factor = check.positive(
+        p("shear_factor"),
+        factor,
+        "kappa, 5/6 for a solid rectangle",
+    )?;
+    match (b.shear_modulus, b.poisson) {
+        (Some(g), None) => Ok(Some(DeclaredShear::Modulus {
+            factor,
+            modulus: check.positive(p("shear_modulus"), g, "Pa")?,
+        })),
+        (None, Some(poisson)) if poisson > -1.0 && poisson < 0.5 => {
+            Ok(Some(DeclaredShear::Poisson { factor, poisson }))
+        }
+        (None, Some(nu)) => Err(check.invalid(
+            p("poisson"),
+            Number(nu),
+            "Poisson's ratio must lie in (-1, 0.5)",
+        )),
+        (Some(g), Some(_)) => Err(check.invalid(
+            p("shear_modulus"),
+            Number(g),
+            "give shear_modulus or poisson, not both",
+        )),
+        (None, None) => Err(check.invalid(
+            p("shear_factor"),
+            Number(factor),
+            "a Timoshenko beam needs shear_modulus (G, Pa) or poisson (nu, G = E / (2 (1 + nu)))",
+        )),
+    }
 }
 
 /// Refuses a section whose element terms on elements of length `h` (mass rho A h, bending
@@ -500,12 +577,17 @@ fn section_terms(check: &FieldCheck, at: &str, s: &Section, h: f64) -> Result<()
             s.youngs_modulus * s.area / h,
             "N/m",
         ),
+        (
+            "shear_factor x shear modulus x area / element length",
+            s.shear_rigidity().map_or(1.0, |ga| ga / h),
+            "N/m",
+        ),
     ];
     for (name, value, unit) in terms {
         if !value.is_normal() {
             return Err(check.invalid(
                 at.to_string(),
-                format!("{name} = {}", crate::input::Number(value)),
+                format!("{name} = {}", Number(value)),
                 format!("the section's element terms must be finite and nonzero ({unit}): check the units and magnitudes of its fields"),
             ));
         }
@@ -838,5 +920,67 @@ k2 = 1.0e4
         );
         let meshed = format!("[mesh]\nelement_length = 0.03\n{no_count}");
         assert_eq!(chain(&meshed).unwrap().beams[0].elements, 7);
+    }
+
+    #[test]
+    fn a_timoshenko_beam_takes_kappa_with_g_or_poisson_and_its_segments_keep_them() {
+        let with = |fields: &str| {
+            GOOD.replacen(
+                "second_moment = 3.2e-7\n\n[[beam]]",
+                &format!("second_moment = 3.2e-7\n{fields}\n[[beam.segment]]\nfrom = 0.15\nto = 0.2\nyoungs_modulus = 1.3e11\n\n[[beam]]"),
+                1,
+            )
+        };
+        let c = chain(&with("shear_factor = 0.8\npoisson = 0.3")).unwrap();
+        let own = c.beams[0].section().shear.unwrap();
+        assert_eq!(own.factor, 0.8);
+        assert!((own.modulus - 2.1e11 / 2.6).abs() < 1.0);
+        // A segment of its own E: G from the same Poisson's ratio.
+        let seg = c.beams[0].segments[0].section.shear.unwrap();
+        assert!((seg.modulus - 1.3e11 / 2.6).abs() < 1.0);
+        assert!(c.beams[1].section().shear.is_none());
+        let c = chain(&with("shear_factor = 0.8\nshear_modulus = 8e10")).unwrap();
+        assert_eq!(c.beams[0].segments[0].section.shear.unwrap().modulus, 8e10);
+        for (fields, message) in [
+            (
+                "shear_factor = 0.0\npoisson = 0.3",
+                "beam[0].shear_factor = 0 is invalid",
+            ),
+            (
+                "shear_factor = -1.0\npoisson = 0.3",
+                "beam[0].shear_factor = -1 is invalid",
+            ),
+            (
+                "shear_factor = 0.8\nshear_modulus = 0.0",
+                "beam[0].shear_modulus = 0 is invalid",
+            ),
+            (
+                "shear_factor = 0.8\nshear_modulus = -8e10",
+                "beam[0].shear_modulus = -8e10 is invalid",
+            ),
+            (
+                "shear_factor = 0.8\npoisson = 0.5",
+                "beam[0].poisson = 0.5 is invalid: Poisson's ratio must lie in (-1, 0.5)",
+            ),
+            (
+                "shear_factor = 0.8",
+                "beam[0].shear_factor = 0.8 is invalid: a Timoshenko beam needs shear_modulus",
+            ),
+            (
+                "shear_factor = 0.8\npoisson = 0.3\nshear_modulus = 8e10",
+                "give shear_modulus or poisson, not both",
+            ),
+            (
+                "poisson = 0.3",
+                "beam[0].poisson = 0.3 is invalid: it needs shear_factor",
+            ),
+            (
+                "shear_modulus = 8e10",
+                "beam[0].shear_modulus = 8e10 is invalid: it needs shear_factor",
+            ),
+        ] {
+            let err = error_of(&with(fields));
+            assert!(err.contains(message), "{fields}: {err}");
+        }
     }
 }

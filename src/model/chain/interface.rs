@@ -154,6 +154,7 @@ mod tests {
             density: 1.0,
             area: 1.0,
             second_moment: 1.0,
+            shear: None,
         };
         let a = element_mass(&unit, l);
         let g = normal(l);

@@ -78,6 +78,7 @@ mod tests {
             density: 2700.0,
             area: b * h,
             second_moment: b * h * h * h / 12.0,
+            shear: None,
         }
     }
 

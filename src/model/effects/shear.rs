@@ -1,6 +1,9 @@
 //! `shear`: a thick beam shears. Timoshenko shear flexibility and rotary inertia of every beam
-//! element, scaled by one parameter theta (0: Euler-Bernoulli, 1: Timoshenko with a
-//! rectangular section's shear coefficient kappa = 5/6 and Poisson's ratio 0.3).
+//! element the model declares Euler-Bernoulli, scaled by one parameter theta (0:
+//! Euler-Bernoulli, 1: Timoshenko with a rectangular section's shear coefficient kappa = 5/6
+//! and Poisson's ratio 0.3). Elements declared Timoshenko (`shear_factor` in the model file)
+//! already have both and are left as they are; a model whose every beam is Timoshenko offers
+//! the effect nothing to act on.
 //!
 //! Element stiffness (Przemieniecki, *Theory of Matrix Structural Analysis*, sec. 5.6), with
 //! phi = theta 12 E I / (kappa G A l^2):
@@ -60,10 +63,16 @@ fn rotary(element: &ElementSite) -> ElementMatrix {
     .map(|row| row.map(|x| c * x))
 }
 
-/// Adds `f(element)` on every beam element.
+/// The beam elements declared Euler-Bernoulli.
+fn euler_bernoulli(ctx: &EffectContext) -> impl Iterator<Item = &ElementSite> {
+    let elements = &ctx.structure.sites.elements;
+    elements.iter().filter(|e| e.section.shear.is_none())
+}
+
+/// Adds `f(element)` on every beam element declared Euler-Bernoulli.
 fn every_element(ctx: &EffectContext, f: impl Fn(&ElementSite) -> ElementMatrix) -> SparseSym {
     let mut s = SparseSym::zero();
-    for element in &ctx.structure.sites.elements {
+    for element in euler_bernoulli(ctx) {
         s.add_element(&element.line.dofs, &f(element), 1.0);
     }
     s
@@ -79,11 +88,11 @@ impl Effect for Shear {
     }
 
     fn describe(&self) -> &'static str {
-        "Timoshenko shear flexibility and rotary inertia of the beams; size = theta, 0 for Euler-Bernoulli, 1 for kappa = 5/6 and nu = 0.3"
+        "Timoshenko shear flexibility and rotary inertia of the beams declared Euler-Bernoulli; size = theta, 0 for Euler-Bernoulli, 1 for kappa = 5/6 and nu = 0.3"
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
-        if ctx.structure.sites.elements.is_empty() {
+        if euler_bernoulli(ctx).next().is_none() {
             return Vec::new();
         }
         vec![EffectParameter {
