@@ -152,23 +152,12 @@ pub fn shear_ratio(section: &Section, l: f64) -> f64 {
 
 /// Stiffness matrix of an element of length `l` (see the module docs).
 pub fn element_stiffness(section: &Section, l: f64) -> ElementMatrix {
-    let phi = shear_ratio(section, l);
-    let c = section.bending_stiffness() / ((1.0 + phi) * l * l * l);
-    let (near, far) = ((4.0 + phi) * l * l, (2.0 - phi) * l * l);
-    scale(
-        [
-            [12.0, 6.0 * l, -12.0, 6.0 * l],
-            [6.0 * l, near, -6.0 * l, far],
-            [-12.0, -6.0 * l, 12.0, -6.0 * l],
-            [6.0 * l, far, -6.0 * l, near],
-        ],
-        c,
-    )
+    timoshenko_stiffness(section, l, shear_ratio(section, l)).0
 }
 
 /// Consistent mass matrix of an element of length `l` (see the module docs).
 pub fn element_mass(section: &Section, l: f64) -> ElementMatrix {
-    let Some(_) = section.shear else {
+    if section.shear.is_none() {
         let c = section.mass_per_length() * l / 420.0;
         return scale(
             [
@@ -179,37 +168,81 @@ pub fn element_mass(section: &Section, l: f64) -> ElementMatrix {
             ],
             c,
         );
+    }
+    timoshenko_mass(section, l, shear_ratio(section, l)).0
+}
+
+/// The Timoshenko element's stiffness at `phi` in place of the section's, and its derivative
+/// in phi: c (S0 + phi S1) / (1 + phi) and c (S1 - S0) / (1 + phi)^2, c = EI / l^3.
+pub fn timoshenko_stiffness(section: &Section, l: f64, phi: f64) -> (ElementMatrix, ElementMatrix) {
+    let c = section.bending_stiffness() / (l * l * l);
+    let l2 = l * l;
+    let s0 = [
+        [12.0, 6.0 * l, -12.0, 6.0 * l],
+        [6.0 * l, 4.0 * l2, -6.0 * l, 2.0 * l2],
+        [-12.0, -6.0 * l, 12.0, -6.0 * l],
+        [6.0 * l, 2.0 * l2, -6.0 * l, 4.0 * l2],
+    ];
+    let s1 = [
+        [0.0, 0.0, 0.0, 0.0],
+        [0.0, l2, 0.0, -l2],
+        [0.0, 0.0, 0.0, 0.0],
+        [0.0, -l2, 0.0, l2],
+    ];
+    let value = from_fn(|i, j| c * (s0[i][j] + phi * s1[i][j]) / (1.0 + phi));
+    let slope = from_fn(|i, j| c * (s1[i][j] - s0[i][j]) / ((1.0 + phi) * (1.0 + phi)));
+    (value, slope)
+}
+
+/// The Timoshenko element's consistent mass at `phi` in place of the section's, and its
+/// derivative in phi (the module docs' t and r, each a quadratic in phi over (1 + phi)^2).
+pub fn timoshenko_mass(section: &Section, l: f64, phi: f64) -> (ElementMatrix, ElementMatrix) {
+    let l2 = l * l;
+    // [constant, linear, quadratic] coefficients of each distinct entry.
+    let t11 = [13.0 / 35.0, 7.0 / 10.0, 1.0 / 3.0];
+    let t13 = [9.0 / 70.0, 3.0 / 10.0, 1.0 / 6.0];
+    let t12 = [11.0 / 210.0, 11.0 / 120.0, 1.0 / 24.0].map(|x| x * l);
+    let t23 = [13.0 / 420.0, 3.0 / 40.0, 1.0 / 24.0].map(|x| x * l);
+    let t22 = [1.0 / 105.0, 1.0 / 60.0, 1.0 / 120.0].map(|x| x * l2);
+    let t24 = [-1.0 / 140.0, -1.0 / 60.0, -1.0 / 120.0].map(|x| x * l2);
+    let n23 = t23.map(|x| -x);
+    let n12 = t12.map(|x| -x);
+    let translation = [
+        [t11, t12, t13, n23],
+        [t12, t22, t23, t24],
+        [t13, t23, t11, n12],
+        [n23, t24, n12, t22],
+    ];
+    let r11 = [1.2, 0.0, 0.0];
+    let r12 = [0.1 * l, -0.5 * l, 0.0];
+    let r22 = [2.0 / 15.0, 1.0 / 6.0, 1.0 / 3.0].map(|x| x * l2);
+    let r24 = [-1.0 / 30.0, -1.0 / 6.0, 1.0 / 6.0].map(|x| x * l2);
+    let (n11, m12) = (r11.map(|x| -x), r12.map(|x| -x));
+    let rotation = [
+        [r11, r12, n11, r12],
+        [r12, r22, m12, r24],
+        [n11, m12, r11, m12],
+        [r12, r24, m12, r22],
+    ];
+    let ct = section.mass_per_length() * l;
+    let cr = section.density * section.second_moment / l;
+    // q(phi) / (1 + phi)^2 and its derivative (q' (1 + phi) - 2 q) / (1 + phi)^3.
+    let over = |q: [f64; 3]| {
+        let v = q[0] + phi * (q[1] + phi * q[2]);
+        let d = q[1] + 2.0 * phi * q[2];
+        let p1 = 1.0 + phi;
+        (v / (p1 * p1), (d * p1 - 2.0 * v) / (p1 * p1 * p1))
     };
-    let p = shear_ratio(section, l);
-    let (p2, l2) = (p * p, l * l);
-    let t11 = 13.0 / 35.0 + 7.0 * p / 10.0 + p2 / 3.0;
-    let t13 = 9.0 / 70.0 + 3.0 * p / 10.0 + p2 / 6.0;
-    let t12 = (11.0 / 210.0 + 11.0 * p / 120.0 + p2 / 24.0) * l;
-    let t23 = (13.0 / 420.0 + 3.0 * p / 40.0 + p2 / 24.0) * l;
-    let t22 = (1.0 / 105.0 + p / 60.0 + p2 / 120.0) * l2;
-    let t24 = -(1.0 / 140.0 + p / 60.0 + p2 / 120.0) * l2;
-    let translation = scale(
-        [
-            [t11, t12, t13, -t23],
-            [t12, t22, t23, t24],
-            [t13, t23, t11, -t12],
-            [-t23, t24, -t12, t22],
-        ],
-        section.mass_per_length() * l / ((1.0 + p) * (1.0 + p)),
-    );
-    let r12 = (0.1 - 0.5 * p) * l;
-    let r22 = (2.0 / 15.0 + p / 6.0 + p2 / 3.0) * l2;
-    let r24 = (-1.0 / 30.0 - p / 6.0 + p2 / 6.0) * l2;
-    let rotation = scale(
-        [
-            [1.2, r12, -1.2, r12],
-            [r12, r22, -r12, r24],
-            [-1.2, -r12, 1.2, -r12],
-            [r12, r24, -r12, r22],
-        ],
-        section.density * section.second_moment / ((1.0 + p) * (1.0 + p) * l),
-    );
-    std::array::from_fn(|i| std::array::from_fn(|j| translation[i][j] + rotation[i][j]))
+    let entry = |i: usize, j: usize| {
+        let (t, dt) = over(translation[i][j]);
+        let (r, dr) = over(rotation[i][j]);
+        (ct * t + cr * r, ct * dt + cr * dr)
+    };
+    (from_fn(|i, j| entry(i, j).0), from_fn(|i, j| entry(i, j).1))
+}
+
+fn from_fn(f: impl Fn(usize, usize) -> f64) -> ElementMatrix {
+    std::array::from_fn(|i| std::array::from_fn(|j| f(i, j)))
 }
 
 fn scale(mut a: ElementMatrix, c: f64) -> ElementMatrix {
@@ -367,6 +400,30 @@ mod tests {
                 assert!((k[i][j] - k0[i][j]).abs() < 1e-9 * k0[1][1], "k {i} {j}");
                 let want = m0[i][j] + c * rotary[i][j];
                 assert!((m[i][j] - want).abs() < 1e-9 * m0[0][0], "m {i} {j}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_phi_derivatives_match_central_differences() {
+        let l = 0.2;
+        let s = timoshenko(0.5, l);
+        for phi in [0.0, 0.5, 3.0] {
+            let h = 1e-6;
+            for f in [timoshenko_stiffness, timoshenko_mass] {
+                let (_, d) = f(&s, l, phi);
+                let (up, down) = (f(&s, l, phi + h).0, f(&s, l, phi - h).0);
+                let big = d.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+                for i in 0..4 {
+                    for j in 0..4 {
+                        let fd = (up[i][j] - down[i][j]) / (2.0 * h);
+                        assert!(
+                            (fd - d[i][j]).abs() < 1e-6 * big,
+                            "phi {phi} {i} {j}: {fd} vs {}",
+                            d[i][j]
+                        );
+                    }
+                }
             }
         }
     }

@@ -1,24 +1,29 @@
-//! `shear`: a thick beam shears. Timoshenko shear flexibility and rotary inertia of every beam
-//! element the model declares Euler-Bernoulli, scaled by one parameter theta (0:
-//! Euler-Bernoulli, 1: Timoshenko with a rectangular section's shear coefficient kappa = 5/6
-//! and Poisson's ratio 0.3). Elements declared Timoshenko (`shear_factor` in the model file)
-//! already have both and are left as they are; a model whose every beam is Timoshenko offers
-//! the effect nothing to act on.
+//! `shear`: a thick beam shears, or shears more than the model says. One parameter theta >= 0
+//! (0: the model as declared), element by element:
+//! - a beam declared Euler-Bernoulli gets theta times the Timoshenko shear flexibility and
+//!   rotary inertia of a rectangular section (shear coefficient kappa = 5/6, Poisson's ratio
+//!   0.3): phi = theta 12 E I / (kappa G A l^2), and the stiffness
 //!
-//! Element stiffness (Przemieniecki, *Theory of Matrix Structural Analysis*, sec. 5.6), with
-//! phi = theta 12 E I / (kappa G A l^2):
+//!   ```text
+//!     k(phi) = EI / ((1 + phi) l^3) [A0 + phi A1],   A1 = l^2 [[0,0,0,0],[0,1,0,-1],[0,0,0,0],[0,-1,0,1]]
+//!   ```
 //!
-//! ```text
-//!   k(phi) = EI / ((1 + phi) l^3) [A0 + phi A1],   A1 = l^2 [[0,0,0,0],[0,1,0,-1],[0,0,0,0],[0,-1,0,1]]
-//!   dk/dtheta = phi_1 EI / l^3 (A1 - A0) / (1 + theta phi_1)^2,   phi_1 = phi / theta
-//! ```
-//! A0 is the Euler-Bernoulli pattern. Mass: the Euler-Bernoulli consistent mass plus theta
-//! times the rotary-inertia matrix rho I / (30 l) [[36, 3l, -36, 3l], [3l, 4l^2, -3l, -l^2],
-//! [-36, -3l, 36, -3l], [3l, -l^2, -3l, 4l^2]]; the change of the translational mass with phi
-//! is left out.
+//!   (Przemieniecki, *Theory of Matrix Structural Analysis*, sec. 5.6; A0 the Euler-Bernoulli
+//!   pattern), the mass the Euler-Bernoulli consistent mass plus theta times the rotary-inertia
+//!   matrix rho I / (30 l) [[36, 3l, -36, 3l], [3l, 4l^2, -3l, -l^2], [-36, -3l, 36, -3l],
+//!   [3l, -l^2, -3l, 4l^2]]; the change of the translational mass with phi is left out;
+//! - a beam declared Timoshenko (`shear_factor` in the model file) keeps its rotary inertia and
+//!   gets (1 + theta) times its declared shear flexibility: its element matrices
+//!   (`chain::beam`, stiffness and consistent mass) at phi = (1 + theta) phi_declared, less
+//!   the declared ones. A shear factor or modulus too high in the model is what it corrects.
+//!
+//! dK/dtheta and dM/dtheta follow from d/dphi of those matrices (`timoshenko_stiffness`,
+//! `timoshenko_mass`) times dphi/dtheta.
 
 use super::{Effect, EffectContext, EffectParameter, Tier};
-use crate::model::chain::beam::{ElementMatrix, element_stiffness};
+use crate::model::chain::beam::{
+    ElementMatrix, element_mass, shear_ratio, timoshenko_mass, timoshenko_stiffness,
+};
 use crate::structure::{ElementSite, Section, SparseSym};
 
 /// See the module docs.
@@ -36,21 +41,6 @@ fn phi_1(section: &Section, l: f64) -> f64 {
     12.0 * section.bending_stiffness() / (KAPPA * g * section.area * l * l)
 }
 
-fn a1(l: f64) -> ElementMatrix {
-    let l2 = l * l;
-    [
-        [0.0, 0.0, 0.0, 0.0],
-        [0.0, l2, 0.0, -l2],
-        [0.0, 0.0, 0.0, 0.0],
-        [0.0, -l2, 0.0, l2],
-    ]
-}
-
-fn a0(section: &Section, l: f64) -> ElementMatrix {
-    let c = section.bending_stiffness() / (l * l * l);
-    element_stiffness(section, l).map(|row| row.map(|x| x / c))
-}
-
 fn rotary(element: &ElementSite) -> ElementMatrix {
     let (section, l) = (&element.section, element.length());
     let c = section.density * section.second_moment / (30.0 * l);
@@ -63,19 +53,50 @@ fn rotary(element: &ElementSite) -> ElementMatrix {
     .map(|row| row.map(|x| c * x))
 }
 
-/// The beam elements declared Euler-Bernoulli.
-fn euler_bernoulli(ctx: &EffectContext) -> impl Iterator<Item = &ElementSite> {
-    let elements = &ctx.structure.sites.elements;
-    elements.iter().filter(|e| e.section.shear.is_none())
+/// One element's change of (K, M) at `t` from the model as declared, or with `slope` its
+/// derivative in theta.
+fn change(element: &ElementSite, t: f64, slope: bool) -> (ElementMatrix, ElementMatrix) {
+    let (section, l) = (&element.section, element.length());
+    let declared = shear_ratio(section, l);
+    let (step, at) = if section.shear.is_some() {
+        (declared, declared * (1.0 + t))
+    } else {
+        let p1 = phi_1(section, l);
+        (p1, t * p1)
+    };
+    let (k, dk) = timoshenko_stiffness(section, l, at);
+    if slope {
+        let m = if section.shear.is_some() {
+            timoshenko_mass(section, l, at)
+                .1
+                .map(|r| r.map(|x| x * step))
+        } else {
+            rotary(element)
+        };
+        return (dk.map(|r| r.map(|x| x * step)), m);
+    }
+    let k0 = timoshenko_stiffness(section, l, declared).0;
+    let m = if section.shear.is_some() {
+        let (m, m0) = (timoshenko_mass(section, l, at).0, element_mass(section, l));
+        std::array::from_fn(|i| std::array::from_fn(|j| m[i][j] - m0[i][j]))
+    } else {
+        rotary(element).map(|r| r.map(|x| x * t))
+    };
+    (
+        std::array::from_fn(|i| std::array::from_fn(|j| k[i][j] - k0[i][j])),
+        m,
+    )
 }
 
-/// Adds `f(element)` on every beam element declared Euler-Bernoulli.
-fn every_element(ctx: &EffectContext, f: impl Fn(&ElementSite) -> ElementMatrix) -> SparseSym {
-    let mut s = SparseSym::zero();
-    for element in euler_bernoulli(ctx) {
-        s.add_element(&element.line.dofs, &f(element), 1.0);
+/// Every beam element's change (or its derivative, `slope`) assembled.
+fn assembled(ctx: &EffectContext, t: f64, slope: bool) -> (SparseSym, SparseSym) {
+    let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
+    for element in &ctx.structure.sites.elements {
+        let (dk, dm) = change(element, t, slope);
+        k.add_element(&element.line.dofs, &dk, 1.0);
+        m.add_element(&element.line.dofs, &dm, 1.0);
     }
-    s
+    (k, m)
 }
 
 impl Effect for Shear {
@@ -88,11 +109,11 @@ impl Effect for Shear {
     }
 
     fn describe(&self) -> &'static str {
-        "Timoshenko shear flexibility and rotary inertia of the beams declared Euler-Bernoulli; size = theta, 0 for Euler-Bernoulli, 1 for kappa = 5/6 and nu = 0.3"
+        "shear flexibility: on beams declared Euler-Bernoulli theta times a rectangle's Timoshenko shear and rotary inertia (kappa = 5/6, nu = 0.3), on beams declared Timoshenko 1 + theta times their own; size = theta, 0 for the model as declared"
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
-        if euler_bernoulli(ctx).next().is_none() {
+        if ctx.structure.sites.elements.is_empty() {
             return Vec::new();
         }
         vec![EffectParameter {
@@ -104,38 +125,14 @@ impl Effect for Shear {
     }
 
     fn contribution(&self, ctx: &EffectContext, theta: &[f64]) -> (SparseSym, SparseSym) {
-        let t = theta[0];
-        if t == 0.0 {
+        if theta[0] == 0.0 {
             return (SparseSym::zero(), SparseSym::zero());
         }
-        let k = every_element(ctx, |element| {
-            let (section, l) = (&element.section, element.length());
-            let c = section.bending_stiffness() / (l * l * l);
-            let phi = t * phi_1(section, l);
-            let (base, extra) = (a0(section, l), a1(l));
-            // k(phi) - k(0) = c [(A0 + phi A1) / (1 + phi) - A0] = c phi (A1 - A0) / (1 + phi)
-            std::array::from_fn(|i| {
-                std::array::from_fn(|j| c * phi * (extra[i][j] - base[i][j]) / (1.0 + phi))
-            })
-        });
-        let mut m = SparseSym::zero();
-        m.extend_scaled(&every_element(ctx, rotary), t);
-        (k, m)
+        assembled(ctx, theta[0], false)
     }
 
     fn derivatives(&self, ctx: &EffectContext, theta: &[f64]) -> Vec<(SparseSym, SparseSym)> {
-        let t = theta[0];
-        let dk = every_element(ctx, |element| {
-            let (section, l) = (&element.section, element.length());
-            let c = section.bending_stiffness() / (l * l * l);
-            let p1 = phi_1(section, l);
-            let (base, extra) = (a0(section, l), a1(l));
-            let d = (1.0 + t * p1) * (1.0 + t * p1);
-            std::array::from_fn(|i| {
-                std::array::from_fn(|j| c * p1 * (extra[i][j] - base[i][j]) / d)
-            })
-        });
-        vec![(dk, every_element(ctx, rotary))]
+        vec![assembled(ctx, theta[0], true)]
     }
 
     fn theta_of_size(&self, _ctx: &EffectContext, size: f64) -> Vec<f64> {
@@ -144,5 +141,61 @@ impl Effect for Shear {
 
     fn size_of_theta(&self, _ctx: &EffectContext, theta: &[f64]) -> f64 {
         theta[0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::effects::tests::{assert_central_differences, context_of};
+    use crate::model::{Beam, Chain, Joint};
+    use crate::structure::{Shear as Declared, Structure};
+
+    /// Two stubby steel bars (40 mm deep, 0.2 m long) and a joint, Timoshenko with shear
+    /// factor `factor` where given.
+    fn thick(factor: Option<f64>) -> Structure {
+        let section = Section {
+            youngs_modulus: 2.1e11,
+            density: 7850.0,
+            area: 0.03 * 0.04,
+            second_moment: 0.03 * 0.04f64.powi(3) / 12.0,
+            shear: factor.map(|factor| Declared {
+                factor,
+                modulus: 8.1e10,
+            }),
+        };
+        let beams = vec![
+            Beam::uniform(0.2, 8, section),
+            Beam::uniform(0.2, 8, section),
+        ];
+        Chain::free(beams, vec![Joint::identified(1e8, 1e6)]).build()
+    }
+
+    #[test]
+    fn the_derivatives_on_declared_timoshenko_beams_match_central_differences() {
+        let ctx = context_of(thick(Some(0.85)));
+        for t in [0.0, 0.3, 2.0] {
+            assert_central_differences(&Shear, &ctx, &[t], 0, 1e-6);
+        }
+    }
+
+    #[test]
+    fn on_declared_timoshenko_beams_theta_divides_the_shear_factor() {
+        // (1 + theta) times the shear flexibility 1 / (kappa G A): theta = 1 is the model
+        // declared with half the shear factor, entry by entry.
+        let declared = thick(Some(0.85));
+        let ctx = context_of(declared.clone());
+        let (dk, dm) = Shear.contribution(&ctx, &[1.0]);
+        let changed = declared.assemble().plus(&[(&dk, &dm, 1.0)]);
+        let halved = thick(Some(0.425)).assemble();
+        for (a, b) in [(&changed.k, &halved.k), (&changed.m, &halved.m)] {
+            let (a, b) = (a.to_dense(), b.to_dense());
+            let scale = b.norm_max();
+            assert!(
+                (&a - &b).norm_max() < 1e-12 * scale,
+                "{}",
+                (&a - &b).norm_max() / scale
+            );
+        }
     }
 }
