@@ -13,9 +13,11 @@
 //!   matrix rho I / (30 l) [[36, 3l, -36, 3l], [3l, 4l^2, -3l, -l^2], [-36, -3l, 36, -3l],
 //!   [3l, -l^2, -3l, 4l^2]]; the change of the translational mass with phi is left out;
 //! - a beam declared Timoshenko (`shear_factor` in the model file) keeps its rotary inertia and
-//!   gets (1 + theta) times its declared shear flexibility: its element matrices
-//!   (`chain::beam`, stiffness and consistent mass) at phi = (1 + theta) phi_declared, less
-//!   the declared ones. A shear factor or modulus too high in the model is what it corrects.
+//!   gets exp(theta) times its declared shear flexibility: its element matrices
+//!   (`chain::beam`, stiffness and consistent mass) at phi = exp(theta) phi_declared, less
+//!   the declared ones. A shear factor or modulus too high or too low in the model is what it
+//!   corrects: theta is free in sign where every beam is declared Timoshenko, and its size is
+//!   the relative change of the shear flexibility, exp(theta) - 1.
 //!
 //! dK/dtheta and dM/dtheta follow from d/dphi of those matrices (`timoshenko_stiffness`,
 //! `timoshenko_mass`) times dphi/dtheta.
@@ -59,7 +61,8 @@ fn change(element: &ElementSite, t: f64, slope: bool) -> (ElementMatrix, Element
     let (section, l) = (&element.section, element.length());
     let declared = shear_ratio(section, l);
     let (step, at) = if section.shear.is_some() {
-        (declared, declared * (1.0 + t))
+        let at = declared * t.exp();
+        (at, at)
     } else {
         let p1 = phi_1(section, l);
         (p1, t * p1)
@@ -88,6 +91,12 @@ fn change(element: &ElementSite, t: f64, slope: bool) -> (ElementMatrix, Element
     )
 }
 
+/// Whether every beam element is declared Timoshenko.
+fn every_timoshenko(ctx: &EffectContext) -> bool {
+    let elements = &ctx.structure.sites.elements;
+    elements.iter().all(|e| e.section.shear.is_some())
+}
+
 /// Every beam element's change (or its derivative, `slope`) assembled.
 fn assembled(ctx: &EffectContext, t: f64, slope: bool) -> (SparseSym, SparseSym) {
     let (mut k, mut m) = (SparseSym::zero(), SparseSym::zero());
@@ -109,7 +118,7 @@ impl Effect for Shear {
     }
 
     fn describe(&self) -> &'static str {
-        "shear flexibility: on beams declared Euler-Bernoulli theta times a rectangle's Timoshenko shear and rotary inertia (kappa = 5/6, nu = 0.3), on beams declared Timoshenko 1 + theta times their own; size = theta, 0 for the model as declared"
+        "shear flexibility: on beams declared Euler-Bernoulli theta times a rectangle's Timoshenko shear and rotary inertia (kappa = 5/6, nu = 0.3; size = theta), on beams declared Timoshenko exp(theta) times their own (size = exp(theta) - 1); 0 for the model as declared"
     }
 
     fn parameters(&self, ctx: &EffectContext) -> Vec<EffectParameter> {
@@ -120,7 +129,7 @@ impl Effect for Shear {
             name: "shear.scale".into(),
             unit: "-",
             scale: 1.0,
-            non_negative: true,
+            non_negative: !every_timoshenko(ctx),
         }]
     }
 
@@ -135,12 +144,20 @@ impl Effect for Shear {
         vec![assembled(ctx, theta[0], true)]
     }
 
-    fn theta_of_size(&self, _ctx: &EffectContext, size: f64) -> Vec<f64> {
-        vec![size]
+    fn theta_of_size(&self, ctx: &EffectContext, size: f64) -> Vec<f64> {
+        if every_timoshenko(ctx) {
+            vec![size.ln_1p()]
+        } else {
+            vec![size]
+        }
     }
 
-    fn size_of_theta(&self, _ctx: &EffectContext, theta: &[f64]) -> f64 {
-        theta[0]
+    fn size_of_theta(&self, ctx: &EffectContext, theta: &[f64]) -> f64 {
+        if every_timoshenko(ctx) {
+            theta[0].exp_m1()
+        } else {
+            theta[0]
+        }
     }
 }
 
@@ -174,18 +191,21 @@ mod tests {
     #[test]
     fn the_derivatives_on_declared_timoshenko_beams_match_central_differences() {
         let ctx = context_of(thick(Some(0.85)));
-        for t in [0.0, 0.3, 2.0] {
+        for t in [-0.5, 0.0, 0.3, 2.0] {
             assert_central_differences(&Shear, &ctx, &[t], 0, 1e-6);
         }
     }
 
     #[test]
-    fn on_declared_timoshenko_beams_theta_divides_the_shear_factor() {
-        // (1 + theta) times the shear flexibility 1 / (kappa G A): theta = 1 is the model
-        // declared with half the shear factor, entry by entry.
+    fn on_declared_timoshenko_beams_the_size_is_the_change_of_shear_flexibility() {
+        // exp(theta) times the shear flexibility 1 / (kappa G A): size 1 (theta = ln 2) is
+        // the model declared with half the shear factor, entry by entry.
         let declared = thick(Some(0.85));
         let ctx = context_of(declared.clone());
-        let (dk, dm) = Shear.contribution(&ctx, &[1.0]);
+        assert!(!Shear.parameters(&ctx)[0].non_negative);
+        let theta = Shear.theta_of_size(&ctx, 1.0);
+        assert!((Shear.size_of_theta(&ctx, &theta) - 1.0).abs() < 1e-15);
+        let (dk, dm) = Shear.contribution(&ctx, &theta);
         let changed = declared.assemble().plus(&[(&dk, &dm, 1.0)]);
         let halved = thick(Some(0.425)).assemble();
         for (a, b) in [(&changed.k, &halved.k), (&changed.m, &halved.m)] {
