@@ -43,6 +43,12 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let modes = selected(args, &measured)?;
+    // Each mode pairs by order with a model mode the model must have.
+    for mode in &modes {
+        model
+            .model_mode(mode.mode)
+            .with_context(|| format!("{}", args.measured.display()))?;
+    }
     if let Some(s) = &settings {
         for mode in &modes {
             jointid::identify::basis_index(mode.mode, model.rigid, s.n)
@@ -71,14 +77,19 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                     .frequency_std
                     .map(|s| s / mode.frequency_hz)
                     .or(args.frequency_noise);
-                let f = frequency_only::identify(
-                    &model,
-                    model.model_mode(mode.mode),
-                    mode.mode,
-                    mode.frequency_hz,
-                    f_std,
-                    choice,
-                );
+                let f = model
+                    .model_mode(mode.mode)
+                    .map_err(FrequencyError::from)
+                    .and_then(|t| {
+                        frequency_only::identify(
+                            &model,
+                            t,
+                            mode.mode,
+                            mode.frequency_hz,
+                            f_std,
+                            choice,
+                        )
+                    });
                 (why, f)
             });
             (mode, solved)
@@ -115,7 +126,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                         rows.extend(out::unsolved_rows(
                             mode.mode,
                             mode.frequency_hz,
-                            modal.frequency_hz(model.model_mode(mode.mode)),
+                            modal.frequency_hz(model.model_mode(mode.mode)?),
                             &all,
                         ));
                     }
