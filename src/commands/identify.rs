@@ -1,8 +1,6 @@
 //! `jointid identify`: the paper's per-mode corrections for measured data, and one parameter
 //! per mode from its frequency alone where a mode's shape cannot carry the paper's system.
 
-use std::io::Write;
-
 use anyhow::{Context, bail};
 
 use crate::cli::IdentifyArgs;
@@ -194,12 +192,7 @@ fn report(
     match &args.out {
         Some(path) => write_atomically(path, |w| out::write_csv(w, rows))
             .with_context(|| format!("{}: cannot write", path.display()))?,
-        None => {
-            let stdout = std::io::stdout();
-            let mut lock = stdout.lock();
-            out::write_text(&mut lock, rows)?;
-            lock.flush()?;
-        }
+        None => super::to_stdout(|w| out::write_text(w, rows))?,
     }
     Ok(())
 }

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use crate::common::{jointid, jointid_ok, names, refused, s, scratch};
+use crate::common::{jointid, jointid_ok, names, refused, s, scratch, stdout_refused};
 use jointid::modal::ModalSolution;
 use jointid::model::solid::hex::Material;
 use jointid::model::solid::mesh::Mesh;
@@ -579,4 +579,16 @@ fn the_laps_eigenpair_derivatives_match_nelsons_method_and_differences() {
             );
         }
     }
+}
+
+/// `solid` with its stdout on /dev/full: the model is written, then its summary cannot be.
+/// The device makes every write fail whatever the code under test does; the run must end as
+/// on any error (exit 2, the cause said), not with a panic.
+#[test]
+fn a_stdout_that_cannot_take_the_summary_is_an_error_not_a_panic() {
+    let dir = scratch("solid", "stdout");
+    let config = dir.join("lap.toml");
+    std::fs::write(&config, LAP).unwrap();
+    stdout_refused(&["solid", s(&config), "--out", s(&dir.join("model"))]);
+    std::fs::remove_dir_all(&dir).unwrap();
 }
