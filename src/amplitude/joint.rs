@@ -85,7 +85,9 @@ pub fn joint_data(
     data: &ModeData,
 ) -> Result<JointData, AmplitudeError> {
     let p0 = model.identified()[param].value;
-    let t = model.model_mode(data.mode);
+    let t = model
+        .model_mode(data.mode)
+        .map_err(|e| AmplitudeError::Joint(e.to_string()))?;
     let mut out = JointData {
         name: model.identified()[param].name.clone(),
         unit: model.identified()[param].unit,
@@ -160,7 +162,9 @@ fn frequency_at(
 ) -> Result<f64, AmplitudeError> {
     let mut s = model.clone();
     s.parameters[model.identified_indices()[param]].value = p;
-    let t = model.model_mode(mode);
+    let t = model
+        .model_mode(mode)
+        .map_err(|e| AmplitudeError::Joint(e.to_string()))?;
     let modal = ModalSolution::lowest_of(&s.assemble(), t + 1).map_err(|e| {
         AmplitudeError::Joint(format!(
             "the model at {} = {p:e}: {e}",

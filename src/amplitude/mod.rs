@@ -124,7 +124,17 @@ pub fn fit_levels(levels: &Levels, joint: Option<&str>) -> Result<AmplitudeFit, 
             })
         })
         .transpose()?;
-    let modes = load(levels, &model)?
+    let data = load(levels, &model)?;
+    if param.is_some() {
+        // The joint comes from each mode's frequency on the model mode it pairs with by order.
+        for d in &data {
+            model.model_mode(d.mode).map_err(|e| AmplitudeError::Data {
+                file: levels.levels[0].modes.clone(),
+                message: format!("{e}: --joint needs the model mode of every mode"),
+            })?;
+        }
+    }
+    let modes = data
         .into_iter()
         .map(|data| {
             let fit = fit_mode(&data.series());

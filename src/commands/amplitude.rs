@@ -75,6 +75,5 @@ pub fn run(args: &AmplitudeArgs) -> anyhow::Result<()> {
         );
     }
     commit_all(staged)?;
-    print!("{}", out::summary(&fit));
-    Ok(())
+    super::to_stdout(|w| w.write_all(out::summary(&fit).as_bytes()))
 }

@@ -98,11 +98,13 @@ fn slurm(args: &SlurmArgs) -> anyhow::Result<()> {
         write_atomically(&path, |w| w.write_all(text.as_bytes()))
             .with_context(|| format!("{}: cannot write", path.display()))?;
     }
-    println!(
-        "{} shards of {} ({cells} cells): submit with\n  sh {}",
-        args.shards,
-        study.name,
-        plan.submit_path().display()
-    );
-    Ok(())
+    super::to_stdout(|w| {
+        writeln!(
+            w,
+            "{} shards of {} ({cells} cells): submit with\n  sh {}",
+            args.shards,
+            study.name,
+            plan.submit_path().display()
+        )
+    })
 }

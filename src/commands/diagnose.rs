@@ -104,8 +104,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         staged.extend(stage_page(dir, &figures, &page, &inputs)?);
     }
     commit_all(staged)?;
-    out::write_text(&mut std::io::stdout().lock(), &report)?;
-    Ok(())
+    super::to_stdout(|w| out::write_text(w, &report))
 }
 
 /// How long the log holds its lines back: a run that ends sooner logs nothing.

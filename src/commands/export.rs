@@ -35,15 +35,17 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
         writeln!(err, "note: {note}")?;
     }
     let names: Vec<&str> = exported.files.iter().map(|f| f.0.as_str()).collect();
-    println!(
-        "{}: {} ({} DOFs, {} parameters, {} rigid-body modes)",
-        out.display(),
-        names.join(", "),
-        model.dof_count(),
-        model.parameters.len(),
-        model.rigid
-    );
-    Ok(())
+    super::to_stdout(|w| {
+        writeln!(
+            w,
+            "{}: {} ({} DOFs, {} parameters, {} rigid-body modes)",
+            out.display(),
+            names.join(", "),
+            model.dof_count(),
+            model.parameters.len(),
+            model.rigid
+        )
+    })
 }
 
 /// Refuses an `--out` folder that exists and is not empty (`command` writes into a new

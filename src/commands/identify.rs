@@ -1,8 +1,6 @@
 //! `jointid identify`: the paper's per-mode corrections for measured data, and one parameter
 //! per mode from its frequency alone where a mode's shape cannot carry the paper's system.
 
-use std::io::Write;
-
 use anyhow::{Context, bail};
 
 use crate::cli::IdentifyArgs;
@@ -43,6 +41,12 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let modes = selected(args, &measured)?;
+    // Each mode pairs by order with a model mode the model must have.
+    for mode in &modes {
+        model
+            .model_mode(mode.mode)
+            .with_context(|| format!("{}", args.measured.display()))?;
+    }
     if let Some(s) = &settings {
         for mode in &modes {
             jointid::identify::basis_index(mode.mode, model.rigid, s.n)
@@ -71,14 +75,19 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                     .frequency_std
                     .map(|s| s / mode.frequency_hz)
                     .or(args.frequency_noise);
-                let f = frequency_only::identify(
-                    &model,
-                    model.model_mode(mode.mode),
-                    mode.mode,
-                    mode.frequency_hz,
-                    f_std,
-                    choice,
-                );
+                let f = model
+                    .model_mode(mode.mode)
+                    .map_err(FrequencyError::from)
+                    .and_then(|t| {
+                        frequency_only::identify(
+                            &model,
+                            t,
+                            mode.mode,
+                            mode.frequency_hz,
+                            f_std,
+                            choice,
+                        )
+                    });
                 (why, f)
             });
             (mode, solved)
@@ -115,7 +124,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                         rows.extend(out::unsolved_rows(
                             mode.mode,
                             mode.frequency_hz,
-                            modal.frequency_hz(model.model_mode(mode.mode)),
+                            modal.frequency_hz(model.model_mode(mode.mode)?),
                             &all,
                         ));
                     }
@@ -183,12 +192,7 @@ fn report(
     match &args.out {
         Some(path) => write_atomically(path, |w| out::write_csv(w, rows))
             .with_context(|| format!("{}: cannot write", path.display()))?,
-        None => {
-            let stdout = std::io::stdout();
-            let mut lock = stdout.lock();
-            out::write_text(&mut lock, rows)?;
-            lock.flush()?;
-        }
+        None => super::to_stdout(|w| out::write_text(w, rows))?,
     }
     Ok(())
 }

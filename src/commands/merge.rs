@@ -24,13 +24,15 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<()> {
     write_atomically(&args.out, |w| w.write_all(&bytes))
         .with_context(|| format!("{}: cannot write", args.out.display()))?;
     let h = &shards[0].header;
-    println!(
-        "{}: {} shard file(s) of {} ({} cells, fingerprint {}) merged",
-        args.out.display(),
-        shards.len(),
-        h.study,
-        h.assignment.len(),
-        h.fingerprint
-    );
-    Ok(())
+    super::to_stdout(|w| {
+        writeln!(
+            w,
+            "{}: {} shard file(s) of {} ({} cells, fingerprint {}) merged",
+            args.out.display(),
+            shards.len(),
+            h.study,
+            h.assignment.len(),
+            h.fingerprint
+        )
+    })
 }

@@ -17,6 +17,7 @@ mod simulate;
 mod solid;
 mod study;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use jointid::input::SettingError;
@@ -31,6 +32,18 @@ fn flagged(e: SettingError, flags: &[(&str, &str)]) -> anyhow::Error {
         Some((_, flag)) => anyhow::anyhow!(e.with_name(flag)),
         None => e.into(),
     }
+}
+
+/// Writes a command's output to stdout with `write` and flushes it. A stdout that cannot take
+/// it (a full device, a closed pipe) is an error of the run like any other (exit 2), after
+/// the run's files are committed; never a panic.
+pub(crate) fn to_stdout(
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    let mut out = std::io::stdout().lock();
+    write(&mut out)
+        .and_then(|()| out.flush())
+        .map_err(|e| anyhow::anyhow!("stdout: cannot write: {e}"))
 }
 
 /// Runs the parsed command.

@@ -26,12 +26,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     );
     let staged = stage_page(&args.out, &figures, &page, &[&args.results])?;
     commit_all(staged)?;
-    println!(
-        "{}: {} figure(s) and index.html",
-        args.out.display(),
-        figures.len()
-    );
-    Ok(())
+    super::to_stdout(|w| {
+        writeln!(
+            w,
+            "{}: {} figure(s) and index.html",
+            args.out.display(),
+            figures.len()
+        )
+    })
 }
 
 /// The figures and the page, staged in `dir` (created if absent and registered, so that a

@@ -27,14 +27,16 @@ pub fn run(args: &SolidArgs) -> anyhow::Result<()> {
         }
         Ok(())
     })?;
-    println!(
-        "{}: {} ({} DOFs, {} bricks, {} interface node pairs, {} parameters, 6 rigid-body modes)",
-        args.out.display(),
-        names.join(", "),
-        solid.dof_count(),
-        solid.mesh.bricks.len(),
-        solid.mesh.pairs.len(),
-        solid.parameters.len()
-    );
-    Ok(())
+    super::to_stdout(|w| {
+        writeln!(
+            w,
+            "{}: {} ({} DOFs, {} bricks, {} interface node pairs, {} parameters, 6 rigid-body modes)",
+            args.out.display(),
+            names.join(", "),
+            solid.dof_count(),
+            solid.mesh.bricks.len(),
+            solid.mesh.pairs.len(),
+            solid.parameters.len()
+        )
+    })
 }

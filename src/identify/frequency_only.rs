@@ -124,6 +124,9 @@ pub enum FrequencyError {
     /// The eigenproblem failed at some parameter value.
     #[error(transparent)]
     Modal(#[from] ModalError),
+    /// The model has no elastic mode of the measured mode's number.
+    #[error(transparent)]
+    BeyondModel(#[from] crate::structure::ModeBeyondModel),
 }
 
 /// A mode's eigenvalue and its sensitivity to one parameter, at a value of that parameter.

@@ -37,6 +37,22 @@ pub use sparse::SparseSym;
 /// R on the stack, [`crate::identify::wls::MAX_Q`]). The beam-chain builder refuses more.
 pub const MAX_IDENTIFIED: usize = 16;
 
+/// A measured mode the model has no elastic mode to pair with by order.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "mode {mode} is beyond the model: it has {elastic} elastic modes ({dofs} DOFs, {rigid} rigid-body modes)"
+)]
+pub struct ModeBeyondModel {
+    /// The measured mode (from 1).
+    pub mode: usize,
+    /// The model's elastic modes.
+    pub elastic: usize,
+    /// The model's DOFs.
+    pub dofs: usize,
+    /// The model's rigid-body modes.
+    pub rigid: usize,
+}
+
 /// Whether a parameter is identified or held at its value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
@@ -152,10 +168,24 @@ impl Structure {
         self.dofs.len()
     }
 
+    /// The number of elastic modes: N less the rigid-body modes.
+    pub fn elastic_count(&self) -> usize {
+        self.dof_count().saturating_sub(self.rigid)
+    }
+
     /// The model mode (0-based, rigid-body modes counted) that measured elastic mode `mode`
-    /// (from 1) pairs with by order.
-    pub fn model_mode(&self, mode: usize) -> usize {
-        mode - 1 + self.rigid
+    /// (from 1) pairs with by order; an error when the model has no such mode.
+    pub fn model_mode(&self, mode: usize) -> Result<usize, ModeBeyondModel> {
+        if (1..=self.elastic_count()).contains(&mode) {
+            Ok(mode - 1 + self.rigid)
+        } else {
+            Err(ModeBeyondModel {
+                mode,
+                elastic: self.elastic_count(),
+                dofs: self.dof_count(),
+                rigid: self.rigid,
+            })
+        }
     }
 
     /// The identified parameters, in model order (the columns of the sensitivity system).

@@ -222,6 +222,35 @@ fn with_the_reference_named_the_joint_law_is_against_its_rotation() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The levels' second mode renumbered 243 in every modes file: the model has two beams of 60
+/// elements, 122 nodes x 2 = 244 DOFs (the sensor at x = 0 is an end node), 2 rigid-body
+/// modes, so 242 elastic modes (counted here from the model text, not by the code under
+/// test). `--joint` needs the model mode each mode pairs with by order: refused naming the
+/// mode and the count, exit 2, nothing written.
+#[test]
+fn a_mode_beyond_the_models_elastic_modes_is_refused_with_the_joint() {
+    let dir = scratch("amplitude-joint", "beyond-model");
+    let levels = inputs(&dir);
+    for i in 0..AMPLITUDES.len() {
+        let modes = dir.join(format!("modes{i}.csv"));
+        let text = std::fs::read_to_string(&modes).unwrap();
+        let renumbered = text.replace("\n3,", "\n243,");
+        assert_ne!(renumbered, text);
+        std::fs::write(&modes, renumbered).unwrap();
+    }
+    let out = dir.join("out");
+    let o = jointid(&["amplitude", s(&levels), "--out", s(&out), "--joint", "k2"]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("modes0.csv: mode 243 is beyond the model: it has 242 elastic modes (244 DOFs, 2 rigid-body modes)"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!out.exists(), "nothing is written");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_joint_the_model_does_not_identify_or_a_mode_that_does_not_see_it_is_refused() {
     let dir = scratch("amplitude-joint", "bad");

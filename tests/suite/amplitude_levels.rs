@@ -7,7 +7,7 @@
 use std::f64::consts::PI;
 
 use crate::amplitude::param;
-use crate::common::{jointid_ok, refused, s, scratch};
+use crate::common::{jointid_ok, refused, s, scratch, stdout_refused};
 use jointid::amplitude::Law;
 
 const UNESP_MODEL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/unesp-bert.toml");
@@ -304,4 +304,25 @@ fn the_amplitude_is_the_frf_peak_times_the_level_over_omega_squared() {
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `amplitude` with its stdout on /dev/full: the tables and figures are written, then the
+/// summary cannot be. The device makes every write fail whatever the code under test does;
+/// the run must end as on any error (exit 2, the cause said), not with a panic.
+#[test]
+fn a_stdout_that_cannot_take_the_summary_is_an_error_not_a_panic() {
+    let dir = scratch("amplitude", "stdout");
+    let levels: Vec<String> = (1..=4)
+        .map(|i| {
+            format!(
+                "excitation = {}\nacceleration = [{i}, {}]",
+                0.1 * i as f64,
+                2 * i
+            )
+        })
+        .collect();
+    let refs: Vec<&str> = levels.iter().map(|s| s.as_str()).collect();
+    let file = levels_file(&dir, &refs);
+    stdout_refused(&["amplitude", s(&file), "--out", s(&dir.join("out"))]);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -350,3 +350,53 @@ fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
     );
     assert!(!dir.path("no.csv").exists());
 }
+
+/// A measured mode numbered beyond the model's elastic modes, identified from its frequency
+/// alone. The model is the lap fixture's with one element per interval: nodes at 0, 0.235
+/// (sensor), 0.31 (mass) and 0.35 m on the first beam, 0.35, 0.39 (mass) and 0.7 m on the
+/// second, 7 nodes x 2 = 14 DOFs, 2 rigid-body modes, so 12 elastic modes (counted here from
+/// the file, not by the code under test). Measured mode 6 renumbered 13 has no model mode to
+/// pair with: refused naming the mode and the count, exit 2, nothing written. Renumbered 12
+/// (the last elastic mode) it is accepted.
+#[test]
+fn a_mode_beyond_the_models_elastic_modes_is_refused_from_its_frequency() {
+    let dir = Scratch::new("beyond-model");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/lap2d/bolted");
+    let model_text = std::fs::read_to_string(fixture.join("model.toml"))
+        .unwrap()
+        .replace("elements = 70", "elements = 1");
+    let model = dir.write("model.toml", &model_text);
+    let measured_text = std::fs::read_to_string(fixture.join("measured.csv")).unwrap();
+    let renumbered = |mode: &str| {
+        let text = measured_text.replace("\n6,", &format!("\n{mode},"));
+        assert_ne!(text, measured_text);
+        dir.write(&format!("measured{mode}.csv"), &text)
+    };
+    let out = dir.path("freq.csv");
+    let run = identify(
+        &model,
+        &renumbered("13"),
+        &["--from-frequency", "--out", common::s(&out)],
+    );
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(
+            "measured13.csv: mode 13 is beyond the model: it has 12 elastic modes (14 DOFs, 2 rigid-body modes)"
+        ),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!out.exists(), "nothing is written");
+    let run = identify(
+        &model,
+        &renumbered("12"),
+        &["--from-frequency", "--out", common::s(&out)],
+    );
+    assert!(
+        !String::from_utf8_lossy(&run.stderr).contains("beyond the model"),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_ne!(run.status.code(), Some(101));
+}

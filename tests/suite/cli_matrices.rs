@@ -313,3 +313,13 @@ fn study_of_the_exported_model_gives_the_same_csv() {
     assert!(chain == external, "the two study CSVs differ");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `export` with its stdout on /dev/full: the folder is written, then the summary cannot be.
+/// The device makes every write fail whatever the code under test does; the run must end as
+/// on any error (exit 2, the cause said), not with a panic.
+#[test]
+fn export_with_a_stdout_that_cannot_take_the_summary_is_an_error_not_a_panic() {
+    let dir = scratch("cli-matrices", "stdout");
+    crate::common::stdout_refused(&["export", PAPER, "--out", s(&dir.join("model"))]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

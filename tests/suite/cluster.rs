@@ -362,3 +362,37 @@ fn slurm_scripts_are_written_for_every_shard() {
     assert!(String::from_utf8_lossy(&too_many.stderr).contains("N must be from 1 to 8"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `merge` and `cluster slurm` with their stdout on /dev/full: the merged CSV (of one shard of
+/// a 20-trial study) and the scripts are written, then the summary cannot be. The device makes
+/// every write fail whatever the code under test does; each run must end as on any error
+/// (exit 2, the cause said), not with a panic.
+#[test]
+fn merge_and_slurm_with_a_stdout_that_cannot_take_the_summary_exit_2() {
+    let dir = scratch("cluster", "stdout");
+    let study = small_study(&dir, "s.toml", "");
+    let text = std::fs::read_to_string(&study).unwrap();
+    std::fs::write(&study, text.replace("trials = 300", "trials = 20")).unwrap();
+    let shard = dir.join("shard.csv");
+    run_ok(&[
+        "study",
+        s(&study),
+        "--shard",
+        "1/1",
+        "--quiet",
+        "--out",
+        s(&shard),
+    ]);
+    let merged = dir.join("merged.csv");
+    crate::common::stdout_refused(&["merge", s(&shard), "--out", s(&merged)]);
+    crate::common::stdout_refused(&[
+        "cluster",
+        "slurm",
+        s(&study),
+        "--shards",
+        "2",
+        "--dir",
+        s(&dir.join("jobs")),
+    ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

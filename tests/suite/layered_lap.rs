@@ -513,3 +513,40 @@ fn bad_root_stiffnesses_are_refused() {
         assert_eq!(err, message, "{joint}");
     }
 }
+
+/// An overlap the mesh cannot resolve: 1e-12 m on 0.35 m beams, and an ordinary 0.12 m on
+/// beams of 1e15 m of one element each (where 1e-9 of the chain's length, the distance below which the mesh
+/// merges abscissae, is 2e6 m). Its ends would merge into the joint's node and the notched
+/// layers (k_r given) would have no element to begin or end with: refused with the field, the
+/// value and the shortest overlap allowed, not a failed build. An overlap of 1e-8 m, above
+/// that limit, builds with its roots' k_r. The lengths are chosen against the stated limit
+/// (4e-9 of the chain's length), not read from the code.
+#[test]
+fn an_overlap_below_the_meshs_resolution_is_refused() {
+    let lap = |length: &str| {
+        format!("kind = \"lap\"\n[joint.lap]\nlength = {length}\nk_n = 1e9\nk_s = 1e9\nk_r = 3e4\n")
+    };
+    let cases = [
+        (
+            [0.35, 0.35],
+            0.01,
+            "1e-12",
+            "m.toml: joint[0].lap.length = 1e-12 is invalid: the mesh tells abscissae apart to 1e-9 of the chain's length (0.7 m): the overlap must be longer than 2.8e-9 m",
+        ),
+        (
+            [1e15, 1e15],
+            1e15,
+            "0.12",
+            "m.toml: joint[0].lap.length = 0.12 is invalid: the mesh tells abscissae apart to 1e-9 of the chain's length (2e15 m): the overlap must be longer than 8000000.000000001 m",
+        ),
+    ];
+    for (lengths, h, length, message) in cases {
+        let err = chain_from_toml(&model(lengths, h, &lap(length)), Path::new("m.toml"))
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, message, "{length}");
+    }
+    let short = structure(&model([0.35, 0.35], 0.01, &lap("1e-8")));
+    let names: Vec<&str> = short.parameters.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["k_n", "k_s", "k_r"]);
+}

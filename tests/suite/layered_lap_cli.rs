@@ -108,7 +108,7 @@ fn the_bolted_lap_is_named_and_closes_the_loop() {
 }
 
 #[test]
-fn overlaps_longer_than_the_beams_or_not_positive_are_refused() {
+fn overlaps_longer_than_the_beams_shorter_than_the_mesh_resolves_or_not_positive_are_refused() {
     let dir = scratch("layered-lap", "bad");
     let measured = format!("{FIXTURES}/uniform/measured.csv");
     for (length, message) in [
@@ -123,6 +123,12 @@ fn overlaps_longer_than_the_beams_or_not_positive_are_refused() {
         (
             "0",
             "joint[0].lap.length = 0 is invalid: it must be finite and > 0 (m)",
+        ),
+        (
+            // Shorter than the mesh resolves (1e-9 of the chain's 0.7 m): the notched
+            // layers' roots would merge into the joint's node.
+            "1e-12",
+            "joint[0].lap.length = 1e-12 is invalid: the mesh tells abscissae apart to 1e-9 of the chain's length (0.7 m): the overlap must be longer than 2.8e-9 m",
         ),
     ] {
         let model = dir.join("model.toml");

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use crate::common::{jointid, jointid_ok, names, refused, s, scratch};
+use crate::common::{jointid, jointid_ok, names, refused, s, scratch, stdout_refused};
 use jointid::modal::ModalSolution;
 use jointid::model::solid::hex::Material;
 use jointid::model::solid::mesh::Mesh;
@@ -351,6 +351,46 @@ fn the_command_writes_a_model_that_reads_back_and_refuses_bad_input() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Specimens whose element counts do not fit in a machine word: a mesh size of 1e-21 m, a
+/// width of 1e308 m, a bar of 1e99 m (each an edit of one line of `LAP`). Each would have far
+/// more DOFs than the limit; the count must not wrap to a small one that passes the check and
+/// then fails allocating. Refused with exit 2, naming the file and the field, and no folder.
+#[test]
+fn sizes_whose_counts_overflow_a_machine_word_are_refused() {
+    let dir = scratch("solid", "overflow");
+    let cases = [
+        (
+            "size = 0.01",
+            "size = 1e-21",
+            "mesh.size = 1e-21 is invalid",
+        ),
+        ("width = 0.02", "width = 1e308", "with width = 1e308 m"),
+        (
+            "length = 0.12",
+            "length = 1e99",
+            "with bar[1].length = 1e99 m",
+        ),
+    ];
+    for (i, (from, to, needle)) in cases.into_iter().enumerate() {
+        let config = dir.join(format!("lap{i}.toml"));
+        let text = LAP.replacen(from, to, 1);
+        assert_ne!(text, LAP, "{from}");
+        std::fs::write(&config, text).unwrap();
+        let target = dir.join(format!("model{i}"));
+        let err = refused(
+            &["solid", s(&config), "--out", s(&target)],
+            &[
+                &format!("lap{i}.toml: mesh.size"),
+                needle,
+                "above the 1000000 an external model may have",
+            ],
+        );
+        assert!(err.len() < 250, "{err}");
+        assert!(!target.exists(), "{to}: nothing is written");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Bad input on a 3D external model: a DOF without a direction, two DOFs at one position
 /// and direction that nothing ties (unmerged nodes), a declared rigid-body count the model
 /// does not have. Each is refused with exit 2, naming the file and what is allowed, and
@@ -539,4 +579,16 @@ fn the_laps_eigenpair_derivatives_match_nelsons_method_and_differences() {
             );
         }
     }
+}
+
+/// `solid` with its stdout on /dev/full: the model is written, then its summary cannot be.
+/// The device makes every write fail whatever the code under test does; the run must end as
+/// on any error (exit 2, the cause said), not with a panic.
+#[test]
+fn a_stdout_that_cannot_take_the_summary_is_an_error_not_a_panic() {
+    let dir = scratch("solid", "stdout");
+    let config = dir.join("lap.toml");
+    std::fs::write(&config, LAP).unwrap();
+    stdout_refused(&["solid", s(&config), "--out", s(&dir.join("model"))]);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

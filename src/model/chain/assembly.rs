@@ -23,7 +23,7 @@ use crate::structure::{
 };
 
 /// Abscissae closer than this fraction of the chain's length are one position.
-const SAME_X: f64 = 1e-9;
+pub(super) const SAME_X: f64 = 1e-9;
 
 impl Chain {
     /// The structure of this chain.

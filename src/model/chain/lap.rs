@@ -35,7 +35,7 @@ use serde::Deserialize;
 
 use super::beam::{Beam, Section};
 use super::notch;
-use crate::input::{FieldCheck, InputError};
+use crate::input::{FieldCheck, InputError, Number};
 use crate::structure::Role;
 
 /// One layer of an overlap.
@@ -154,6 +154,25 @@ pub(crate) fn lap(
                 left.length,
                 j + 1,
                 right.length
+            ),
+        ));
+    }
+    // The mesh tells abscissae apart to a fraction of the chain's length, and break points to
+    // a fraction of a beam's: an overlap whose halves are not well above that has its ends
+    // merged into the joint's node, and its layers would have no element. Twice the fraction
+    // per half keeps the ends apart whatever the rounding.
+    let fraction = super::assembly::SAME_X.max(super::mesh::MERGE);
+    let chain_length: f64 = beams.iter().map(|b| b.length).sum();
+    let least = 4.0 * fraction * chain_length;
+    if length <= least {
+        return Err(check.invalid(
+            p("length"),
+            Number(length),
+            format!(
+                "the mesh tells abscissae apart to {} of the chain's length ({} m): the overlap must be longer than {} m",
+                Number(fraction),
+                Number(chain_length),
+                Number(least)
             ),
         ));
     }

@@ -45,7 +45,7 @@ pub struct Mesh {
 }
 
 /// Break points closer than this fraction of a beam's length are one point.
-const MERGE: f64 = 1e-9;
+pub(super) const MERGE: f64 = 1e-9;
 
 impl Mesh {
     /// Meshes `chain`.

@@ -47,9 +47,16 @@ use crate::input::{FieldCheck, InputError, Number};
 /// The most DOFs a generated model may have (that of the external-model reader).
 pub const MAX_DOFS: usize = crate::model::matrices::build::MAX_DOFS;
 
-/// The number of elements of a length at the target element size (at least 1).
+/// The number of elements of a length at the target element size (at least 1), as a float:
+/// exact up to 2^53, and never wrapping for any positive lengths (infinite at worst).
+fn division_count(length: f64, size: f64) -> f64 {
+    ((length / size) * (1.0 - 1e-12)).ceil().max(1.0)
+}
+
+/// The number of elements of a length at the target element size (at least 1). Only for a
+/// validated configuration, whose counts are bounded by [`MAX_DOFS`].
 pub fn divisions(length: f64, size: f64) -> usize {
-    ((length / size) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+    division_count(length, size) as usize
 }
 
 /// The most bricks through a bar's thickness.
@@ -180,23 +187,40 @@ impl SolidConfig {
         crate::input::parse_toml::<RawSolid>(text, file)?.validate(file)
     }
 
-    /// The number of DOFs of the mesh: 3 per node.
-    pub fn dof_count(&self) -> usize {
+    /// The number of DOFs of the mesh: 3 per node. Counted in floating point, so that any
+    /// lengths and mesh size give a count (exact up to 2^53, infinite at worst), never a
+    /// wrapped one.
+    pub fn dof_count(&self) -> f64 {
         let size = self.mesh.size;
-        let ny = divisions(self.width, size) + 1;
-        let nz = self.mesh.layers + 1;
+        let ny = division_count(self.width, size) + 1.0;
+        let nz = self.mesh.layers as f64 + 1.0;
         // The stations of each bar: its part off the lap, then the lap (as the mesh does).
         let part = |length: f64| {
             if length > self.overlap {
-                divisions(length - self.overlap, size)
+                division_count(length - self.overlap, size)
             } else {
-                0
+                0.0
             }
         };
-        let lap = divisions(self.overlap, size);
-        let lower = part(self.bars[0].length) + lap + 1;
-        let upper = part(self.bars[1].length) + lap + 1;
-        3 * ny * nz * (lower + upper)
+        let lap = division_count(self.overlap, size);
+        let lower = part(self.bars[0].length) + lap + 1.0;
+        let upper = part(self.bars[1].length) + lap + 1.0;
+        3.0 * ny * nz * (lower + upper)
+    }
+
+    /// The longest of the lengths the mesh divides (the one with most elements): its field
+    /// path and value.
+    fn longest(&self) -> (&'static str, f64) {
+        [
+            ("width", self.width),
+            ("bar[0].length", self.bars[0].length),
+            ("bar[1].length", self.bars[1].length),
+        ]
+        .into_iter()
+        .fold(
+            ("overlap", self.overlap),
+            |a, b| if b.1 > a.1 { b } else { a },
+        )
     }
 }
 
@@ -295,11 +319,17 @@ impl RawSolid {
             mesh: MeshSize { size, layers },
         };
         let dofs = config.dof_count();
-        if dofs > MAX_DOFS {
+        if dofs > MAX_DOFS as f64 {
+            let count = if dofs.is_finite() {
+                Number(dofs).to_string()
+            } else {
+                "over 1e308".to_string()
+            };
+            let (field, length) = config.longest();
             return Err(check.invalid(
                 "mesh.size",
                 Number(size),
-                format!("the mesh would have {dofs} DOFs, above the {MAX_DOFS} an external model may have: give a larger size"),
+                format!("with {field} = {} m the mesh would have {count} DOFs, above the {MAX_DOFS} an external model may have: give a larger size or a smaller specimen", Number(length)),
             ));
         }
         Ok(config)
@@ -333,7 +363,51 @@ pub(crate) mod tests {
         assert_eq!(c.mesh.layers, 1);
         assert_eq!(c.bars[1].thickness, 0.008);
         // 13 + 11 stations, 3 across, 2 up.
-        assert_eq!(c.dof_count(), 3 * 3 * 2 * 24);
+        assert_eq!(c.dof_count(), (3 * 3 * 2 * 24) as f64);
+    }
+
+    /// Sizes whose element counts do not fit in a machine word (a mesh size of 1e-21 m, a
+    /// width of 1e308 m, a bar of 1e99 m) are refused by the DOF limit, with the count said
+    /// in floating point, not wrapped to a small one that passes it.
+    #[test]
+    fn counts_beyond_a_machine_word_are_refused_not_wrapped() {
+        let cases = [
+            (
+                "size = 0.01",
+                "size = 1e-21",
+                "mesh.size = 1e-21",
+                "bar[0].length = 0.12 m",
+            ),
+            (
+                "width = 0.02",
+                "width = 1e308",
+                "mesh.size = 0.01",
+                "width = 1e308 m",
+            ),
+            (
+                "length = 0.12",
+                "length = 1e99",
+                "mesh.size = 0.01",
+                "bar[0].length = 1e99 m",
+            ),
+        ];
+        for (from, to, field, longest) in cases {
+            let text = SMALL.replacen(from, to, 1);
+            assert_ne!(text, SMALL, "{from}");
+            let message = error(&text);
+            assert!(
+                message.starts_with(&format!(
+                    "lap.toml: {field} is invalid: with {longest} the mesh would have "
+                )),
+                "{message}"
+            );
+            assert!(
+                message.contains("DOFs, above the 1000000 an external model may have"),
+                "{message}"
+            );
+        }
+        let message = error(&SMALL.replacen("width = 0.02", "width = 1e308", 1));
+        assert!(message.contains("would have over 1e308 DOFs"), "{message}");
     }
 
     #[test]
@@ -362,7 +436,7 @@ pub(crate) mod tests {
             (
                 "size = 0.01",
                 "size = 1e-5",
-                "lap.toml: mesh.size = 1e-5 is invalid: the mesh would have 264156012 DOFs, above the 1000000 an external model may have: give a larger size",
+                "lap.toml: mesh.size = 1e-5 is invalid: with bar[0].length = 0.12 m the mesh would have 264156012 DOFs, above the 1000000 an external model may have: give a larger size or a smaller specimen",
             ),
             (
                 "normal = 1e13",

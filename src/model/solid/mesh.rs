@@ -277,7 +277,7 @@ mod tests {
     fn the_lap_faces_meet_node_for_node_and_the_areas_sum_to_the_lap() {
         let config = small();
         let mesh = Mesh::of(&config);
-        assert_eq!(3 * mesh.nodes.len(), config.dof_count());
+        assert_eq!((3 * mesh.nodes.len()) as f64, config.dof_count());
         let area: f64 = mesh.pairs.iter().map(|p| p.2).sum();
         assert!((area - config.overlap * config.width).abs() < 1e-15);
         for &(a, b, _) in &mesh.pairs {

@@ -53,6 +53,29 @@ pub fn jointid(args: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
+/// Runs the binary with its stdout on /dev/full, where every write fails (no space left), and
+/// asserts that the run ends as on any other error: exit 2, the cause said, no panic. Returns
+/// the run's stderr; None, saying so, where the device is absent.
+pub fn stdout_refused(args: &[&str]) -> Option<String> {
+    let Ok(full) = std::fs::File::create("/dev/full") else {
+        eprintln!("skipped: /dev/full is absent");
+        return None;
+    };
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_jointid"))
+        .args(args)
+        .stdout(std::process::Stdio::from(full))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(
+        err.contains("error: stdout: cannot write"),
+        "{args:?}: {err}"
+    );
+    Some(err)
+}
+
 /// The UNESP-BERT data folder (`../shared/data/unesp-bert`), or None, saying so, where it is
 /// absent (the data are never copied into the project).
 pub fn unesp_dir() -> Option<std::path::PathBuf> {
