@@ -204,6 +204,10 @@ fn chosen(
         Some([auto]) if auto == "auto" => {
             return Ok((all.to_vec(), Selection::Auto, Choice::MostSensitive));
         }
+        Some(names) if names.iter().any(|n| n == "auto") => bail!(
+            "--params {} is invalid: `auto` chooses the parameters on each mode and is given alone, not with names",
+            names.join(",")
+        ),
         Some(names) => names,
     };
     let mut chosen: Vec<Parameter> = Vec::with_capacity(names.len());
@@ -235,6 +239,13 @@ fn selected<'a>(
     let Some(list) = &args.modes else {
         return Ok(measured.modes().iter().collect());
     };
+    if let Some(r) = list
+        .iter()
+        .enumerate()
+        .find_map(|(i, r)| list[..i].contains(r).then_some(r))
+    {
+        bail!("--modes lists mode {r} twice");
+    }
     list.iter()
         .map(|&r| {
             measured.get(r).ok_or_else(|| {

@@ -350,3 +350,59 @@ fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
     );
     assert!(!dir.path("no.csv").exists());
 }
+
+/// Runs identify into `dir/out.csv` and expects exit 2, every needle in a message under 200
+/// characters, and no file written.
+fn refused_into(dir: &Scratch, model: &Path, data: &Path, args: &[&str], needles: &[&str]) {
+    let out = dir.path("out.csv");
+    let mut all = args.to_vec();
+    all.extend(["--out", common::s(&out)]);
+    let run = identify(model, data, &all);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{args:?}: `{n}` not in {stderr}");
+    }
+    // the scratch folder's path is the test's, not the message's
+    let message = stderr.trim().replace(&format!("{}/", dir.0.display()), "");
+    assert!(
+        message.len() < 200,
+        "{} characters: {message}",
+        message.len()
+    );
+    assert!(!out.exists(), "{args:?}: {} written", out.display());
+}
+
+#[test]
+fn a_mode_listed_twice_is_refused_as_a_parameter_listed_twice_is() {
+    let s = Scratch::new("twice");
+    let model = s.write("m.toml", MODEL);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    let paper = ["--n", "38", "--m", "7", "--weighting", "inverse"];
+    for extra in [&["--modes", "1,1"][..], &["--modes", "1,3,1"]] {
+        for settings in [&paper[..], &["--from-frequency"]] {
+            let args: Vec<&str> = settings.iter().chain(extra).copied().collect();
+            refused_into(&s, &model, &data, &args, &["--modes lists mode 1 twice"]);
+        }
+    }
+    refused_into(
+        &s,
+        &model,
+        &data,
+        &["--from-frequency", "--params", "k2,k2"],
+        &["--params lists k2 twice"],
+    );
+    // `auto` chooses the parameters itself: it is not one more name to recommend
+    for value in ["auto,k1", "k2,auto"] {
+        let args = ["--from-frequency", "--params", value];
+        refused_into(
+            &s,
+            &model,
+            &data,
+            &args,
+            &[&format!("--params {value} is invalid"), "alone"],
+        );
+        let run = identify(&model, &data, &args);
+        assert!(!String::from_utf8_lossy(&run.stderr).contains("or give `auto`"));
+    }
+}
