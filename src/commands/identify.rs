@@ -31,6 +31,11 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let all = model.identified();
+    if all.is_empty() {
+        // before the eigensolution, and the same refusal with or without --from-frequency
+        return Err(IdentifyError::NoParameters)
+            .with_context(|| format!("{}", args.model.display()));
+    }
     let (params, selection, choice) = chosen(args.params.as_deref(), &all)?;
     // The settings are checked before the eigensolution, which takes minutes on a large model.
     let settings = match (args.n, args.m, args.weighting) {

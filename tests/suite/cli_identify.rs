@@ -406,3 +406,24 @@ fn a_mode_listed_twice_is_refused_as_a_parameter_listed_twice_is() {
         assert!(!String::from_utf8_lossy(&run.stderr).contains("or give `auto`"));
     }
 }
+
+#[test]
+fn a_model_with_every_parameter_fixed_is_refused_with_or_without_from_frequency() {
+    let s = Scratch::new("all-fixed");
+    let fixed = MODEL.replacen(
+        "k2 = 1.0e4    # rotational stiffness, N m/rad",
+        "k2 = 1.0e4\nfixed = [\"k1\", \"k2\"]",
+        1,
+    );
+    assert_ne!(fixed, MODEL);
+    let model = s.write("m.toml", &fixed);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    let message = "m.toml: the model identifies no parameter";
+    for args in [
+        &["--from-frequency"][..],
+        &["--from-frequency", "--frequency-noise", "0.001"],
+        &["--n", "38", "--m", "7", "--weighting", "inverse"],
+    ] {
+        refused_into(&s, &model, &data, args, &[message]);
+    }
+}
