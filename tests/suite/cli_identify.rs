@@ -427,3 +427,45 @@ fn a_model_with_every_parameter_fixed_is_refused_with_or_without_from_frequency(
         refused_into(&s, &model, &data, args, &[message]);
     }
 }
+
+/// A mode whose frequency lies beyond what its parameter reaches (three times the lap's sixth
+/// frequency: no joint stiffness gets the model there) is written as identify writes a mode it
+/// cannot stand behind: its rows with empty corrections and condition, a warning with the
+/// reason, the other modes identified; never `inf` in the CSV.
+#[test]
+fn a_mode_beyond_its_parameters_reach_is_written_without_corrections_or_inf() {
+    let dir = Scratch::new("beyond-reach");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/lap2d/bolted");
+    let measured = std::fs::read_to_string(fixture.join("measured.csv")).unwrap();
+    let far = measured.replace("974.2194316", "2922.658");
+    assert_ne!(far, measured);
+    let data = dir.write("measured.csv", &far);
+    let out = dir.path("freq.csv");
+    let run = identify(
+        &fixture.join("model.toml"),
+        &data,
+        &["--from-frequency", "--out", common::s(&out)],
+    );
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: mode 6: 2922.6580 Hz is beyond the reach of"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(!text.contains("inf"), "{text}");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 12, "6 modes x (k1, k2)");
+    for row in &rows {
+        let empty =
+            ["correction", "relative_correction", "condition"].map(|c| row[col(c)].is_empty());
+        if row[0] == "6" {
+            assert_eq!(empty, [true; 3], "{row:?}");
+        } else {
+            assert_eq!(empty, [false; 3], "{row:?}");
+        }
+    }
+}
