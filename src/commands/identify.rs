@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use jointid::identify::frequency_only::{self, Choice, Fallback, FrequencyError, FrequencyOutcome};
 use jointid::identify::{Identifier, IdentifyError, ModeOutcome, Selection, Settings};
+use jointid::input::Number;
 use jointid::measured::{MeasuredMode, MeasuredModes};
 use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::guard::model_inputs;
@@ -26,7 +27,10 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     if let Some(v) = args.frequency_noise
         && !(v.is_finite() && v > 0.0 && v < 1.0)
     {
-        bail!("--frequency-noise {v} is invalid: a relative standard deviation in (0, 1)");
+        bail!(
+            "--frequency-noise {} is invalid: a relative standard deviation in (0, 1)",
+            Number(v)
+        );
     }
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;

@@ -347,3 +347,31 @@ fn an_even_axis_written_to_six_digits_is_even() {
     assert!(output.status.success(), "{stderr}");
     assert!(stderr.contains("2 modes"), "{stderr}");
 }
+
+/// A band edge of 1e308 is echoed in exponent form, not in 309 digits: the message stays short.
+#[test]
+fn a_huge_band_is_echoed_compactly() {
+    let dir = Scratch::new("huge-band");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let out = dir.path("modes.csv");
+    for (band, echo) in [
+        ("0:1e308", "band 0..1e308 Hz"),
+        ("1e307:1e308", "band 1e307..1e308 Hz"),
+    ] {
+        let output = run(&files, &geometry, &out, &["--band", band, "--quiet"]);
+        assert_refused(
+            &output,
+            &out,
+            &[&format!(
+                "{echo} is invalid: it needs 0 <= lo < hi <= 300 Hz"
+            )],
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let message = stderr.trim().replace(&format!("{}/", dir.0.display()), "");
+        assert!(
+            message.len() < 200,
+            "{} characters: {message}",
+            message.len()
+        );
+    }
+}

@@ -469,3 +469,17 @@ fn a_mode_beyond_its_parameters_reach_is_written_without_corrections_or_inf() {
         }
     }
 }
+
+#[test]
+fn a_huge_frequency_noise_is_echoed_compactly() {
+    let s = Scratch::new("huge-noise");
+    let model = s.write("m.toml", MODEL);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    refused_into(
+        &s,
+        &model,
+        &data,
+        &["--from-frequency", "--frequency-noise", "1e308"],
+        &["--frequency-noise 1e308 is invalid"],
+    );
+}
