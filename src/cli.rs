@@ -365,11 +365,12 @@ pub struct IdentifyArgs {
     /// a correction from a frequency alone when the measured file carries no frequency_std.
     #[arg(long)]
     pub frequency_noise: Option<f64>,
-    /// Modes to identify (default: every measured mode), e.g. 1,2,3.
+    /// Modes to identify, each once (default: every measured mode), e.g. 1,2,3.
     #[arg(long, value_delimiter = ',')]
     pub modes: Option<Vec<usize>>,
-    /// Parameters to identify, e.g. k2 (the others held at their values), or `auto`: on each
-    /// mode, the parameters the mode determines (default: every identified parameter).
+    /// Parameters to identify, e.g. k2 (the others held at their values), each once; or `auto`
+    /// alone: on each mode, the parameters the mode determines (default: every identified
+    /// parameter).
     #[arg(long, value_delimiter = ',')]
     pub params: Option<Vec<String>>,
     /// Write CSV here instead of printing a table.

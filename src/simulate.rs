@@ -83,7 +83,7 @@ impl Errors {
             if !(level.is_finite() && (0.0..1.0).contains(&level)) {
                 return Err(SettingError::new(
                     setting,
-                    level,
+                    crate::input::Number(level),
                     "it must be a relative level from 0 to below 1",
                 ));
             }

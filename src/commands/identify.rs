@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use jointid::identify::frequency_only::{self, Choice, Fallback, FrequencyError, FrequencyOutcome};
 use jointid::identify::{Identifier, IdentifyError, ModeOutcome, Selection, Settings};
+use jointid::input::Number;
 use jointid::measured::{MeasuredMode, MeasuredModes};
 use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::guard::model_inputs;
@@ -24,11 +25,19 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     if let Some(v) = args.frequency_noise
         && !(v.is_finite() && v > 0.0 && v < 1.0)
     {
-        bail!("--frequency-noise {v} is invalid: a relative standard deviation in (0, 1)");
+        bail!(
+            "--frequency-noise {} is invalid: a relative standard deviation in (0, 1)",
+            Number(v)
+        );
     }
     let model = jointid::model::from_path(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let all = model.identified();
+    if all.is_empty() {
+        // before the eigensolution, and the same refusal with or without --from-frequency
+        return Err(IdentifyError::NoParameters)
+            .with_context(|| format!("{}", args.model.display()));
+    }
     let (params, selection, choice) = chosen(args.params.as_deref(), &all)?;
     // The settings are checked before the eigensolution, which takes minutes on a large model.
     let settings = match (args.n, args.m, args.weighting) {
@@ -208,6 +217,10 @@ fn chosen(
         Some([auto]) if auto == "auto" => {
             return Ok((all.to_vec(), Selection::Auto, Choice::MostSensitive));
         }
+        Some(names) if names.iter().any(|n| n == "auto") => bail!(
+            "--params {} is invalid: `auto` chooses the parameters on each mode and is given alone, not with names",
+            names.join(",")
+        ),
         Some(names) => names,
     };
     let mut chosen: Vec<Parameter> = Vec::with_capacity(names.len());
@@ -239,6 +252,13 @@ fn selected<'a>(
     let Some(list) = &args.modes else {
         return Ok(measured.modes().iter().collect());
     };
+    if let Some(r) = list
+        .iter()
+        .enumerate()
+        .find_map(|(i, r)| list[..i].contains(r).then_some(r))
+    {
+        bail!("--modes lists mode {r} twice");
+    }
     list.iter()
         .map(|&r| {
             measured.get(r).ok_or_else(|| {

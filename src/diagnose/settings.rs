@@ -4,7 +4,7 @@ use super::candidate::{Tier, registry};
 use super::fit::Noise;
 use super::pairing::PairingRule;
 use crate::identify::Settings;
-use crate::input::SettingError;
+use crate::input::{Number, SettingError};
 
 /// Largest relative half-width of the pairing window.
 pub const LARGEST_WINDOW: f64 = 10.0;
@@ -36,7 +36,7 @@ impl DiagnoseSettings {
             ("shape_noise", self.noise.shape),
         ] {
             if !(value.is_finite() && value > 0.0 && value < 1.0) {
-                return Err(SettingError::new(setting, value, noise));
+                return Err(SettingError::new(setting, Number(value), noise));
             }
         }
         for combination in &self.causes {
@@ -46,7 +46,7 @@ impl DiagnoseSettings {
         if !(window.is_finite() && window > 0.0 && window <= LARGEST_WINDOW) {
             return Err(SettingError::new(
                 "pairing_window",
-                window,
+                Number(window),
                 "it is a relative half-width above 0 and at most 10",
             ));
         }

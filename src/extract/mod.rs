@@ -43,7 +43,7 @@ mod run;
 
 use faer::c64;
 
-use crate::input::SettingError;
+use crate::input::{Number, SettingError};
 
 pub use frf::{FrfSet, Quantity};
 pub use run::extract;
@@ -134,11 +134,15 @@ impl Settings {
             ("mac_min", self.mac_min),
         ] {
             if !open_unit(value) {
-                return invalid(setting, &value, "it must be in (0, 1)");
+                return invalid(setting, &Number(value), "it must be in (0, 1)");
             }
         }
         if !(self.max_damping > 0.0 && self.max_damping <= 1.0) {
-            return invalid("max_damping", &self.max_damping, "it must be in (0, 1]");
+            return invalid(
+                "max_damping",
+                &Number(self.max_damping),
+                "it must be in (0, 1]",
+            );
         }
         if self.residual_terms > 2 {
             return invalid(
@@ -231,10 +235,16 @@ pub enum ExtractError {
     #[error("no response FRFs were given; at least one is needed")]
     NoResponses,
     /// A frequency is negative or not finite.
-    #[error("frequency line {index} is {value} Hz; frequencies must be finite and >= 0")]
+    #[error(
+        "frequency line {index} is {} Hz; frequencies must be finite and >= 0",
+        Number(*value)
+    )]
     BadFrequency { index: usize, value: f64 },
     /// Frequencies do not ascend.
-    #[error("frequencies must ascend: line {index} is {value} Hz after {previous} Hz")]
+    #[error(
+        "frequencies must ascend: line {index} is {} Hz after {} Hz",
+        Number(*value), Number(*previous)
+    )]
     NotAscending {
         index: usize,
         value: f64,
@@ -242,8 +252,9 @@ pub enum ExtractError {
     },
     /// Frequencies are not evenly spaced.
     #[error(
-        "frequencies must be evenly spaced: line {index} is {value} Hz, expected {expected} Hz \
-         (step {step} Hz, tolerance {tolerance} Hz)"
+        "frequencies must be evenly spaced: line {index} is {} Hz, expected {} Hz \
+         (step {} Hz, tolerance {} Hz)",
+        Number(*value), Number(*expected), Number(*step), Number(*tolerance)
     )]
     UnevenSpacing {
         index: usize,
@@ -273,7 +284,10 @@ pub enum ExtractError {
         im: f64,
     },
     /// A response is zero over the whole band.
-    #[error("response {response} is zero over the band {lo}..{hi} Hz; it carries no mode")]
+    #[error(
+        "response {response} is zero over the band {}..{} Hz; it carries no mode",
+        Number(*lo), Number(*hi)
+    )]
     ZeroResponse { response: usize, lo: f64, hi: f64 },
     /// Coherence given for another number of responses.
     #[error("coherence is given for {count} responses, but there are {expected}")]
@@ -303,7 +317,8 @@ pub enum ExtractError {
     NoCoherentBand { threshold: f64, best: f64 },
     /// The band asked for is empty or outside the data.
     #[error(
-        "band {lo}..{hi} Hz is invalid: it needs {data_lo} <= lo < hi <= {data_hi} Hz (the FRF's lines)"
+        "band {}..{} Hz is invalid: it needs {} <= lo < hi <= {} Hz (the FRF's lines)",
+        Number(*lo), Number(*hi), Number(*data_lo), Number(*data_hi)
     )]
     BadBand {
         lo: f64,

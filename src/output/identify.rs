@@ -2,16 +2,16 @@
 //!
 //! CSV columns: `mode,param,initial,correction,corrected,relative_correction,
 //! frequency_measured_hz,frequency_model_hz,condition,resolution,identified`. Numbers are
-//! written in the shortest form that reads back to the same f64. A mode whose S_r is rank
-//! deficient has empty `correction`, `corrected` and `relative_correction` and
-//! `condition = inf`; a parameter held on a mode (`--params auto`) has `identified = held`, a
-//! zero correction, and the condition of the parameters the mode identified. A mode identified
-//! from its frequency alone (module `identify::frequency_only`) has `identified = frequency`
-//! on its one parameter (condition 1, resolution 1: one equation, one unknown) and `held` on
-//! the others (resolution 0). When the measured
-//! modes carry standard errors, two more columns: `correction_std,relative_correction_std`,
-//! their first-order propagation (module `identify::propagation`); the projection is then
-//! weighted by them.
+//! written in the shortest form that reads back to the same f64. A mode identify cannot stand
+//! behind, its S_r rank deficient or its frequency beyond what its parameter reaches, has
+//! empty `correction`, `corrected`, `relative_correction` and `condition` (a warning on stderr
+//! says why); a parameter held on a mode (`--params auto`) has `identified = held`, a zero
+//! correction, and the condition of the parameters the mode identified. A mode identified from
+//! its frequency alone (module `identify::frequency_only`) has `identified = frequency` on its
+//! one parameter (condition 1, resolution 1: one equation, one unknown) and `held` on the
+//! others (resolution 0). When the measured modes carry standard errors, two more columns:
+//! `correction_std,relative_correction_std`, their first-order propagation (module
+//! `identify::propagation`); the projection is then weighted by them.
 
 use std::io::{self, Write};
 
@@ -54,8 +54,9 @@ pub struct IdentifyRow {
     pub frequency_measured_hz: f64,
     /// Paired nominal frequency, Hz.
     pub frequency_model_hz: f64,
-    /// cond(W S_r) of the identified parameters.
-    pub condition: f64,
+    /// cond(W S_r) of the identified parameters; `None` where the corrections are empty (no
+    /// solution to condition).
+    pub condition: Option<f64>,
     /// Resolution of the parameter on this mode (1: seen apart from the others, 0: not).
     pub resolution: f64,
     /// How it was determined on this mode (or held at its value).
@@ -88,7 +89,7 @@ pub fn rows(outcomes: &[ModeOutcome], params: &[Parameter]) -> Vec<IdentifyRow> 
                 relative: o.relative.as_ref().ok().map(|z| z[i]),
                 frequency_measured_hz: o.frequency_measured_hz,
                 frequency_model_hz: o.frequency_model_hz,
-                condition: o.condition,
+                condition: o.relative.is_ok().then_some(o.condition),
                 resolution: o.resolution[i],
                 source: if o.solved[i] {
                     Source::Shape
@@ -115,7 +116,7 @@ pub fn frequency_rows(o: &FrequencyOutcome, f_hz: f64, params: &[Parameter]) -> 
                 relative: Some(if own { o.relative } else { 0.0 }),
                 frequency_measured_hz: f_hz,
                 frequency_model_hz: o.frequency_model_hz,
-                condition: 1.0,
+                condition: Some(1.0),
                 resolution: if own { 1.0 } else { 0.0 },
                 source: if own { Source::Frequency } else { Source::Held },
                 relative_std: if own { o.std } else { None },
@@ -144,7 +145,7 @@ pub fn unsolved_rows(
             relative: None,
             frequency_measured_hz: f_hz,
             frequency_model_hz: f_model_hz,
-            condition: f64::INFINITY,
+            condition: None,
             resolution: 0.0,
             source: Source::Frequency,
             relative_std: None,
@@ -171,7 +172,7 @@ pub fn write_csv(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
             opt(r.relative),
             r.frequency_measured_hz.to_string(),
             r.frequency_model_hz.to_string(),
-            r.condition.to_string(),
+            opt(r.condition),
             r.resolution.to_string(),
             match r.source {
                 Source::Shape => "yes",
@@ -228,7 +229,9 @@ pub fn write_text(out: &mut dyn Write, rows: &[IdentifyRow]) -> io::Result<()> {
                 r.relative.map(|z| format!("{z:+.4}")).unwrap_or_else(na),
                 format!("{:.3}", r.frequency_measured_hz),
                 format!("{:.3}", r.frequency_model_hz),
-                format!("{:.3e}", r.condition),
+                r.condition
+                    .map(|c| format!("{c:.3e}"))
+                    .unwrap_or_else(|| "-".to_string()),
                 format!("{:.1e}", r.resolution),
             ]
             .into_iter()
@@ -319,4 +322,81 @@ pub fn write_frequency_notes(
         )?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::identify::RankDeficient;
+    use crate::structure::{Role, SparseSym};
+
+    fn params() -> Vec<Parameter> {
+        ["k1", "k2"]
+            .into_iter()
+            .map(|name| Parameter {
+                name: name.to_string(),
+                unit: "N/m",
+                value: 1e4,
+                stiffness: SparseSym::zero(),
+                mass: SparseSym::zero(),
+                role: Role::Identified,
+            })
+            .collect()
+    }
+
+    fn csv(rows: &[IdentifyRow]) -> String {
+        let mut buf = Vec::new();
+        write_csv(&mut buf, rows).unwrap();
+        String::from_utf8(buf).unwrap()
+    }
+
+    #[test]
+    fn a_mode_without_corrections_has_an_empty_condition_not_inf() {
+        let rank_deficient = ModeOutcome {
+            mode: 2,
+            basis_index: 3,
+            frequency_measured_hz: 100.0,
+            frequency_model_hz: 99.0,
+            g: vec![1.0],
+            condition: f64::INFINITY,
+            relative: Err(RankDeficient { rank: 1 }),
+            resolution: vec![0.0, 0.0],
+            solved: vec![true, true],
+            std: None,
+        };
+        let mut rows = rows(&[rank_deficient], &params());
+        rows.extend(unsolved_rows(3, 500.0, 200.0, &params()));
+        let text = csv(&rows);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 5, "{text}");
+        for line in &lines[1..] {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(&f[3..6], ["", "", ""], "{line}");
+            assert_eq!(f[8], "", "condition of {line}");
+        }
+        assert!(!text.contains("inf"), "{text}");
+        let mut table = Vec::new();
+        write_text(&mut table, &rows).unwrap();
+        assert!(!String::from_utf8(table).unwrap().contains("inf"));
+    }
+
+    #[test]
+    fn a_solved_mode_keeps_its_condition() {
+        let solved = ModeOutcome {
+            mode: 1,
+            basis_index: 2,
+            frequency_measured_hz: 100.0,
+            frequency_model_hz: 99.0,
+            g: vec![1.0],
+            condition: 12.5,
+            relative: Ok(vec![0.1, 0.2]),
+            resolution: vec![1.0, 1.0],
+            solved: vec![true, true],
+            std: None,
+        };
+        let text = csv(&rows(&[solved], &params()));
+        for line in text.lines().skip(1) {
+            assert_eq!(line.split(',').nth(8), Some("12.5"), "{line}");
+        }
+    }
 }

@@ -21,6 +21,7 @@
 
 use super::dofs::{Direction, DofMap};
 use super::observation::Observation;
+use crate::input::Number;
 
 /// The default tolerance, relative to the diagonal of the model's bounding box.
 pub const DEFAULT_TOLERANCE: f64 = 1e-2;
@@ -38,8 +39,8 @@ pub enum NearestError {
     },
     /// The nearest DOF is farther than the tolerance.
     #[error(
-        "the point ({}, {}, {}) m is off the model: the nearest {direction} DOF, `{label}` at ({}, {}, {}) m, is {distance:.4e} m away, beyond the sensor tolerance {tolerance:.4e} m ({origin}); check the coordinates' unit, origin and axes, or name the DOF by label",
-        point[0], point[1], point[2], position[0], position[1], position[2]
+        "the point ({}, {}, {}) m is {distance:.3e} m from the nearest {direction} DOF `{label}`, over the sensor tolerance {tolerance:.3e} m ({origin}): check the point's unit, origin and axes",
+        Number(point[0]), Number(point[1]), Number(point[2])
     )]
     Far {
         /// The point.
@@ -60,7 +61,7 @@ pub enum NearestError {
     /// Two DOFs of the direction share the nearest position.
     #[error(
         "the point ({}, {}, {}) m is nearest to `{first}` and `{second}`, two {direction} DOFs at the same position (coincident nodes): name the one measured by label",
-        point[0], point[1], point[2]
+        Number(point[0]), Number(point[1]), Number(point[2])
     )]
     Coincident {
         /// The point.
@@ -79,12 +80,10 @@ impl DofMap {
     /// from (for messages).
     pub fn sensor_tolerance(&self) -> (f64, String) {
         match self.sensor_tolerance_set() {
-            Some(t) => (t, "sensor_tolerance of the model".to_string()),
+            Some(t) => (t, "its sensor_tolerance".to_string()),
             None => (
                 DEFAULT_TOLERANCE * self.index_by_x().diagonal(),
-                format!(
-                    "the default, {DEFAULT_TOLERANCE} times the model's size, the diagonal of its bounding box"
-                ),
+                format!("{}% of its size", DEFAULT_TOLERANCE * 100.0),
             ),
         }
     }
@@ -128,7 +127,7 @@ impl DofMap {
                 right += 1;
             }
         }
-        let Some((dist2, i)) = best else {
+        let Some((_, i)) = best else {
             let mut present: Vec<&str> = Direction::ALL
                 .iter()
                 .filter(|d| self.dofs().iter().any(|x| x.direction == **d))
@@ -142,7 +141,10 @@ impl DofMap {
         };
         let found = self.get(i);
         let (tolerance, origin) = self.sensor_tolerance();
-        let distance = dist2.sqrt();
+        // |found - point| without the overflow of its square (a point 1e200 m away)
+        let distance = (0..3)
+            .map(|k| found.position[k] - point[k])
+            .fold(0.0, f64::hypot);
         if distance.is_nan() || distance > tolerance {
             return Err(NearestError::Far {
                 point,

@@ -316,3 +316,62 @@ fn mixed_units_are_refused() {
         &["frf3.uff", "record 1", "g/N", "m/s^2/N", "mixed units"],
     );
 }
+
+/// An even axis stored as uneven values of 6 digits (`E13.5`), as exporters write it: 2100
+/// lines of 0.0625 Hz from 0 Hz, whose last line is written 131.188 for 131.1875, and line
+/// 1601 (100.0625 Hz) 100.062. The step from the written span is 2.4e-7 Hz too long, which
+/// with line 1601's own rounding puts that line 8.8e-4 Hz from where the step places it:
+/// beyond the rounding of one value, within that of the three. The axis is even, and the
+/// modes come out.
+#[test]
+fn an_even_axis_written_to_six_digits_is_even() {
+    let dir = Scratch::new("six-digits");
+    let (_, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let sys = prescribed(&TRUE_HZ, &[0.01, 0.005, 0.02], 3);
+    let freqs: Vec<f64> = (0..2100).map(|k| f64::from(k) * 0.0625).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let set = frf_set(&h, &freqs, &[0, 1, 2], Quantity::Acceleration);
+    let mut bytes = Vec::new();
+    for (o, values) in set.responses.into_iter().enumerate() {
+        let mut f = function(o as u64 + 1, 0.0625, values, "m/s^2/N");
+        f.abscissa = Abscissa::Uneven(freqs.clone());
+        write_function(&mut bytes, &f).unwrap();
+    }
+    let text = String::from_utf8(bytes).unwrap();
+    assert!(text.contains("1.31188E+02") && text.contains("1.00062E+02"));
+    let frf = dir.path("uneven.uff");
+    std::fs::write(&frf, text).unwrap();
+    let out = dir.path("modes.csv");
+    let output = run(&[frf], &geometry, &out, &["--band", "20:120"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(stderr.contains("2 modes"), "{stderr}");
+}
+
+/// A band edge of 1e308 is echoed in exponent form, not in 309 digits: the message stays short.
+#[test]
+fn a_huge_band_is_echoed_compactly() {
+    let dir = Scratch::new("huge-band");
+    let (files, geometry) = write_case(&dir, false, &[1, 2, 3]);
+    let out = dir.path("modes.csv");
+    for (band, echo) in [
+        ("0:1e308", "band 0..1e308 Hz"),
+        ("1e307:1e308", "band 1e307..1e308 Hz"),
+    ] {
+        let output = run(&files, &geometry, &out, &["--band", band, "--quiet"]);
+        assert_refused(
+            &output,
+            &out,
+            &[&format!(
+                "{echo} is invalid: it needs 0 <= lo < hi <= 300 Hz"
+            )],
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let message = stderr.trim().replace(&format!("{}/", dir.0.display()), "");
+        assert!(
+            message.len() < 200,
+            "{} characters: {message}",
+            message.len()
+        );
+    }
+}

@@ -400,3 +400,136 @@ fn a_mode_beyond_the_models_elastic_modes_is_refused_from_its_frequency() {
     );
     assert_ne!(run.status.code(), Some(101));
 }
+
+/// Runs identify into `dir/out.csv` and expects exit 2, every needle in a message under 200
+/// characters, and no file written.
+fn refused_into(dir: &Scratch, model: &Path, data: &Path, args: &[&str], needles: &[&str]) {
+    let out = dir.path("out.csv");
+    let mut all = args.to_vec();
+    all.extend(["--out", common::s(&out)]);
+    let run = identify(model, data, &all);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{args:?}: `{n}` not in {stderr}");
+    }
+    // the scratch folder's path is the test's, not the message's
+    let message = stderr.trim().replace(&format!("{}/", dir.0.display()), "");
+    assert!(
+        message.len() < 200,
+        "{} characters: {message}",
+        message.len()
+    );
+    assert!(!out.exists(), "{args:?}: {} written", out.display());
+}
+
+#[test]
+fn a_mode_listed_twice_is_refused_as_a_parameter_listed_twice_is() {
+    let s = Scratch::new("twice");
+    let model = s.write("m.toml", MODEL);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    let paper = ["--n", "38", "--m", "7", "--weighting", "inverse"];
+    for extra in [&["--modes", "1,1"][..], &["--modes", "1,3,1"]] {
+        for settings in [&paper[..], &["--from-frequency"]] {
+            let args: Vec<&str> = settings.iter().chain(extra).copied().collect();
+            refused_into(&s, &model, &data, &args, &["--modes lists mode 1 twice"]);
+        }
+    }
+    refused_into(
+        &s,
+        &model,
+        &data,
+        &["--from-frequency", "--params", "k2,k2"],
+        &["--params lists k2 twice"],
+    );
+    // `auto` chooses the parameters itself: it is not one more name to recommend
+    for value in ["auto,k1", "k2,auto"] {
+        let args = ["--from-frequency", "--params", value];
+        refused_into(
+            &s,
+            &model,
+            &data,
+            &args,
+            &[&format!("--params {value} is invalid"), "alone"],
+        );
+        let run = identify(&model, &data, &args);
+        assert!(!String::from_utf8_lossy(&run.stderr).contains("or give `auto`"));
+    }
+}
+
+#[test]
+fn a_model_with_every_parameter_fixed_is_refused_with_or_without_from_frequency() {
+    let s = Scratch::new("all-fixed");
+    let fixed = MODEL.replacen(
+        "k2 = 1.0e4    # rotational stiffness, N m/rad",
+        "k2 = 1.0e4\nfixed = [\"k1\", \"k2\"]",
+        1,
+    );
+    assert_ne!(fixed, MODEL);
+    let model = s.write("m.toml", &fixed);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    let message = "m.toml: the model identifies no parameter";
+    for args in [
+        &["--from-frequency"][..],
+        &["--from-frequency", "--frequency-noise", "0.001"],
+        &["--n", "38", "--m", "7", "--weighting", "inverse"],
+    ] {
+        refused_into(&s, &model, &data, args, &[message]);
+    }
+}
+
+/// A mode whose frequency lies beyond what its parameter reaches (three times the lap's sixth
+/// frequency: no joint stiffness gets the model there) is written as identify writes a mode it
+/// cannot stand behind: its rows with empty corrections and condition, a warning with the
+/// reason, the other modes identified; never `inf` in the CSV.
+#[test]
+fn a_mode_beyond_its_parameters_reach_is_written_without_corrections_or_inf() {
+    let dir = Scratch::new("beyond-reach");
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/lap2d/bolted");
+    let measured = std::fs::read_to_string(fixture.join("measured.csv")).unwrap();
+    let far = measured.replace("974.2194316", "2922.658");
+    assert_ne!(far, measured);
+    let data = dir.write("measured.csv", &far);
+    let out = dir.path("freq.csv");
+    let run = identify(
+        &fixture.join("model.toml"),
+        &data,
+        &["--from-frequency", "--out", common::s(&out)],
+    );
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: mode 6: 2922.6580 Hz is beyond the reach of"),
+        "{stderr}"
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(!text.contains("inf"), "{text}");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 12, "6 modes x (k1, k2)");
+    for row in &rows {
+        let empty =
+            ["correction", "relative_correction", "condition"].map(|c| row[col(c)].is_empty());
+        if row[0] == "6" {
+            assert_eq!(empty, [true; 3], "{row:?}");
+        } else {
+            assert_eq!(empty, [false; 3], "{row:?}");
+        }
+    }
+}
+
+#[test]
+fn a_huge_frequency_noise_is_echoed_compactly() {
+    let s = Scratch::new("huge-noise");
+    let model = s.write("m.toml", MODEL);
+    let data = s.write("d.csv", &simulated_csv(&all_dofs(&paper_model(1.0, 1.0))));
+    refused_into(
+        &s,
+        &model,
+        &data,
+        &["--from-frequency", "--frequency-noise", "1e308"],
+        &["--frequency-noise 1e308 is invalid"],
+    );
+}

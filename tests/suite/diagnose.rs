@@ -786,3 +786,55 @@ fn causes_asked_for_together_are_checked_and_fitted() {
     assert_eq!(causes, ["joint_mass", "shear"], "{}", r["verdict"]);
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A setting of 1e308 is echoed in exponent form, not in 309 digits: the message stays short.
+#[test]
+fn a_huge_setting_is_echoed_compactly() {
+    let dir = scratch("diag", "huge");
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/paper-case-1.toml");
+    let measured = dir.join("m.csv");
+    std::fs::write(
+        &measured,
+        "mode,frequency_hz,node,dof,value\n1,150,0,w,1\n1,150,5,w,0.2\n",
+    )
+    .unwrap();
+    let json = dir.join("r.json");
+    for flag in ["--pairing-window", "--shape-noise", "--frequency-noise"] {
+        let err = common::refused(
+            &[
+                "diagnose",
+                "--model",
+                model,
+                "--measured",
+                common::s(&measured),
+                flag,
+                "1e308",
+                "--json",
+                common::s(&json),
+            ],
+            &[&format!("error: {flag} 1e308 is invalid: ")],
+        );
+        assert!(err.trim().len() < 200, "{} characters: {err}", err.len());
+        assert!(!json.exists());
+    }
+    let out = dir.join("sim.csv");
+    for flag in ["--shape-noise", "--frequency-noise"] {
+        let err = common::refused(
+            &[
+                "simulate",
+                "--model",
+                model,
+                "--modes",
+                "4",
+                flag,
+                "1e308",
+                "--out",
+                common::s(&out),
+            ],
+            &[&format!("error: {flag} 1e308 is invalid: ")],
+        );
+        assert!(err.trim().len() < 200, "{} characters: {err}", err.len());
+        assert!(!out.exists());
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

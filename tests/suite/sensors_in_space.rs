@@ -135,9 +135,26 @@ fn a_sensor_off_the_model_or_ambiguous_is_refused_naming_the_point_and_the_neare
         "far.csv",
         "1,900,0.2,0.01,0.118,z,1\n",
         &[
-            "far.csv:2: the point (0.2, 0.01, 0.118) m is off the model: the nearest z DOF, `",
-            "` at (0.2, 0.01, 0.018000000000000002) m, is 1.0000e-1 m away, beyond the sensor tolerance 2.4150e-3 m (the default, 0.01 times the model's size",
+            "far.csv:2: the point (0.2, 0.01, 0.118) m is 1.000e-1 m from the nearest z DOF `",
+            "`, over the sensor tolerance 2.415e-3 m (1% of its size): check the point's unit, origin and axes",
         ],
+    );
+    // Coordinates of 1e308 are echoed in exponent form, not in 309 digits each.
+    let huge = dir.join("huge.csv");
+    std::fs::write(
+        &huge,
+        "mode,frequency_hz,x,y,z,dof,value\n1,900,1e308,-1e308,1e308,z,1\n",
+    )
+    .unwrap();
+    let err = refused(
+        &identify(&model, &huge, None),
+        &["huge.csv:2: the point (1e308, -1e308, 1e308) m is 1.732e308 m from the nearest z DOF"],
+    );
+    let message = err.trim().replace(&format!("{}/", dir.display()), "");
+    assert!(
+        message.len() < 200,
+        "{} characters: {message}",
+        message.len()
     );
     // On the lap's faces: two coincident nodes.
     run(
@@ -175,8 +192,8 @@ fn a_sensor_off_the_model_or_ambiguous_is_refused_naming_the_point_and_the_neare
     refused(
         &identify(&tight, &file, None),
         &[
-            "offset.csv:2: the point (0.0001, 0, 0) m is off the model",
-            "is 1.0000e-4 m away, beyond the sensor tolerance 5.0000e-5 m (sensor_tolerance of the model)",
+            "offset.csv:2: the point (0.0001, 0, 0) m is 1.000e-4 m from the nearest",
+            "over the sensor tolerance 5.000e-5 m (its sensor_tolerance)",
         ],
     );
     // On a beam chain, rows by x,y,z are refused: its positions are read along the elements.

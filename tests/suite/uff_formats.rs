@@ -364,3 +364,34 @@ fn even_abscissa_is_recognised_within_the_written_digits() {
     f.abscissa = Abscissa::Uneven(vec![1.0]);
     assert_eq!(f.even_abscissa(5e-6), None);
 }
+
+/// 2100 lines of 0.0625 Hz from 0 Hz to 6 digits: the last written 131.188, line 1601
+/// (100.0625) written 100.062. The step from the written span is off by 2.4e-7 Hz, which
+/// with line 1601's own rounding puts it 8.8e-4 Hz from the line, more than its rounding
+/// alone (5e-4 Hz): the tolerance is that of the three written values, not of one.
+#[test]
+fn an_even_axis_whose_last_line_is_rounded_is_even() {
+    let text = file_with_58(
+        "         4         2         1  0.00000e+00  5.00000e-01  0.00000e+00\n",
+        "1 2\n",
+    );
+    let Some(Record::Function(mut f)) = read(text.as_bytes(), Path::new("f.uff")).unwrap().pop()
+    else {
+        panic!("function expected")
+    };
+    let x: Vec<f64> = (0..2100)
+        .map(|i| format!("{:.5e}", f64::from(i) * 0.0625).parse().unwrap())
+        .collect();
+    assert_eq!((x[1601], x[2099]), (100.062, 131.188));
+    f.ordinate = Values::Real(vec![0.0; x.len()]);
+    f.abscissa = Abscissa::Uneven(x.clone());
+    let (start, step) = f.even_abscissa(5e-6).expect("an even axis");
+    assert_eq!(start, 0.0);
+    assert!((step - 0.0625).abs() < 1e-6, "{step}");
+    // a line missing in the middle is still uneven
+    let mut gap = x;
+    gap.remove(1000);
+    f.ordinate = Values::Real(vec![0.0; gap.len()]);
+    f.abscissa = Abscissa::Uneven(gap);
+    assert_eq!(f.even_abscissa(5e-6), None);
+}

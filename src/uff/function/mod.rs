@@ -197,10 +197,13 @@ impl Function {
     }
 
     /// Start and step of the abscissa when its points are evenly spaced: an even abscissa as
-    /// stored; an uneven one when every x_i is within `rel_tol` max(|x_i|, step) of
-    /// x_0 + i step, with step = (x_last - x_0) / (n - 1). Exported FRFs often store an even
-    /// frequency axis as uneven values of 6 significant digits (`E13.5`): `rel_tol = 5e-6`
-    /// accepts them. `None` for fewer than two points or an uneven spacing.
+    /// stored; an uneven one when every x_i lies within the rounding of the written digits of
+    /// x_0 + i step, step = (x_last - x_0) / (n - 1). Each value written to `rel_tol` relative
+    /// is off by up to `rel_tol` max(|x_i|, step) itself, and the line from the written first
+    /// and last values by up to `rel_tol` ((1 - t) |x_0| + t |x_last|) at t = i / (n - 1): the
+    /// tolerance is their sum. Exported FRFs often store an even frequency axis as uneven
+    /// values of 6 significant digits (`E13.5`): `rel_tol = 5e-6` accepts them. `None` for
+    /// fewer than two points or an uneven spacing.
     pub fn even_abscissa(&self, rel_tol: f64) -> Option<(f64, f64)> {
         let x = match &self.abscissa {
             Abscissa::Even { start, step } => return Some((*start, *step)),
@@ -210,10 +213,14 @@ impl Function {
         if x.len() < 2 {
             return None;
         }
-        let step = (last - first) / (x.len() - 1) as f64;
+        let span = (x.len() - 1) as f64;
+        let step = (last - first) / span;
         let even = step != 0.0
             && x.iter().enumerate().all(|(i, &xi)| {
-                (xi - (first + i as f64 * step)).abs() <= rel_tol * xi.abs().max(step.abs())
+                let t = i as f64 / span;
+                let ends = (1.0 - t) * first.abs() + t * last.abs();
+                let tolerance = rel_tol * (xi.abs().max(step.abs()) + ends);
+                (xi - (first + i as f64 * step)).abs() <= tolerance
             });
         even.then_some((first, step))
     }
