@@ -14,16 +14,13 @@ use super::beam::{element_mass, element_stiffness};
 use super::joint::{JointStiffness, parameter_name};
 use super::lap::{LAP_UNIT, ROOT_UNIT};
 use super::layered::{self, Laps};
-use super::mesh::Mesh;
+use super::mesh::{Mesh, SAME_X};
 use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
 use crate::structure::{
     Alternative, Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions,
     JointSite, LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite,
     SymMatrix,
 };
-
-/// Abscissae closer than this fraction of the chain's length are one position.
-pub(super) const SAME_X: f64 = 1e-9;
 
 impl Chain {
     /// The structure of this chain.

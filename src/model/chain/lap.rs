@@ -161,7 +161,7 @@ pub(crate) fn lap(
     // a fraction of a beam's: an overlap whose halves are not well above that has its ends
     // merged into the joint's node, and its layers would have no element. Twice the fraction
     // per half keeps the ends apart whatever the rounding.
-    let fraction = super::assembly::SAME_X.max(super::mesh::MERGE);
+    let fraction = super::mesh::SAME_X.max(super::mesh::MERGE);
     let chain_length: f64 = beams.iter().map(|b| b.length).sum();
     let least = 4.0 * fraction * chain_length;
     if length <= least {

@@ -47,6 +47,9 @@ pub struct Mesh {
 /// Break points closer than this fraction of a beam's length are one point.
 pub(super) const MERGE: f64 = 1e-9;
 
+/// Abscissae closer than this fraction of the chain's length are one position.
+pub(super) const SAME_X: f64 = 1e-9;
+
 impl Mesh {
     /// Meshes `chain`.
     pub fn of(chain: &Chain) -> Mesh {
