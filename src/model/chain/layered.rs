@@ -459,16 +459,29 @@ fn axial_groups(beams: usize, joints: &[usize], outer: &[Outer]) -> usize {
     count
 }
 
-/// Adds `block` on the DOF combinations `dofs`: sum_ij block_ij c_i c_j.
+/// Adds the symmetric `block` on the DOF combinations `dofs`: sum_ij block_ij c_i c_j. Each
+/// term and its mirror are listed together with the same value (c_i c_j first, which is
+/// exact to commute), so that the assembled matrix is symmetric entry by entry, bit for bit.
 fn add_combined<const N: usize>(out: &mut SparseSym, dofs: &[Combo; N], block: &[[f64; N]; N]) {
     for i in 0..N {
-        for j in 0..N {
-            if block[i][j] == 0.0 {
+        for j in i..N {
+            let v = block[i][j];
+            if v == 0.0 {
                 continue;
             }
-            for &(gi, ci) in &dofs[i] {
-                for &(gj, cj) in &dofs[j] {
-                    out.push(gi, gj, block[i][j] * ci * cj);
+            for (a, &(gi, ci)) in dofs[i].iter().enumerate() {
+                for (b, &(gj, cj)) in dofs[j].iter().enumerate() {
+                    if i == j && b < a {
+                        continue;
+                    }
+                    let w = v * (ci * cj);
+                    // The term (j, b; i, a) of the full sum, unless it is this one.
+                    let mirrored = i != j || a != b;
+                    if gi == gj {
+                        out.push(gi, gi, if mirrored { 2.0 * w } else { w });
+                    } else {
+                        out.add(gi, gj, w);
+                    }
                 }
             }
         }

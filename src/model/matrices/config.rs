@@ -30,7 +30,7 @@ use crate::input::{FieldCheck, InputError};
 use crate::structure::Role;
 
 /// The units a parameter may declare (those of the builders' parameters).
-pub const UNITS: [&str; 7] = ["N/m", "N m/rad", "N/rad", "kg", "kg m^2", "-", ""];
+pub const UNITS: [&str; 8] = ["N/m", "N m/rad", "N/rad", "N/m^2", "kg", "kg m^2", "-", ""];
 
 /// The raw file.
 #[derive(Debug, Deserialize)]
