@@ -256,7 +256,7 @@ mod tests {
                 format!(
                     "{HEAD}[[parameter]]\nname = \"k\"\nunit = \"psi\"\nvalue = 2.0\ndk = \"d\"\n"
                 ),
-                "models/x/model.toml: parameter[0].unit = \"psi\" is invalid: it must be one of \"N/m\", \"N m/rad\", \"N/rad\", \"kg\", \"kg m^2\", \"-\", \"\"",
+                "models/x/model.toml: parameter[0].unit = \"psi\" is invalid: it must be one of \"N/m\", \"N m/rad\", \"N/rad\", \"N/m^2\", \"kg\", \"kg m^2\", \"-\", \"\"",
             ),
             (
                 HEAD.to_string(),
