@@ -34,6 +34,10 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
                 format!("the coherence over {averages} averages (H1)"),
             NoiseSource::Residuals =>
                 "the residuals of the modal fit (give --averages to use the coherence)".to_string(),
+            NoiseSource::ResidualsCoherenceOne { response } => format!(
+                "the residuals of the modal fit: response {} has coherence 1 on every line of the band, a noise below what the file resolves",
+                response + 1
+            ),
         }
     ));
     for (r, m) in ex.modes.iter().enumerate() {

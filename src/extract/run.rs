@@ -308,7 +308,8 @@ fn final_poles(
 }
 
 /// The noise of every line of the band (see [`uncertainty`]): from the coherence when the
-/// number of averages is given, else from the residuals of the fit `synthesized`.
+/// number of averages is given, else, or when a response's coherence is 1 over the whole band,
+/// from the residuals of the fit `synthesized`.
 fn line_variances(
     frf: &FrfSet,
     settings: &Settings,
@@ -318,25 +319,25 @@ fn line_variances(
     basis: lsfd::Basis,
     poles: usize,
 ) -> (NoiseSource, Vec<Vec<f64>>) {
-    match (settings.averages, &frf.coherence) {
-        (Some(averages), Some(coherence)) => {
-            let in_band: Vec<Vec<f64>> = coherence
-                .iter()
-                .map(|c| band.lines.iter().map(|&k| c[k]).collect())
-                .collect();
-            (
-                NoiseSource::Coherence { averages },
-                uncertainty::from_coherence(responses, &in_band, averages),
-            )
-        }
-        _ => {
-            let unknowns = basis.width(poles) as f64 + 2.0 * poles as f64 / responses.len() as f64;
-            (
-                NoiseSource::Residuals,
-                uncertainty::from_residuals(&band.weights, responses, synthesized, unknowns),
-            )
-        }
+    let residuals = |source| {
+        let unknowns = basis.width(poles) as f64 + 2.0 * poles as f64 / responses.len() as f64;
+        let v = uncertainty::from_residuals(&band.weights, responses, synthesized, unknowns);
+        (source, v)
+    };
+    let (Some(averages), Some(coherence)) = (settings.averages, &frf.coherence) else {
+        return residuals(NoiseSource::Residuals);
+    };
+    let in_band: Vec<Vec<f64>> = coherence
+        .iter()
+        .map(|c| band.lines.iter().map(|&k| c[k]).collect())
+        .collect();
+    if let Some(response) = in_band.iter().position(|g| g.iter().all(|&g| g >= 1.0)) {
+        return residuals(NoiseSource::ResidualsCoherenceOne { response });
     }
+    (
+        NoiseSource::Coherence { averages },
+        uncertainty::from_coherence(responses, &in_band, averages),
+    )
 }
 
 #[cfg(test)]

@@ -64,6 +64,13 @@ pub enum NoiseSource {
     },
     /// The residuals of the LSFD fit, per response.
     Residuals,
+    /// The residuals, though the coherence was asked for: a response's coherence is 1 on every
+    /// line of the band (an export rounded to 1, or noise-free data), which says its noise is
+    /// below what the file resolves, not zero.
+    ResidualsCoherenceOne {
+        /// The first such response (from 0).
+        response: usize,
+    },
 }
 
 /// Standard errors of one mode's parameters.

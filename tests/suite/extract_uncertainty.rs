@@ -288,3 +288,29 @@ fn calibration_table() {
         }
     }
 }
+
+/// A coherence of 1 on every line (an export rounded to 1, or noise-free data) says the noise
+/// is below what the file resolves, not zero: the standard errors come from the residuals then,
+/// finite and positive, and the extraction says so (they were exactly 0, which identify and
+/// diagnose refuse).
+#[test]
+fn a_coherence_of_one_everywhere_gives_standard_errors_from_the_residuals() {
+    let (_, clean) = truth();
+    let mut set = clean.clone();
+    crate::common::frf::add_noise(&mut set, 0.01, 0.0, 7);
+    set.coherence = Some(vec![
+        vec![1.0; set.frequencies_hz.len()];
+        set.responses.len()
+    ]);
+    let ex = extract(&set, &settings(Some(20)), &|_, _| {}).expect("extraction");
+    assert_eq!(
+        ex.noise,
+        jointid::extract::NoiseSource::ResidualsCoherenceOne { response: 0 }
+    );
+    for m in &ex.modes {
+        assert!(m.std.frequency_hz > 0.0 && m.std.frequency_hz.is_finite());
+        assert!(m.std.damping_ratio > 0.0 && m.std.damping_ratio.is_finite());
+        let moving = m.std.shape.iter().filter(|s| **s > 0.0).count();
+        assert_eq!(moving, m.std.shape.len() - 1, "{:?}", m.std.shape);
+    }
+}
