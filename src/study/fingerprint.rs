@@ -2,11 +2,15 @@
 //! of different study files, models or jointid versions never merge.
 //!
 //! The fingerprint is the 64-bit FNV-1a hash (Fowler, Noll, Vo; the parameters of
-//! <http://www.isthe.com/chongo/tech/comp/fnv/>) of the tool version, the study file's bytes,
-//! the model file's bytes and those of the files an external model names (its matrices and
-//! DOF table, [`model_data_files`]), and the measured file a measured noise reads, each
-//! prefixed by its length. It guards against mistakes,
-//! not against forgery. [`crate::cluster`] writes it into every shard file and merges only
+//! <http://www.isthe.com/chongo/tech/comp/fnv/>) of the tool version, the study file's values
+//! and the model file's values ([`canonical`]: comments, layout, the spelling of numbers and
+//! the order of keys do not count, and neither do the study's `[output]`, which only names
+//! where the CSV goes, and `[check]`, which `jointid check` applies to the merged rows), the
+//! bytes of the files an external model names (its matrices and DOF
+//! table, [`model_data_files`]) and of the measured file a measured noise reads, each prefixed
+//! by its length. So a comment, an output path or a check edited between two shards' runs does
+//! not keep them apart, and any value that changes a row does. It guards against mistakes, not
+//! against forgery. [`crate::cluster`] writes it into every shard file and merges only
 //! shards that carry the same one.
 
 use std::path::{Path, PathBuf};
@@ -55,6 +59,57 @@ pub fn model_data_files(text: &str, model_file: &Path) -> Vec<PathBuf> {
     files
 }
 
+/// The values of the TOML file `bytes`, less its top-level tables `leave_out`, written in one
+/// form: keys sorted, numbers in shortest round-trip form, strings quoted, no comments. The
+/// bytes themselves where they are not TOML.
+pub fn canonical(bytes: &[u8], leave_out: &[&str]) -> Vec<u8> {
+    let parsed = std::str::from_utf8(bytes)
+        .ok()
+        .and_then(|text| toml::from_str::<toml::Table>(text).ok());
+    let Some(mut table) = parsed else {
+        return bytes.to_vec();
+    };
+    for key in leave_out {
+        table.remove(*key);
+    }
+    let mut out = String::new();
+    write_value(&mut out, &toml::Value::Table(table));
+    out.into_bytes()
+}
+
+/// Appends `value` in the one form of [`canonical`].
+fn write_value(out: &mut String, value: &toml::Value) {
+    match value {
+        toml::Value::Table(t) => {
+            let mut keys: Vec<&String> = t.keys().collect();
+            keys.sort();
+            out.push('{');
+            for k in keys {
+                out.push_str(&format!("{k:?}="));
+                write_value(out, &t[k.as_str()]);
+                out.push(',');
+            }
+            out.push('}');
+        }
+        toml::Value::Array(a) => {
+            out.push('[');
+            for v in a {
+                write_value(out, v);
+                out.push(',');
+            }
+            out.push(']');
+        }
+        toml::Value::String(s) => out.push_str(&format!("{s:?}")),
+        toml::Value::Integer(i) => out.push_str(&format!("i{i}")),
+        toml::Value::Float(x) => out.push_str(&format!("f{x:?}")),
+        toml::Value::Boolean(b) => out.push_str(&format!("{b}")),
+        toml::Value::Datetime(d) => out.push_str(&format!("d{d}")),
+    }
+}
+
+/// The study file's tables that change no row: where the CSV goes, and the gate on it.
+pub const ROWLESS: [&str; 2] = ["output", "check"];
+
 /// This tool's version as the fingerprint records it: `jointid X.Y.Z`.
 pub fn tool_version() -> String {
     format!("jointid {}", env!("CARGO_PKG_VERSION"))
@@ -70,9 +125,9 @@ pub struct FingerprintError {
     pub cause: std::io::Error,
 }
 
-/// The fingerprint of `study` as this tool runs it: [`tool_version`], the study file, its
-/// model file, the files the model names and the measured file of a measured noise, read
-/// from disk now.
+/// The fingerprint of `study` as this tool runs it: [`tool_version`], the study file's and its
+/// model file's values, the files the model names and the measured file of a measured noise,
+/// read from disk now.
 pub fn study_fingerprint(study: &Study) -> Result<String, FingerprintError> {
     let read = |path: &Path| {
         std::fs::read(path).map_err(|cause| FingerprintError {
@@ -81,11 +136,11 @@ pub fn study_fingerprint(study: &Study) -> Result<String, FingerprintError> {
         })
     };
     let model = read(&study.model_file)?;
-    let mut files = vec![read(&study.file)?];
+    let mut files = vec![canonical(&read(&study.file)?, &ROWLESS)];
     for path in model_data_files(&String::from_utf8_lossy(&model), &study.model_file) {
         files.push(read(&path)?);
     }
-    files.insert(1, model);
+    files.insert(1, canonical(&model, &[]));
     if let Some(noise) = &study.measured_noise {
         files.push(read(&noise.file)?);
     }
@@ -120,10 +175,11 @@ mod tests {
     }
 
     #[test]
-    fn a_study_s_fingerprint_is_that_of_its_files_and_a_missing_one_is_named() {
+    fn a_study_s_fingerprint_is_that_of_its_files_values_and_a_missing_one_is_named() {
         let mut study = Study::from_path(Path::new("studies/ci-bias.toml")).unwrap();
         let bytes = |p: &Path| std::fs::read(p).unwrap();
-        let (file, model) = (bytes(&study.file), bytes(&study.model_file));
+        let file = canonical(&bytes(&study.file), &ROWLESS);
+        let model = canonical(&bytes(&study.model_file), &[]);
         assert_eq!(
             study_fingerprint(&study).unwrap(),
             fingerprint(&tool_version(), &[&file, &model])
@@ -135,5 +191,30 @@ mod tests {
                 .starts_with("studies/no-such-study.toml: cannot read: "),
             "{e}"
         );
+    }
+
+    #[test]
+    fn comments_layout_number_spelling_and_the_output_table_do_not_count() {
+        let base = "# a study\nname = \"s\"\ntrials = 300\nk = 1.0e7\n[output]\ncsv = \"a.csv\"\n";
+        let same = [
+            "name = \"s\"   # edited\nk = 10000000.0\ntrials = 300\n\n[output]\ncsv = \"b/c.csv\"\n",
+            "trials = 300\nname = \"s\"\nk = 1e7\n",
+        ];
+        let c = canonical(base.as_bytes(), &["output"]);
+        for text in same {
+            assert_eq!(c, canonical(text.as_bytes(), &["output"]), "{text}");
+        }
+        for text in [
+            "name = \"s\"\ntrials = 301\nk = 1.0e7\n",
+            "name = \"s\"\ntrials = 300\nk = 1.0000001e7\n",
+            "name = \"s\"\ntrials = 300\nk = 1.0e7\nseed = 1\n",
+            "name = \"t\"\ntrials = 300\nk = 1.0e7\n",
+        ] {
+            assert_ne!(c, canonical(text.as_bytes(), &["output"]), "{text}");
+        }
+        // An integer and a float of one value are two values to TOML.
+        assert_ne!(canonical(b"a = 1", &[]), canonical(b"a = 1.0", &[]));
+        // Not TOML: the bytes.
+        assert_eq!(canonical(b"\xff[", &[]), b"\xff[".to_vec());
     }
 }

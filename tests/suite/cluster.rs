@@ -130,7 +130,7 @@ fn merge_refuses_no_shard() {
 }
 
 /// A copy of ci-bias with few trials in `dir`, its model by absolute path; `extra` is
-/// appended (a comment changes the fingerprint and nothing else).
+/// appended (in its last table, `[check]`).
 fn small_study(dir: &Path, name: &str, extra: &str) -> PathBuf {
     let model = std::path::absolute("models/paper-case-1.toml").unwrap();
     let text = std::fs::read_to_string("studies/ci-bias.toml")
@@ -214,7 +214,10 @@ fn shards_run_by_separate_processes_merge_and_check_like_the_single_run() {
 fn broken_shard_sets_exit_2_naming_the_problem_and_write_nothing() {
     let dir = scratch("cluster", "errors");
     let study = small_study(&dir, "s.toml", "");
-    let other = small_study(&dir, "t.toml", "# another file\n");
+    // Another study: another seed.
+    let other = small_study(&dir, "t.toml", "");
+    let text = std::fs::read_to_string(&other).unwrap();
+    std::fs::write(&other, text.replace("seed = 1", "seed = 2")).unwrap();
     let shard = |name: &str, k: usize| dir.join(format!("{name}.{k}.csv"));
     for k in 1..=3 {
         let spec = format!("{k}/3");
@@ -394,5 +397,49 @@ fn merge_and_slurm_with_a_stdout_that_cannot_take_the_summary_exit_2() {
         "--dir",
         s(&dir.join("jobs")),
     ]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Shards run before and after the study file was edited where no row changes (a comment, the
+/// output path, the check) carry the same fingerprint and merge into the single run's bytes.
+#[test]
+fn an_edit_that_changes_no_row_between_shards_keeps_them_mergeable() {
+    let dir = scratch("cluster", "edited");
+    let study = small_study(&dir, "s.toml", "");
+    let first = dir.join("s.1.csv");
+    run_ok(&[
+        "study",
+        s(&study),
+        "--shard",
+        "1/2",
+        "--quiet",
+        "--out",
+        s(&first),
+    ]);
+    let text = std::fs::read_to_string(&study).unwrap();
+    let edited = format!("# edited between the shards\n{text}")
+        .replace("\"single.csv\"", "\"elsewhere.csv\"")
+        .replace(
+            "max_abs_relative_bias = 0.05",
+            "max_abs_relative_bias = 0.04",
+        );
+    std::fs::write(&study, edited).unwrap();
+    let second = dir.join("s.2.csv");
+    run_ok(&[
+        "study",
+        s(&study),
+        "--shard",
+        "2/2",
+        "--quiet",
+        "--out",
+        s(&second),
+    ]);
+    let merged = dir.join("merged.csv");
+    run_ok(&["merge", s(&first), s(&second), "--out", s(&merged)]);
+    run_ok(&["study", s(&study), "--quiet"]);
+    assert_eq!(
+        std::fs::read(&merged).unwrap(),
+        std::fs::read(dir.join("elsewhere.csv")).unwrap()
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
