@@ -238,8 +238,8 @@ impl Levels {
         })
     }
 
-    /// Every file the levels file names (model, modes, FRFs): the inputs an output must not
-    /// overwrite.
+    /// Every file the levels file names (model, modes, FRFs): with the files the model names
+    /// (`output::guard::model_inputs`), the inputs an output must not overwrite.
     pub fn inputs(&self) -> Vec<PathBuf> {
         let mut files = vec![self.file.clone(), self.model.clone()];
         for l in &self.levels {
