@@ -145,7 +145,23 @@ fn a_whole_file_past_its_limit_is_refused_without_reading_it() {
         "--out",
         o_csv,
     ];
-    let cases: [(&[&str], String); 8] = [
+    // The output guard reads the model for the files it names, before the model's reader.
+    let identify_zero = [
+        "identify",
+        "--model",
+        "/dev/zero",
+        "--measured",
+        "m.csv",
+        "--n",
+        "10",
+        "--m",
+        "5",
+        "--weighting",
+        "inverse",
+        "--out",
+        o_csv,
+    ];
+    let cases: [(&[&str], String); 9] = [
         (&["amplitude", toml, "--out", out], toml_says.clone()),
         (&identify, toml_says.clone()),
         (&["study", toml, "--quiet", "--out", o_csv], toml_says.clone()),
@@ -164,6 +180,10 @@ fn a_whole_file_past_its_limit_is_refused_without_reading_it() {
         ),
         (
             &["amplitude", "/dev/zero", "--out", out],
+            "/dev/zero: cannot read the file: line 1 is longer than 1048576 bytes, the most a line of a TOML input file may have".into(),
+        ),
+        (
+            &identify_zero,
             "/dev/zero: cannot read the file: line 1 is longer than 1048576 bytes, the most a line of a TOML input file may have".into(),
         ),
         (
