@@ -109,11 +109,19 @@ fn path_prefix(path: &str) -> String {
     }
 }
 
-/// Reads a whole file, mapping the I/O error to [`InputError::Read`].
+/// Reads a whole TOML input file within [`bounded::TOML`]'s limits (16 MiB, lines of 1 MiB),
+/// mapping the I/O error, a limit passed or text that is not UTF-8 to [`InputError::Read`].
 pub fn read_file(path: &Path) -> Result<String, InputError> {
-    std::fs::read_to_string(path).map_err(|cause| InputError::Read {
+    let read_error = |cause| InputError::Read {
         file: path.to_path_buf(),
         cause,
+    };
+    let bytes = bounded::read_path(path, bounded::TOML).map_err(read_error)?;
+    String::from_utf8(bytes).map_err(|_| {
+        read_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "stream did not contain valid UTF-8",
+        ))
     })
 }
 

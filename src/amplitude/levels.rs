@@ -29,6 +29,11 @@ use serde::Deserialize;
 
 use crate::input::{FieldCheck, InputError, Number, parse_toml, read_file};
 
+/// The most levels a levels file may hold. A test measures a handful to a few dozen levels
+/// (UNESP-BERT: six); 200 fit in under a second, while the fit's time grows faster than the
+/// count (5000 levels took minutes).
+pub const MAX_LEVELS: usize = 200;
+
 /// The levels file as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -130,6 +135,13 @@ impl Levels {
                  excitation",
             ));
         }
+        if raw.level.len() > MAX_LEVELS {
+            return Err(check.invalid(
+                "level",
+                format!("{} levels", raw.level.len()),
+                format!("an amplitude fit takes at most {MAX_LEVELS} [[level]] tables"),
+            ));
+        }
         let random_band_hz = match raw.random_band_hz {
             Some(b) => Some(check.positive("random_band_hz", b, "Hz")?),
             None => None,
@@ -226,8 +238,8 @@ impl Levels {
         })
     }
 
-    /// Every file the levels file names (model, modes, FRFs): the inputs an output must not
-    /// overwrite.
+    /// Every file the levels file names (model, modes, FRFs): with the files the model names
+    /// (`output::guard::model_inputs`), the inputs an output must not overwrite.
     pub fn inputs(&self) -> Vec<PathBuf> {
         let mut files = vec![self.file.clone(), self.model.clone()];
         for l in &self.levels {
@@ -246,6 +258,28 @@ mod tests {
 
     fn read(text: &str) -> Result<Levels, String> {
         Levels::from_str(text, Path::new("dir/levels.toml")).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn more_levels_than_the_bound_are_refused_naming_the_count() {
+        let level = |i: usize| {
+            format!(
+                "[[level]]\nexcitation = {}\nmodes = \"a.csv\"\nacceleration = [1.0]\n",
+                i + 1
+            )
+        };
+        let file = |n: usize| {
+            format!(
+                "model = \"m.toml\"\n{}",
+                (0..n).map(level).collect::<String>()
+            )
+        };
+        assert_eq!(read(&file(MAX_LEVELS)).unwrap().levels.len(), MAX_LEVELS);
+        assert_eq!(
+            read(&file(MAX_LEVELS + 1)).unwrap_err(),
+            "dir/levels.toml: level = 201 levels is invalid: an amplitude fit takes at most 200 \
+             [[level]] tables"
+        );
     }
 
     #[test]

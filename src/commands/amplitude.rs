@@ -9,6 +9,7 @@ use anyhow::Context;
 use crate::cli::AmplitudeArgs;
 use jointid::amplitude::{Levels, fit_levels};
 use jointid::output::amplitude as out;
+use jointid::output::guard::model_inputs;
 use jointid::output::{Staged, check_outputs, commit_all, stage};
 
 /// The CSV tables and their writers.
@@ -56,7 +57,8 @@ pub fn run(args: &AmplitudeArgs) -> anyhow::Result<()> {
         .chain(figures.iter().map(|(p, _)| p))
         .map(|p| p.as_path())
         .collect();
-    let inputs = levels.inputs();
+    let mut inputs = model_inputs(&levels.model);
+    inputs.extend(levels.inputs());
     let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
     jointid::output::atomic::create_folders(&args.out)

@@ -4,9 +4,15 @@
 //! of a billion empty lines, is refused with an error naming the line instead of exhausting
 //! memory.
 //!
+//! A file read whole into memory goes through [`read_path`], with the limits of its kind
+//! ([`TOML`], [`UFF`], [`WHOLE`]): a regular file larger than its limit is refused before a
+//! byte is read, and a pipe or a device (`/dev/zero`) is read only until it passes a limit.
+//! docs/security.md lists every limit and the test that holds it.
+//!
 //! Part of [`crate::input`] (layer 1): imports nothing outside it.
 
 use std::io::{self, Read};
+use std::path::Path;
 
 /// The limits of one reader.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -17,6 +23,8 @@ pub struct Limits {
     pub lines: u64,
     /// The most bytes in all.
     pub bytes: u64,
+    /// The kind of file, as a refusal names it (`a TOML input file`).
+    pub what: &'static str,
 }
 
 /// The limits of a text table: lines of at most 1 MiB (a row of tens of thousands of
@@ -26,6 +34,7 @@ pub const TABLE: Limits = Limits {
     line_bytes: 1 << 20,
     lines: 50_000_000,
     bytes: 4 << 30,
+    what: "a text table",
 };
 
 /// The limits of a file read whole into memory (measured modes): lines of at most 1 MiB, at
@@ -34,6 +43,29 @@ pub const WHOLE: Limits = Limits {
     line_bytes: 1 << 20,
     lines: 1_000_000,
     bytes: 256 << 20,
+    what: "a measured-modes file",
+};
+
+/// The limits of a TOML input file (model, lap, study, levels, solid specimen), read whole:
+/// lines of at most 1 MiB, at most a million lines and 16 MiB. The largest written by hand or
+/// by `export` and `solid` hold a few hundred tables (tens of KB); the matrices of a large
+/// model are files of their own, read as [`TABLE`]s.
+pub const TOML: Limits = Limits {
+    line_bytes: 1 << 20,
+    lines: 1_000_000,
+    bytes: 16 << 20,
+    what: "a TOML input file",
+};
+
+/// The limits of a universal file (`--frf`, `--geometry`, a level's FRFs), read whole: 1 GiB
+/// (a thousand ASCII FRFs of 32768 lines are about 0.86 GB). Lines are not bounded here: a
+/// binary payload (58b) has none, and the splitter bounds the lines of each dataset
+/// (`uff::split::MAX_DATASET_LINES`).
+pub const UFF: Limits = Limits {
+    line_bytes: 1 << 30,
+    lines: 1 << 30,
+    bytes: 1 << 30,
+    what: "a universal file",
 };
 
 /// `inner` read with `limits`: a read that would pass a limit fails with
@@ -68,15 +100,53 @@ fn refused(message: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidData, message)
 }
 
+/// The error of a file larger than `limits.bytes`.
+fn too_large(limits: &Limits) -> io::Error {
+    let mib = if limits.bytes >= 1 << 20 {
+        format!(" ({} MiB)", limits.bytes >> 20)
+    } else {
+        String::new()
+    };
+    refused(format!(
+        "the file is larger than {} bytes{mib}, the most {} may have",
+        limits.bytes, limits.what
+    ))
+}
+
+/// The whole of `reader` within `limits`.
+pub fn read_all<R: Read>(reader: R, limits: Limits) -> io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    Bounded::new(reader, limits).read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// The file at `path`, opened to be read within `limits`: a regular file whose size passes
+/// `limits.bytes` is refused before a byte is read (a sparse file of terabytes costs nothing);
+/// any other file (a pipe, a device such as `/dev/zero`) is read until it passes a limit.
+pub fn open(path: &Path, limits: Limits) -> io::Result<Bounded<std::fs::File>> {
+    let file = std::fs::File::open(path)?;
+    if file.metadata()?.len() > limits.bytes {
+        return Err(too_large(&limits));
+    }
+    Ok(Bounded::new(file, limits))
+}
+
+/// The whole file at `path` within `limits` ([`open`]): its memory stays within the limit
+/// whatever the file holds.
+pub fn read_path(path: &Path, limits: Limits) -> io::Result<Vec<u8>> {
+    let mut reader = open(path, limits)?;
+    let size = reader.inner.metadata()?.len();
+    let mut bytes = Vec::with_capacity(size as usize);
+    reader.read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
 impl<R: Read> Read for Bounded<R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         let n = self.inner.read(buf)?;
         self.bytes += n as u64;
         if self.bytes > self.limits.bytes {
-            return Err(refused(format!(
-                "the file is larger than {} bytes, the most a file of this kind may have",
-                self.limits.bytes
-            )));
+            return Err(too_large(&self.limits));
         }
         for &b in &buf[..n] {
             if b == b'\n' {
@@ -84,17 +154,18 @@ impl<R: Read> Read for Bounded<R> {
                 self.line_bytes = 0;
                 if self.newlines > self.limits.lines {
                     return Err(refused(format!(
-                        "the file has more than {} lines, the most a file of this kind may have",
-                        self.limits.lines
+                        "the file has more than {} lines, the most {} may have",
+                        self.limits.lines, self.limits.what
                     )));
                 }
             } else {
                 self.line_bytes += 1;
                 if self.line_bytes > self.limits.line_bytes {
                     return Err(refused(format!(
-                        "line {} is longer than {} bytes, the most a line of this file may have",
+                        "line {} is longer than {} bytes, the most a line of {} may have",
                         self.newlines + 1,
-                        self.limits.line_bytes
+                        self.limits.line_bytes,
+                        self.limits.what
                     )));
                 }
             }
@@ -111,6 +182,7 @@ mod tests {
         line_bytes: 8,
         lines: 4,
         bytes: 40,
+        what: "a small file",
     };
 
     fn read(bytes: &[u8]) -> io::Result<Vec<u8>> {
@@ -124,17 +196,18 @@ mod tests {
         assert_eq!(read(b"12345678\nab\n").unwrap(), b"12345678\nab\n");
         assert_eq!(
             read(b"ok\n123456789\n").unwrap_err().to_string(),
-            "line 2 is longer than 8 bytes, the most a line of this file may have"
+            "line 2 is longer than 8 bytes, the most a line of a small file may have"
         );
         assert!(read(b"\n\n\n\n").is_ok());
         assert_eq!(
             read(b"\n\n\n\n\n").unwrap_err().to_string(),
-            "the file has more than 4 lines, the most a file of this kind may have"
+            "the file has more than 4 lines, the most a small file may have"
         );
         let wide = Limits {
             line_bytes: 100,
             lines: 100,
             bytes: 40,
+            what: "a wide file",
         };
         let mut out = Vec::new();
         assert_eq!(
@@ -142,7 +215,31 @@ mod tests {
                 .read_to_end(&mut out)
                 .unwrap_err()
                 .to_string(),
-            "the file is larger than 40 bytes, the most a file of this kind may have"
+            "the file is larger than 40 bytes, the most a wide file may have"
         );
+    }
+
+    #[test]
+    fn a_file_past_its_limit_is_refused_before_it_is_read() {
+        let path = std::env::temp_dir().join(format!("jointid-bounded-{}", std::process::id()));
+        let file = std::fs::File::create(&path).unwrap();
+        file.set_len(TOML.bytes + 1).unwrap();
+        assert_eq!(
+            read_path(&path, TOML).unwrap_err().to_string(),
+            "the file is larger than 16777216 bytes (16 MiB), the most a TOML input file may have"
+        );
+        file.set_len(3).unwrap();
+        assert_eq!(read_path(&path, TOML).unwrap(), [0, 0, 0]);
+        std::fs::remove_file(&path).unwrap();
+        // A device that never ends stops at the first limit it passes.
+        if Path::new("/dev/zero").exists() {
+            assert_eq!(
+                read_path(Path::new("/dev/zero"), TOML)
+                    .unwrap_err()
+                    .to_string(),
+                "line 1 is longer than 1048576 bytes, the most a line of a TOML input file may have"
+            );
+        }
+        assert_eq!(read_all(&b"ab\ncd"[..], TOML).unwrap(), b"ab\ncd".to_vec());
     }
 }

@@ -56,9 +56,9 @@
 //!    one sweep.
 //! 5. Stop. Once the Krylov space has converged, a restart would hand the refinement the
 //!    same vectors: a pair the refinement cannot accept is an error at once
-//!    ([`ModalError::NotConverged`], naming how many pairs converged and each other pair
-//!    with its backward error), as is a Krylov space still short of the tolerance after
-//!    `max_restarts` restarts (each other pair with its shift-invert residual). Before, a
+//!    ([`ModalError::NotConverged`], naming how many pairs converged and the first three
+//!    others with their backward error), as is a Krylov space still short of the tolerance
+//!    after `max_restarts` restarts (with their shift-invert residual). Before, a
 //!    model of 2.3e5 DOFs restarted without end, each restart's refinement accepting 7 of 12
 //!    pairs.
 //!

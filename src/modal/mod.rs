@@ -119,12 +119,17 @@ pub enum ModalError {
         /// Number of shifts tried.
         attempts: usize,
     },
-    /// The iterative eigensolver stopped before every wanted pair met the tolerance.
+    /// The iterative eigensolver stopped before every wanted pair met the tolerance. At the
+    /// default [`lanczos::LanczosSettings`], the only ones the commands use, the Krylov space
+    /// converges on any well-scaled model: what is left is a model whose stiffness-to-mass
+    /// ratios span too many orders of magnitude for double precision, so the message tells
+    /// the user to check the model's values and units (a caller of [`lanczos::lowest_modes`]
+    /// with settings of its own may raise `max_restarts` or `basis_size` instead).
     #[error(
         "the Lanczos eigensolver converged {converged} of {requested} pairs in {restarts} \
-         restarts; the others exceed the tolerance {tolerance:e} on their {stage} (pair: value) \
-         {}: raise max_restarts or basis_size, or loosen the tolerance",
-        unconverged.iter().map(|(j, r)| format!("{j}: {r:.1e}")).collect::<Vec<_>>().join(", ")
+         restarts ({stage} above {tolerance:e}: {}): the model is likely ill scaled; check its \
+         values and units",
+        listed(unconverged)
     )]
     NotConverged {
         /// Pairs that met the tolerance.
@@ -200,6 +205,19 @@ pub enum ModalError {
         /// DOFs N.
         dofs: usize,
     },
+}
+
+/// The first three unconverged pairs as `pair 1 2.9e-7, ...`, the count of the others after.
+fn listed(unconverged: &[(usize, f64)]) -> String {
+    let mut text: Vec<String> = unconverged
+        .iter()
+        .take(3)
+        .map(|(j, r)| format!("pair {j} {r:.1e}"))
+        .collect();
+    if unconverged.len() > 3 {
+        text.push(format!("{} more", unconverged.len() - 3));
+    }
+    text.join(", ")
 }
 
 /// All eigenpairs of (K, M), under the contract in the module docs.

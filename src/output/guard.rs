@@ -66,8 +66,11 @@ pub fn resolved(path: &Path) -> PathBuf {
 /// The inputs a model file brings to a run: the file itself and, for an external model, every
 /// file it names (K, M, the DOF table, each dK/dp and dM/dp). Outputs are checked against
 /// them all.
+///
+/// The model file is read within the limits of a TOML input file; one that cannot be read
+/// names no other file here, and its reader refuses it afterwards.
 pub fn model_inputs(model_file: &Path) -> Vec<PathBuf> {
-    let text = std::fs::read_to_string(model_file).unwrap_or_default();
+    let text = crate::input::read_file(model_file).unwrap_or_default();
     let mut files = vec![model_file.to_path_buf()];
     files.extend(crate::study::fingerprint::model_data_files(
         &text, model_file,

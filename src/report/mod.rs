@@ -11,6 +11,8 @@ use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+use crate::input::bounded::{self, Bounded, TABLE};
+use crate::input::safe::clip_quotes;
 use crate::study::results::Column;
 
 /// Columns a report needs from a study CSV (of [`crate::study::results`]): those that say
@@ -169,30 +171,39 @@ fn required_columns(
 impl StudyResults {
     /// Reads a study CSV.
     pub fn from_path(path: &Path) -> Result<Self, ReportError> {
-        let file = std::fs::File::open(path).map_err(|cause| ReportError::Read {
+        let file = bounded::open(path, TABLE).map_err(|cause| ReportError::Read {
             file: path.into(),
             cause,
         })?;
         Self::from_reader(file, path)
     }
 
-    /// Reads a study CSV from any reader; `file` names it in errors.
+    /// Reads a study CSV from any reader, within [`TABLE`]'s limits (lines of 1 MiB, 4 GiB);
+    /// `file` names it in errors.
     pub fn from_reader<R: Read>(reader: R, file: &Path) -> Result<Self, ReportError> {
-        let mut csv = csv::Reader::from_reader(reader);
+        let mut csv = csv::Reader::from_reader(Bounded::new(reader, TABLE));
         let line_error = |line: u64, message: String| ReportError::Line {
             file: file.into(),
             line,
-            message,
+            message: clip_quotes(message),
         };
-        let header = csv
-            .headers()
-            .map_err(|e| line_error(1, e.to_string()))?
-            .clone();
+        // A limit passed or a failed read is the file's, not a line's.
+        let csv_error = |e: csv::Error, line: u64| {
+            let line = e.position().map_or(line, |p| p.line());
+            let message = e.to_string();
+            match e.into_kind() {
+                csv::ErrorKind::Io(cause) => ReportError::Read {
+                    file: file.into(),
+                    cause,
+                },
+                _ => line_error(line, message),
+            }
+        };
+        let header = csv.headers().map_err(|e| csv_error(e, 1))?.clone();
         let at = required_columns(&header, file)?;
         let (mut rows, mut cells, mut noise) = (Vec::new(), BTreeMap::new(), String::new());
         for record in csv.records() {
-            let record = record
-                .map_err(|e| line_error(e.position().map_or(0, |p| p.line()), e.to_string()))?;
+            let record = record.map_err(|e| csv_error(e, 0))?;
             let line = record.position().map_or(0, |p| p.line());
             let field = |column: Column| record.get(at[&column]).unwrap_or("");
             let number = |column: Column| -> Result<f64, ReportError> {

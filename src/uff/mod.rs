@@ -171,9 +171,11 @@ pub fn read(bytes: &[u8], file: &Path) -> Result<Vec<Record>, UffError> {
     Ok(records)
 }
 
-/// Reads every dataset of the universal file at `path`.
+/// Reads every dataset of the universal file at `path`, within
+/// [`crate::input::bounded::UFF`]'s limit (1 GiB): a larger file is refused before it is read.
 pub fn read_path(path: &Path) -> Result<Vec<Record>, UffError> {
-    let bytes = std::fs::read(path).map_err(|cause| UffError::Read {
+    use crate::input::bounded;
+    let bytes = bounded::read_path(path, bounded::UFF).map_err(|cause| UffError::Read {
         file: path.to_path_buf(),
         cause,
     })?;

@@ -149,6 +149,31 @@ fn bad_levels_are_refused_with_file_field_value_and_what_is_allowed_and_nothing_
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A levels file of more levels than an amplitude fit takes (200) is refused at once, naming
+/// the file and the count: 5000 levels took minutes to fit.
+#[test]
+fn more_levels_than_the_bound_are_refused_naming_the_file_and_count() {
+    let dir = scratch("amplitude", "many");
+    let out = dir.join("out");
+    let levels: Vec<String> = (1..=5000)
+        .map(|i| format!("excitation = {i}\nacceleration = [1.0, 2.0]"))
+        .collect();
+    let refs: Vec<&str> = levels.iter().map(|s| s.as_str()).collect();
+    let file = levels_file(&dir, &refs);
+    let start = std::time::Instant::now();
+    let err = refused(
+        &["amplitude", s(&file), "--out", s(&out)],
+        &[&format!(
+            "{}: level = 5000 levels is invalid: an amplitude fit takes at most 200 [[level]] tables",
+            s(&file)
+        )],
+    );
+    assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
+    assert!(err.len() < 200 + s(&file).len(), "{err}");
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The six levels of UNESP-BERT as scripts/unesp-bert.sh writes them (results/unesp-bert/
 /// levels.toml): both modes soften and damp more with amplitude, far beyond their stated
 /// errors; the Iwan law is chosen with chi inside Segalman's range.

@@ -1,5 +1,6 @@
-//! Readers within limits: a huge line is refused naming its line, an error quotes at most
-//! about 80 characters of a value, and `--shard K/N` cannot ask for more shards than cells.
+//! Readers within limits: a huge line is refused naming its line, a file read whole is refused
+//! past its size before it is read, an error quotes at most about 80 characters of a value,
+//! and `--shard K/N` cannot ask for more shards than cells.
 
 use std::path::Path;
 
@@ -106,5 +107,105 @@ fn a_huge_line_is_refused_naming_it_and_a_long_value_is_quoted_short() {
     std::fs::write(dir.join("dofs.csv"), format!("{dofs}{long}\n")).unwrap();
     refused_briefly(&args, "is longer than 1048576 bytes");
     assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every file read whole (TOML model, study, levels and specimen files, universal files, a
+/// study's CSV for `report`), fed a sparse file past its limit or a device that never ends:
+/// exit 2 at once, naming the file and the limit, and nothing written.
+#[test]
+fn a_whole_file_past_its_limit_is_refused_without_reading_it() {
+    let dir = scratch("bounded", "whole");
+    let sparse = |name: &str, size: u64| {
+        let path = dir.join(name);
+        std::fs::File::create(&path).unwrap().set_len(size).unwrap();
+        path
+    };
+    let toml = sparse("big.toml", (16 << 20) + 1);
+    let uff = sparse("big.uff", (1 << 30) + 1);
+    let csv = sparse("big.csv", (4 << 30) + 1);
+    let out = dir.join("out");
+    let o_csv = dir.join("out.csv");
+    let (toml, uff, csv, out, o_csv) = (s(&toml), s(&uff), s(&csv), s(&out), s(&o_csv));
+    let toml_says = format!(
+        "{toml}: cannot read the file: the file is larger than 16777216 bytes (16 MiB), the most a TOML input file may have"
+    );
+    let identify = [
+        "identify",
+        "--model",
+        toml,
+        "--measured",
+        "m.csv",
+        "--n",
+        "10",
+        "--m",
+        "5",
+        "--weighting",
+        "inverse",
+        "--out",
+        o_csv,
+    ];
+    // The output guard reads the model for the files it names, before the model's reader.
+    let identify_zero = [
+        "identify",
+        "--model",
+        "/dev/zero",
+        "--measured",
+        "m.csv",
+        "--n",
+        "10",
+        "--m",
+        "5",
+        "--weighting",
+        "inverse",
+        "--out",
+        o_csv,
+    ];
+    let cases: [(&[&str], String); 9] = [
+        (&["amplitude", toml, "--out", out], toml_says.clone()),
+        (&identify, toml_says.clone()),
+        (&["study", toml, "--quiet", "--out", o_csv], toml_says.clone()),
+        (&["solid", toml, "--out", out], toml_says.clone()),
+        (
+            &["extract", "--frf", uff, "--geometry", uff, "--out", o_csv],
+            format!(
+                "{uff}: cannot read the file: the file is larger than 1073741824 bytes (1024 MiB), the most a universal file may have"
+            ),
+        ),
+        (
+            &["report", csv, "--out", out],
+            format!(
+                "{csv}: cannot read: the file is larger than 4294967296 bytes (4096 MiB), the most a text table may have"
+            ),
+        ),
+        (
+            &["amplitude", "/dev/zero", "--out", out],
+            "/dev/zero: cannot read the file: line 1 is longer than 1048576 bytes, the most a line of a TOML input file may have".into(),
+        ),
+        (
+            &identify_zero,
+            "/dev/zero: cannot read the file: line 1 is longer than 1048576 bytes, the most a line of a TOML input file may have".into(),
+        ),
+        (
+            &["report", "/dev/zero", "--out", out],
+            "/dev/zero: cannot read: line 1 is longer than 1048576 bytes, the most a line of a text table may have".into(),
+        ),
+    ];
+    for (args, says) in cases {
+        if args.contains(&"/dev/zero") && !Path::new("/dev/zero").exists() {
+            continue;
+        }
+        let start = std::time::Instant::now();
+        refused_briefly(args, &says);
+        assert!(
+            start.elapsed().as_secs_f64() < 5.0,
+            "{args:?}: {:?}",
+            start.elapsed()
+        );
+        assert!(
+            !Path::new(out).exists() && !Path::new(o_csv).exists(),
+            "{args:?}"
+        );
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

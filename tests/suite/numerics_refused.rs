@@ -129,3 +129,27 @@ fn a_joint_spring_of_4e158_is_refused_not_a_panic() {
     refused(&dir, &model, "check the values and their units");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A model of 244 DOFs (the sparse solver's) with a point mass of 1e30 kg: its stiffness-to-
+/// mass ratios span too much for double precision and the Lanczos refinement cannot accept
+/// the lowest pair. The error said to raise solver settings that no command exposes; it says
+/// to check the model's values and units, which the user can change.
+#[test]
+fn an_eigensolver_that_cannot_converge_points_at_the_model_s_scaling() {
+    let dir = scratch("numerics", "lanczos-scaling");
+    let beam = "[[beam]]\nlength = 0.6\nelements = 60\nyoungs_modulus = 7e10\ndensity = 2700\narea = 0.00015\nsecond_moment = 4.5e-10\n";
+    let model =
+        format!("{beam}{beam}[[joint]]\nk1 = 1.4e7\nk2 = 1e4\n[[mass]]\nx = 0.3\nmass = 1e30\n");
+    refused(
+        &dir,
+        &model,
+        "the model is likely ill scaled; check its values and units",
+    );
+    let err = String::from_utf8_lossy(&simulate(&dir, &model).stderr).into_owned();
+    assert!(
+        !err.contains("max_restarts") && !err.contains("basis_size"),
+        "{err}"
+    );
+    assert!(err.len() < 250, "{} bytes: {err}", err.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -130,6 +130,60 @@ fn the_files_an_external_model_names_are_inputs() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `amplitude --out` into the folder of an external model whose matrices bear the names of
+/// its outputs: refused, every matrix as it was.
+#[test]
+fn amplitude_never_overwrites_a_file_its_external_model_names() {
+    let dir = scratch("guarded", "amplitude");
+    let fixture = Path::new("tests/fixtures/matrices/two-dof");
+    let renamed = [
+        ("K0.mtx", "amplitude_levels.csv"),
+        ("M.mtx", "amplitude_laws.csv"),
+        ("dK.mtx", "amplitude_parameters.csv"),
+        ("dofs.csv", "amplitude_bands.csv"),
+    ];
+    let mut model = std::fs::read_to_string(fixture.join("free.toml")).unwrap();
+    for (from, to) in renamed {
+        std::fs::copy(fixture.join(from), dir.join(to)).unwrap();
+        model = model.replace(&format!("\"{from}\""), &format!("\"{to}\""));
+    }
+    std::fs::write(dir.join("free.toml"), model).unwrap();
+    let mut levels = String::from("model = \"free.toml\"\n");
+    for (i, f) in [11.25, 11.2].iter().enumerate() {
+        let modes = dir.join(format!("modes{i}.csv"));
+        std::fs::write(
+            &modes,
+            format!(
+                "mode,frequency_hz,label,value,damping_ratio\n1,{f},m1,1,0.01\n1,{f},m2,-1,0.01\n"
+            ),
+        )
+        .unwrap();
+        levels += &format!(
+            "[[level]]\nexcitation = {}\nmodes = \"modes{i}.csv\"\nacceleration = [{}]\n",
+            i + 1,
+            i + 1
+        );
+    }
+    let levels_file = dir.join("levels.toml");
+    std::fs::write(&levels_file, levels).unwrap();
+    let before: Vec<Vec<u8>> = renamed
+        .iter()
+        .map(|(_, n)| std::fs::read(dir.join(n)).unwrap())
+        .collect();
+    let err = refused(
+        &["amplitude", s(&levels_file), "--out", s(&dir)],
+        &["amplitude_levels.csv: refused as output: it is the input"],
+    );
+    assert!(err.len() < 300, "{err}");
+    let after: Vec<Vec<u8>> = renamed
+        .iter()
+        .map(|(_, n)| std::fs::read(dir.join(n)).unwrap())
+        .collect();
+    assert_eq!(after, before);
+    assert!(!dir.join("amplitude_mode1.svg").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn export_never_removes_a_folder_it_did_not_create() {
     let dir = scratch("guarded", "export");

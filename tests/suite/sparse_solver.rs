@@ -181,7 +181,11 @@ fn a_solver_that_cannot_converge_stops_and_names_the_pairs() {
         "{text}"
     );
     let (pair, r) = unconverged[0];
-    assert!(text.contains(&format!("{pair}: {r:.1e}")), "{text}");
+    assert!(text.contains(&format!("pair {pair} {r:.1e}")), "{text}");
+    assert!(
+        text.ends_with("the model is likely ill scaled; check its values and units"),
+        "{text}"
+    );
 }
 
 /// The refinement's last step on vectors whose error lies along the stiffest modes, as the
