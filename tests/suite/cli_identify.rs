@@ -533,3 +533,73 @@ fn a_huge_frequency_noise_is_echoed_compactly() {
         &["--frequency-noise 1e308 is invalid"],
     );
 }
+
+/// `text` (a measured-modes CSV) with every shape value times `scale`: the same shapes in
+/// another unit.
+fn scaled_values(text: &str, scale: f64) -> String {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let value = header.split(',').position(|h| h == "value").unwrap();
+    let mut out = format!("{header}\n");
+    for line in lines {
+        let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
+        if let Ok(v) = fields[value].parse::<f64>() {
+            fields[value] = format!("{:e}", v * scale);
+        }
+        out += &fields.join(",");
+        out.push('\n');
+    }
+    out
+}
+
+/// The shapes' unit does not change what identify reports: the same noise-free modes with
+/// every shape value times 1e150 (cond(W S) was inf and the resolution NaN) or 1e-200 (the
+/// resolution was 0 instead of 1) give the corrections, conditions and resolutions of the
+/// unscaled data, to a relative 1e-9.
+#[test]
+fn the_shapes_unit_changes_neither_condition_nor_resolution() {
+    let s = Scratch::new("shape-unit");
+    let model = s.write("m.toml", MODEL);
+    let csv = simulated_csv(&all_dofs(&paper_model(1.0, 1.0)));
+    let run = |name: &str, text: &str| -> Vec<Vec<f64>> {
+        let data = s.write(&format!("{name}.csv"), text);
+        let out = s.path(&format!("{name}-out.csv"));
+        let args = [
+            "--n",
+            "38",
+            "--m",
+            "7",
+            "--weighting",
+            "inverse",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let o = identify(&model, &data, &args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let cols = ["correction", "condition", "resolution"]
+            .map(|c| header.iter().position(|h| *h == c).unwrap());
+        lines
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                cols.iter().map(|&c| f[c].parse().unwrap()).collect()
+            })
+            .collect()
+    };
+    let reference = run("unit", &csv);
+    assert_eq!(reference.len(), 8, "4 modes x 2 parameters");
+    for scale in [1e150, 1e-200] {
+        let rows = run(&format!("{scale:e}"), &scaled_values(&csv, scale));
+        assert_eq!(rows.len(), reference.len());
+        for (row, want) in rows.iter().zip(&reference) {
+            for (v, w) in row.iter().zip(want) {
+                assert!(
+                    w.is_finite() && (v - w).abs() <= 1e-9 * w.abs(),
+                    "x{scale:e}: {row:?} against {want:?}"
+                );
+            }
+        }
+    }
+}
