@@ -109,6 +109,21 @@ fn path_prefix(path: &str) -> String {
     }
 }
 
+/// The range of a relative standard error, wherever data state one: of a frequency
+/// (`frequency_std` over `frequency_hz`), of a shape value (`value_std` over the shape's
+/// largest magnitude), of the stated noise (`--frequency-noise`, `--shape-noise`). Below 1e-12 a residual at the
+/// precision of a double (about 1e-16 of the value) is already thousands of standard errors
+/// and the weights 1 / sigma^2 of a chi^2 head for overflow; no measurement comes near it.
+/// Above 1 the error exceeds the value it qualifies and the first-order propagation means
+/// nothing.
+pub const RELATIVE_STD: (f64, f64) = (1e-12, 1.0);
+
+/// Whether `std` is a relative standard error within [`RELATIVE_STD`] of `scale` (> 0).
+pub fn relative_std_in_range(std: f64, scale: f64) -> bool {
+    let r = std / scale;
+    r.is_finite() && (RELATIVE_STD.0..=RELATIVE_STD.1).contains(&r)
+}
+
 /// Reads a whole TOML input file within [`bounded::TOML`]'s limits (16 MiB, lines of 1 MiB),
 /// mapping the I/O error, a limit passed or text that is not UTF-8 to [`InputError::Read`].
 pub fn read_file(path: &Path) -> Result<String, InputError> {

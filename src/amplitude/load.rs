@@ -12,6 +12,11 @@
 //! refined by a parabola through that line and its neighbours; a velocity or displacement FRF
 //! is turned into acceleration by omega or omega^2.
 //!
+//! Every amplitude is checked to be finite and at least the smallest normal double: a dead
+//! channel (an FRF whose peak is 0) is refused naming the FRF file, an amplitude that
+//! overflows or underflows naming the field of the levels file it comes from (the level's
+//! excitation, or its given acceleration).
+//!
 //! Imports: [`super::levels`], [`super::fit`], [`crate::input`], [`crate::structure`],
 //! [`crate::model`], [`crate::measured`],
 //! [`crate::uff`].
@@ -22,7 +27,7 @@ use std::path::Path;
 use super::AmplitudeError;
 use super::fit::Series;
 use super::levels::{Level, Levels, Source};
-use crate::input::InputError;
+use crate::input::{InputError, Number};
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::structure::{Observation, Structure};
 use crate::uff::{Function, FunctionType, Record};
@@ -152,6 +157,16 @@ fn peak(frf: &Function, power: i32, mode: &MeasuredMode) -> Option<f64> {
     Some(top)
 }
 
+/// The range an amplitude must lie in, as messages say it.
+const RANGE: &str = "outside a double's range (2.2e-308 to 1.8e308)";
+
+/// Whether an amplitude is finite and at least the smallest normal double: zero (a dead
+/// channel), an underflow or an overflow would make the fit's logarithms, ratios and
+/// chi^2 infinite or NaN.
+fn in_range(v: f64) -> bool {
+    v.is_finite() && v >= f64::MIN_POSITIVE
+}
+
 /// A level's amplitudes: given, or from its FRFs.
 enum Amplitudes<'a> {
     /// Acceleration amplitudes per mode.
@@ -184,6 +199,18 @@ fn acceleration(
             ),
         )
     })?;
+    if !in_range(top) {
+        return Err(data_error(
+            path,
+            format!(
+                "the FRF of node {node} peaks at {} near mode {} ({} Hz): a dead channel gives \
+                 no amplitude; check it or the `reference`",
+                Number(top),
+                m.mode,
+                Number(m.frequency_hz)
+            ),
+        ));
+    }
     // A random excitation of RMS `excitation` spread flat over B Hz: the mode's RMS response
     // is |H_peak| excitation sqrt(pi zeta f_r / B).
     let share = levels
@@ -233,11 +260,28 @@ fn level_rows(
         };
         let acceleration = acceleration(&source, k, m, damping, level, levels)?;
         let omega = 2.0 * PI * m.frequency_hz;
+        let amplitude = acceleration / (omega * omega);
+        if !(in_range(acceleration) && in_range(amplitude)) {
+            let (field, value) = match &source {
+                Amplitudes::Given(values) => (format!("level[{i}].acceleration[{k}]"), values[k]),
+                Amplitudes::Frf(..) => (format!("level[{i}].excitation"), level.excitation),
+            };
+            return Err(AmplitudeError::Input(InputError::Invalid {
+                file: levels.file.clone(),
+                path: field,
+                value: Number(value).to_string(),
+                allowed: if in_range(acceleration) {
+                    format!("mode {}: a / omega^2 = {amplitude:.3e} m, {RANGE}", m.mode)
+                } else {
+                    format!("mode {}: a = {acceleration:.3e} m/s^2, {RANGE}", m.mode)
+                },
+            }));
+        }
         rows.push(Row {
             excitation: level.excitation,
             mode: m.mode,
             acceleration,
-            amplitude: acceleration / (omega * omega),
+            amplitude,
             frequency_hz: m.frequency_hz,
             frequency_std: m.frequency_std.unwrap_or(0.0),
             damping,

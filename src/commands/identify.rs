@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use jointid::identify::frequency_only::{self, Choice, Fallback, FrequencyError, FrequencyOutcome};
 use jointid::identify::{Identifier, IdentifyError, ModeOutcome, Selection, Settings};
-use jointid::input::Number;
+use jointid::input::{Number, RELATIVE_STD};
 use jointid::measured::{MeasuredMode, MeasuredModes};
 use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::guard::model_inputs;
@@ -23,10 +23,10 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
     if let Some(v) = args.frequency_noise
-        && !(v.is_finite() && v > 0.0 && v < 1.0)
+        && !(v.is_finite() && v >= RELATIVE_STD.0 && v < 1.0)
     {
         bail!(
-            "--frequency-noise {} is invalid: a relative standard deviation in (0, 1)",
+            "--frequency-noise {} is invalid: a relative standard deviation from 1e-12 to below 1",
             Number(v)
         );
     }

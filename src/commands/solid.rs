@@ -13,8 +13,7 @@ use jointid::model::solid::{Solid, SolidConfig};
 pub fn run(args: &SolidArgs) -> anyhow::Result<()> {
     let config = SolidConfig::from_path(&args.config)?;
     ensure_new_folder(&args.out, "solid")?;
-    let solid = Solid::generate(&config)
-        .with_context(|| format!("{}: cannot make the model", args.config.display()))?;
+    let solid = Solid::generate(&config).with_context(|| args.config.display().to_string())?;
     let source = args.config.display().to_string();
     let names = solid.file_names();
     fill_new_folder(&args.out, |tmp| {

@@ -4,7 +4,7 @@ use super::candidate::{Tier, registry};
 use super::fit::Noise;
 use super::pairing::PairingRule;
 use crate::identify::Settings;
-use crate::input::{Number, SettingError};
+use crate::input::{Number, RELATIVE_STD, SettingError};
 
 /// Largest relative half-width of the pairing window.
 pub const LARGEST_WINDOW: f64 = 10.0;
@@ -28,14 +28,15 @@ pub struct DiagnoseSettings {
 
 impl DiagnoseSettings {
     /// Checks every setting against its range: `frequency_noise` and `shape_noise` (the stated
-    /// noise) in (0, 1), `pairing_window` in (0, [`LARGEST_WINDOW`]].
+    /// noise) from 1e-12 ([`RELATIVE_STD`]) to below 1, `pairing_window` in
+    /// (0, [`LARGEST_WINDOW`]].
     pub fn check(&self) -> Result<(), SettingError> {
-        let noise = "the stated noise is a relative standard deviation, above 0 and below 1";
+        let noise = "the stated noise is a relative standard deviation, from 1e-12 to below 1";
         for (setting, value) in [
             ("frequency_noise", self.noise.frequency),
             ("shape_noise", self.noise.shape),
         ] {
-            if !(value.is_finite() && value > 0.0 && value < 1.0) {
+            if !(value.is_finite() && value >= RELATIVE_STD.0 && value < 1.0) {
                 return Err(SettingError::new(setting, Number(value), noise));
             }
         }
@@ -110,10 +111,14 @@ mod tests {
     fn settings_out_of_range_are_refused_with_the_range() {
         assert!(settings(0.001, 0.02, 0.5).check().is_ok());
         assert!(settings(0.999, 0.999, LARGEST_WINDOW).check().is_ok());
+        assert!(settings(1e-12, 1e-12, 0.5).check().is_ok());
         for (s, setting, value) in [
             (settings(0.0, 0.02, 0.5), "frequency_noise", "0"),
             (settings(0.001, 1.0, 0.5), "shape_noise", "1"),
             (settings(f64::NAN, 0.02, 0.5), "frequency_noise", "NaN"),
+            // Below 1e-12 the chi^2 of any residual overflows (it was inf or NaN, exit 0).
+            (settings(0.001, 1e-300, 0.5), "shape_noise", "1e-300"),
+            (settings(1e-13, 0.02, 0.5), "frequency_noise", "1e-13"),
             (settings(0.001, 0.02, 0.0), "pairing_window", "0"),
             (settings(0.001, 0.02, 10.5), "pairing_window", "10.5"),
         ] {
@@ -141,7 +146,7 @@ mod tests {
         }
         assert_eq!(
             settings(-0.1, 0.02, 0.5).check().unwrap_err().to_string(),
-            "frequency_noise = -0.1 is invalid: the stated noise is a relative standard deviation, above 0 and below 1"
+            "frequency_noise = -0.1 is invalid: the stated noise is a relative standard deviation, from 1e-12 to below 1"
         );
     }
 }

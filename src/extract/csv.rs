@@ -4,12 +4,16 @@
 //! the standard errors ([`super::uncertainty`]): `frequency_std` (Hz) and `damping_std` per
 //! mode, `value_std` per row (0 at the mode's peak, which is 1 by definition). The
 //! file reads back with [`crate::measured::MeasuredModes::from_path`] against a model of the
-//! beam, so `jointid identify` and `jointid diagnose` take it as it is.
+//! beam, so `jointid identify` and `jointid diagnose` take it as it is. A positive standard
+//! error below the floor of [`RELATIVE_STD`] (1e-12 of the frequency, the damping ratio, the
+//! peak) is written at that floor: it is below what the estimate's own rounding resolves
+//! (noise-free FRFs give 1e-17 of the frequency), and the reader refuses less.
 
 use std::io::Write;
 
 use super::Mode;
 use super::universal::Channel;
+use crate::input::RELATIVE_STD;
 
 /// Writes `modes` (numbered 1.. in the order given) with the channel positions `x` (m).
 pub fn write_modes<W: Write>(
@@ -69,8 +73,21 @@ fn write_rows<W: Write>(
         "value_std",
     ]);
     w.write_record(&head)?;
+    // A positive error, at least the floor of the relative errors times `scale`.
+    let floored = |std: f64, scale: f64| {
+        if std > 0.0 {
+            std.max(RELATIVE_STD.0 * scale)
+        } else {
+            std
+        }
+    };
     for (r, m) in modes.iter().enumerate() {
         let rows = m.real_shape.iter().zip(&m.std.shape).take(responses);
+        let peak = m
+            .real_shape
+            .iter()
+            .take(responses)
+            .fold(0.0_f64, |a, v| a.max(v.abs()));
         for (o, (&v, &v_std)) in rows.enumerate() {
             let mut row = vec![(r + 1).to_string(), m.frequency_hz.to_string()];
             row.extend(point(o));
@@ -78,9 +95,9 @@ fn write_rows<W: Write>(
                 v.to_string(),
                 m.damping_ratio.to_string(),
                 m.mpc.to_string(),
-                m.std.frequency_hz.to_string(),
-                m.std.damping_ratio.to_string(),
-                v_std.to_string(),
+                floored(m.std.frequency_hz, m.frequency_hz).to_string(),
+                floored(m.std.damping_ratio, m.damping_ratio).to_string(),
+                floored(v_std, peak).to_string(),
             ]);
             w.write_record(&row)?;
         }

@@ -293,14 +293,22 @@ impl Identifier {
             });
         }
         let yt = observe(&self.y, &measured.points);
-        let sigma = measured.value_sigmas();
+        // The shape in units of its largest magnitude (a power of two: exact), its standard
+        // errors with it: g, W S_r and W b_r are linear in the shape, so the corrections are
+        // unchanged, and the resolution, cond(W S_r) and the propagated errors no longer
+        // depend on the shape's unit (no sum of squares overflows or underflows).
+        let unit = shape_unit(measured.peak());
+        let values: Vec<f64> = measured.values.iter().map(|v| v / unit).collect();
+        let sigma = measured
+            .value_sigmas()
+            .map(|s| s.into_iter().map(|s| s / unit).collect::<Vec<f64>>());
         let projector = match &sigma {
             Some(sigma) => Projector::weighted(&yt, sigma),
             None => Projector::new(&yt),
         }
         .map_err(|cause| IdentifyError::Projection { mode, cause })?;
         let mut g = vec![0.0; self.settings.n];
-        projector.project(&measured.values, &mut g);
+        projector.project(&values, &mut g);
         let system = self.mode_system(s_r);
         let (m, q) = (system.m(), system.q());
         let mut ws = vec![0.0; m * q];
@@ -334,16 +342,15 @@ impl Identifier {
         let std = match (&sigma, measured.frequency_std, &relative) {
             (Some(sigma), Some(f_std), Ok(_)) if solved.iter().all(|&s| s) => {
                 let ones = vec![1.0; q];
-                propagation::jacobian(&projector, &system, &measured.values, measured.lambda()).map(
-                    |jac| {
-                        let variances: Vec<f64> = sigma.iter().map(|s| s * s).collect();
-                        let f = f_std / measured.frequency_hz;
-                        propagation::std_of(&jac, &variances, measured.lambda(), &ones, f * f)
-                    },
-                )
+                propagation::jacobian(&projector, &system, &values, measured.lambda()).map(|jac| {
+                    let variances: Vec<f64> = sigma.iter().map(|s| s * s).collect();
+                    let f = f_std / measured.frequency_hz;
+                    propagation::std_of(&jac, &variances, measured.lambda(), &ones, f * f)
+                })
             }
             _ => None,
         };
+        g.iter_mut().for_each(|v| *v *= unit);
         Ok(ModeOutcome {
             mode,
             basis_index: s_r,
@@ -360,6 +367,16 @@ impl Identifier {
             resolution,
             solved,
         })
+    }
+}
+
+/// The power of two nearest `peak`, a shape's largest magnitude (1 for a zero or non-finite
+/// peak): the unit a shape is divided by before the identification works on it, exactly.
+pub fn shape_unit(peak: f64) -> f64 {
+    if peak.is_finite() && peak > 0.0 {
+        2f64.powi((peak.log2().round() as i32).clamp(-1022, 1023))
+    } else {
+        1.0
     }
 }
 

@@ -20,7 +20,10 @@
 //! normalisation as `value`). A standard error is finite and >= 0 (`frequency_std` > 0, and a
 //! mode's `value_std` not all 0); `frequency_std` and `value_std` are given for every mode or
 //! for none, `value_std` on every shape row of a mode or on none, and `damping_std` only
-//! where `damping_ratio` is.
+//! where `damping_ratio` is. Relative to what they qualify they lie in [`RELATIVE_STD`](crate::input::RELATIVE_STD):
+//! `frequency_std` from 1e-12 to 1 times `frequency_hz`, a non-zero `value_std` from 1e-12 to
+//! 1 times the mode's largest |value|, a non-zero `damping_std` from 1e-12 times
+//! `damping_ratio` to 1.
 //!
 //! [`Csv`] reads it as one of the [`Format`]s; points are resolved by [`locate`]; the writer
 //! ([`MeasuredModes::write_csv`]) chooses the location form the points allow.
@@ -34,6 +37,7 @@ use super::error::MeasuredError;
 use super::format::Format;
 use super::locate::{Location, locate};
 use super::modes::{MAX_FREQUENCY_HZ, MAX_MODE, MeasuredMode, MeasuredModes};
+use crate::input::{Number, RELATIVE_STD, relative_std_in_range};
 use crate::structure::{Direction, Observation, Structure};
 
 /// Optional per-mode columns, then the optional per-row column.
@@ -231,6 +235,21 @@ fn mode_of(mode: usize, p: Pending) -> Result<MeasuredMode, (u64, String)> {
                 ),
             ));
         }
+        let peak = p.shape.values().fold(0.0_f64, |a, r| a.max(r.1.abs()));
+        if let Some(row) = given.iter().filter(|_| peak > 0.0).find(|r| {
+            r.3.is_some_and(|s| s != 0.0 && !relative_std_in_range(s, peak))
+        }) {
+            return Err((
+                row.2,
+                format!(
+                    "value_std = {} is invalid: it must be 0 or from {} to {} times the mode's largest |value| ({})",
+                    Number(row.3.unwrap_or_default()),
+                    Number(RELATIVE_STD.0),
+                    Number(RELATIVE_STD.1),
+                    Number(peak)
+                ),
+            ));
+        }
         if given.iter().all(|r| r.3 == Some(0.0)) {
             return Err((
                 p.first_line,
@@ -246,6 +265,20 @@ fn mode_of(mode: usize, p: Pending) -> Result<MeasuredMode, (u64, String)> {
             .collect();
         MeasuredMode::with_value_std(mode, p.frequency_hz, rows)
     };
+    if let (Some(zeta), Some(std)) = (damping_ratio, damping_std)
+        && std != 0.0
+        && !(std >= RELATIVE_STD.0 * zeta && std <= RELATIVE_STD.1)
+    {
+        return Err((
+            p.first_line,
+            format!(
+                "damping_std = {} is invalid: it must be 0 or from {} times damping_ratio ({}) to 1",
+                Number(std),
+                Number(RELATIVE_STD.0),
+                Number(zeta)
+            ),
+        ));
+    }
     m.damping_ratio = damping_ratio;
     m.mpc = mpc;
     m.frequency_std = frequency_std;
@@ -305,6 +338,15 @@ fn row(
             continue;
         }
         let v = check_optional(name, text)?;
+        if name == "frequency_std" && !relative_std_in_range(v, frequency_hz) {
+            return Err(format!(
+                "frequency_std = {} is invalid: it must be from {} to {} times frequency_hz ({} Hz)",
+                Number(v),
+                Number(RELATIVE_STD.0),
+                Number(RELATIVE_STD.1),
+                Number(frequency_hz)
+            ));
+        }
         match OPTIONAL.iter().position(|o| *o == name) {
             Some(slot) if slot < 4 => per_mode.push((slot, name, v)),
             _ => value_std = Some(v),
@@ -676,6 +718,28 @@ mod tests {
             (
                 "1,150,0,w,1,0.01,0.02,0.001,0.1\n2,400,0,w,1,0.01,,,0.1\n",
                 "d.csv:1: frequency_std is given for mode(s) 1 but not for mode 2: give it for every mode or for none",
+            ),
+            // Relative to what they qualify, within 1e-12 to 1: beyond, the propagated errors
+            // were inf, and a chi^2 weighted by them inf or NaN, with exit 0.
+            (
+                "1,150,0,w,1,0.01,1e308,0.001,0.1\n",
+                "d.csv:2: frequency_std = 1e308 is invalid: it must be from 1e-12 to 1 times frequency_hz (150 Hz)",
+            ),
+            (
+                "1,150,0,w,1,0.01,1e-300,0.001,0.1\n",
+                "d.csv:2: frequency_std = 1e-300 is invalid: it must be from 1e-12 to 1 times frequency_hz (150 Hz)",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,0.1\n1,150,3,w,0.5,0.01,0.02,0.001,1e-300\n",
+                "d.csv:3: value_std = 1e-300 is invalid: it must be 0 or from 1e-12 to 1 times the mode's largest |value| (1)",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,0.001,1e308\n",
+                "d.csv:2: value_std = 1e308 is invalid: it must be 0 or from 1e-12 to 1 times the mode's largest |value| (1)",
+            ),
+            (
+                "1,150,0,w,1,0.01,0.02,2,0.1\n",
+                "d.csv:2: damping_std = 2 is invalid: it must be 0 or from 1e-12 times damping_ratio (0.01) to 1",
             ),
         ];
         for (body, message) in cases {

@@ -241,17 +241,16 @@ fn amplitude_dependence_of_unesp_bert() {
     }
 }
 
-/// An FRF of node 1 written as UFF 58: two resonances at the frequencies and damping of
-/// `modes_0p05V.csv`, accelerance H = sum -w^2 A_r / (w_r^2 - w^2 + 2 i zeta_r w_r w) on
-/// 0.0625 Hz lines. The amplitude the command reads is checked against the peak of each
-/// resonance written out, A_r / (2 zeta_r), times the level over w_r^2.
-#[test]
-fn the_amplitude_is_the_frf_peak_times_the_level_over_omega_squared() {
+/// The modes of `modes_0p05V.csv` (frequency, damping ratio, modal constant of the FRF).
+const FRF_MODES: [(f64, f64, f64); 2] = [
+    (18.803569530895743, 0.00471582520827106, 2.0),
+    (98.37574286870277, 0.010866773928879367, 5.0),
+];
+
+/// Writes the accelerance of [`FRF_MODES`] at node 1, times `gain` (0: a dead channel), to
+/// `path`: H = sum -w^2 A_r / (w_r^2 - w^2 + 2 i zeta_r w_r w) on 2400 lines of 0.0625 Hz.
+fn write_frf(path: &std::path::Path, gain: f64) {
     use jointid::uff::{Abscissa, Axis, Dof, Encoding, Function, FunctionType, Precision, Values};
-    let modes = [
-        (18.803569530895743, 0.00471582520827106, 2.0),
-        (98.37574286870277, 0.010866773928879367, 5.0),
-    ];
     let axis = |data_type: i32, units: &str| Axis {
         data_type,
         length_exponent: 0,
@@ -264,11 +263,11 @@ fn the_amplitude_is_the_frf_peak_times_the_level_over_omega_squared() {
     let h: Vec<faer::c64> = (0..2400)
         .map(|k| {
             let w = 2.0 * PI * step * k as f64;
-            modes
+            FRF_MODES
                 .iter()
                 .fold(faer::c64::new(0.0, 0.0), |sum, &(f, z, a)| {
                     let wr = 2.0 * PI * f;
-                    sum + faer::c64::new(-w * w * a, 0.0)
+                    sum + faer::c64::new(-w * w * a * gain, 0.0)
                         / faer::c64::new(wr * wr - w * w, 2.0 * z * wr * w)
                 })
         })
@@ -296,10 +295,20 @@ fn the_amplitude_is_the_frf_peak_times_the_level_over_omega_squared() {
         ordinate: Values::Complex(h),
         encoding: Encoding::Ascii,
     };
-    let dir = scratch("amplitude", "frf");
     let mut bytes = Vec::new();
     jointid::uff::write_function(&mut bytes, &frf).unwrap();
-    std::fs::write(dir.join("frf.uff"), bytes).unwrap();
+    std::fs::write(path, bytes).unwrap();
+}
+
+/// An FRF of node 1 written as UFF 58: two resonances at the frequencies and damping of
+/// `modes_0p05V.csv`, accelerance H = sum -w^2 A_r / (w_r^2 - w^2 + 2 i zeta_r w_r w) on
+/// 0.0625 Hz lines. The amplitude the command reads is checked against the peak of each
+/// resonance written out, A_r / (2 zeta_r), times the level over w_r^2.
+#[test]
+fn the_amplitude_is_the_frf_peak_times_the_level_over_omega_squared() {
+    let modes = FRF_MODES;
+    let dir = scratch("amplitude", "frf");
+    write_frf(&dir.join("frf.uff"), 1.0);
     for (random, extra) in [(false, ""), (true, "random_band_hz = 110.0\n")] {
         let text = format!(
             "model = {UNESP_MODEL:?}\nreference = 1\n{extra}[[level]]\nexcitation = 0.1\nmodes = {MODES:?}\nfrf = \"frf.uff\"\n\
@@ -350,4 +359,52 @@ fn a_stdout_that_cannot_take_the_summary_is_an_error_not_a_panic() {
     let file = levels_file(&dir, &refs);
     stdout_refused(&["amplitude", s(&file), "--out", s(&dir.join("out"))]);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Amplitudes outside a double's range: an excitation of 1e308 times the FRF's peak (about
+/// 200 m/s^2 per unit) overflows, a dead channel (an FRF of zeros) gives 0, which the fit
+/// turned into "chosen: constant" and "NaN%" with exit 0, and a given acceleration of 1e-305
+/// gives a displacement amplitude (a / omega^2) below the normal doubles. Each is refused with
+/// exit 2, naming the file and field (or the FRF file) and the value, in under 200
+/// characters, and nothing is written.
+#[test]
+fn an_amplitude_outside_a_doubles_range_is_refused_naming_its_source() {
+    let dir = scratch("amplitude", "range");
+    write_frf(&dir.join("frf.uff"), 1.0);
+    write_frf(&dir.join("dead.uff"), 0.0);
+    let frf_levels = |first: &str, excitation: &str| {
+        format!(
+            "model = {UNESP_MODEL:?}\nreference = 1\n[[level]]\nexcitation = 0.1\nmodes = {MODES:?}\nfrf = \"{first}\"\n\
+             [[level]]\nexcitation = {excitation}\nmodes = {MODES:?}\nfrf = \"frf.uff\"\n"
+        )
+    };
+    let given = format!(
+        "model = {UNESP_MODEL:?}\n[[level]]\nexcitation = 0.1\nmodes = {MODES:?}\nacceleration = [1.0, 2.0]\n\
+         [[level]]\nexcitation = 0.2\nmodes = {MODES:?}\nacceleration = [1.0, 1e-305]\n"
+    );
+    let cases = [
+        (
+            frf_levels("frf.uff", "1e308"),
+            "levels.toml: level[1].excitation = 1e308 is invalid: mode 1: a = inf m/s^2, outside a double's range",
+        ),
+        (
+            frf_levels("dead.uff", "0.2"),
+            "dead.uff: the FRF of node 1 peaks at 0 near mode 1 (18.80",
+        ),
+        (
+            given,
+            "levels.toml: level[1].acceleration[1] = 1e-305 is invalid: mode 2: a / omega^2 = 2.617e-311 m, outside",
+        ),
+    ];
+    let out = dir.join("out");
+    for (text, needle) in cases {
+        std::fs::write(dir.join("levels.toml"), text).unwrap();
+        let err = refused(
+            &["amplitude", s(&dir.join("levels.toml")), "--out", s(&out)],
+            &[needle],
+        );
+        assert!(err.len() < 200, "{} characters: {err}", err.len());
+        assert!(!out.exists(), "{err}: an output was written");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

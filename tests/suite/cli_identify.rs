@@ -344,10 +344,9 @@ fn three_sensors_identify_one_parameter_per_mode_from_its_frequency() {
     assert!(String::from_utf8_lossy(&missing.stderr).contains("--n <N>"));
     let bad = from_frequency("2", &dir.path("no.csv"));
     assert_eq!(bad.status.code(), Some(2));
-    assert!(
-        String::from_utf8_lossy(&bad.stderr)
-            .contains("--frequency-noise 2 is invalid: a relative standard deviation in (0, 1)")
-    );
+    assert!(String::from_utf8_lossy(&bad.stderr).contains(
+        "--frequency-noise 2 is invalid: a relative standard deviation from 1e-12 to below 1"
+    ));
     assert!(!dir.path("no.csv").exists());
 }
 
@@ -532,4 +531,147 @@ fn a_huge_frequency_noise_is_echoed_compactly() {
         &["--from-frequency", "--frequency-noise", "1e308"],
         &["--frequency-noise 1e308 is invalid"],
     );
+}
+
+/// `text` (a measured-modes CSV) with every shape value times `scale`: the same shapes in
+/// another unit.
+fn scaled_values(text: &str, scale: f64) -> String {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    let value = header.split(',').position(|h| h == "value").unwrap();
+    let mut out = format!("{header}\n");
+    for line in lines {
+        let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
+        if let Ok(v) = fields[value].parse::<f64>() {
+            fields[value] = format!("{:e}", v * scale);
+        }
+        out += &fields.join(",");
+        out.push('\n');
+    }
+    out
+}
+
+/// The shapes' unit does not change what identify reports: the same noise-free modes with
+/// every shape value times 1e150 (cond(W S) was inf and the resolution NaN) or 1e-200 (the
+/// resolution was 0 instead of 1) give the corrections, conditions and resolutions of the
+/// unscaled data, to a relative 1e-9.
+#[test]
+fn the_shapes_unit_changes_neither_condition_nor_resolution() {
+    let s = Scratch::new("shape-unit");
+    let model = s.write("m.toml", MODEL);
+    let csv = simulated_csv(&all_dofs(&paper_model(1.0, 1.0)));
+    let run = |name: &str, text: &str| -> Vec<Vec<f64>> {
+        let data = s.write(&format!("{name}.csv"), text);
+        let out = s.path(&format!("{name}-out.csv"));
+        let args = [
+            "--n",
+            "38",
+            "--m",
+            "7",
+            "--weighting",
+            "inverse",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let o = identify(&model, &data, &args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let cols = ["correction", "condition", "resolution"]
+            .map(|c| header.iter().position(|h| *h == c).unwrap());
+        lines
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                cols.iter().map(|&c| f[c].parse().unwrap()).collect()
+            })
+            .collect()
+    };
+    let reference = run("unit", &csv);
+    assert_eq!(reference.len(), 8, "4 modes x 2 parameters");
+    for scale in [1e150, 1e-200] {
+        let rows = run(&format!("{scale:e}"), &scaled_values(&csv, scale));
+        assert_eq!(rows.len(), reference.len());
+        for (row, want) in rows.iter().zip(&reference) {
+            for (v, w) in row.iter().zip(want) {
+                assert!(
+                    w.is_finite() && (v - w).abs() <= 1e-9 * w.abs(),
+                    "x{scale:e}: {row:?} against {want:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Standard errors and stated noise outside their documented relative range (1e-12 to 1 of
+/// what they qualify, docs/formats.md): a `frequency_std` of 1e308 (the propagated errors
+/// were inf), a `value_std` of 1e-300 on one row, `--frequency-noise 1e-300` to identify and
+/// `--shape-noise 1e-300` to diagnose (chi^2 inf or NaN with exit 0). Each is refused with exit
+/// 2, naming the file and line or the flag, and the value; nothing is written.
+#[test]
+fn standard_errors_outside_their_relative_range_are_refused() {
+    let s = Scratch::new("std-range");
+    let model = s.write("m.toml", MODEL);
+    let csv = simulated_csv(&all_dofs(&paper_model(1.0, 1.0)));
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap();
+    let rows: Vec<&str> = lines.collect();
+    let with_std = |frequency_std: &str, tiny_row: usize| {
+        let mut text = format!("{header},frequency_std,value_std\n");
+        for (i, row) in rows.iter().enumerate() {
+            let value_std = if i == tiny_row { "1e-300" } else { "0.01" };
+            text += &format!("{row},{frequency_std},{value_std}\n");
+        }
+        text
+    };
+    let out = s.path("out.csv");
+    let cases = [
+        (
+            with_std("1e308", usize::MAX),
+            vec![],
+            "d.csv:2: frequency_std = 1e308 is invalid: it must be from 1e-12 to 1 times frequency_hz",
+        ),
+        (
+            with_std("0.01", 3),
+            vec![],
+            "d.csv:5: value_std = 1e-300 is invalid: it must be 0 or from 1e-12 to 1 times the mode's largest |value|",
+        ),
+        (
+            csv.clone(),
+            vec!["--frequency-noise", "1e-300"],
+            "--frequency-noise 1e-300 is invalid: a relative standard deviation from 1e-12 to below 1",
+        ),
+    ];
+    for (text, extra, needle) in cases {
+        let data = s.write("d.csv", &text);
+        let mut args = vec!["--n", "38", "--m", "7", "--weighting", "inverse"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = identify(&model, &data, &args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(needle), "`{needle}` not in: {err}");
+        assert!(err.len() < 200, "{err}");
+        assert!(!out.exists(), "{needle}: nothing is written");
+    }
+    let data = s.write("d.csv", &csv);
+    let json = s.path("report.json");
+    let err = common::refused(
+        &[
+            "diagnose",
+            "--model",
+            common::s(&model),
+            "--measured",
+            common::s(&data),
+            "--shape-noise",
+            "1e-300",
+            "--json",
+            common::s(&json),
+        ],
+        &[
+            "--shape-noise 1e-300 is invalid: the stated noise is a relative standard deviation, from 1e-12 to below 1",
+        ],
+    );
+    assert!(err.len() < 200, "{err}");
+    assert!(!json.exists());
 }

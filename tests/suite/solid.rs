@@ -391,6 +391,81 @@ fn sizes_whose_counts_overflow_a_machine_word_are_refused() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Computed values outside a double's range: a bolt factor of 1e308 (the parameters overflow:
+/// `value = inf` was written into model.toml, which its reader then refused), a modulus of
+/// 1e308 on bricks of 10 m (K overflows), a density of 1e-320 (M underflows to 0), a normal
+/// stiffness per area of 1e-305 (k_normal below the normal numbers). Each is refused with exit
+/// 2, naming the file, the field that causes it and its value, in under 200 characters, and
+/// no folder is made. A modulus of 1e306 on the small lap (bricks of 0.01 m) gives finite
+/// matrices: it is not refused, and never called a degenerate brick.
+#[test]
+fn computed_values_outside_a_doubles_range_are_refused_naming_their_field() {
+    let dir = scratch("solid", "range");
+    let scaled = [
+        ("width = 0.02", "width = 20.0"),
+        ("overlap = 0.04", "overlap = 40.0"),
+        ("length = 0.16", "length = 160.0"),
+        ("thickness = 0.01", "thickness = 10.0"),
+        ("length = 0.12", "length = 120.0"),
+        ("thickness = 0.008", "thickness = 8.0"),
+        ("x = 0.14", "x = 140.0"),
+        ("y = 0.01", "y = 10.0"),
+        ("radius = 0.006", "radius = 6.0"),
+        ("size = 0.01", "size = 10.0"),
+    ]
+    .iter()
+    .fold(LAP.to_string(), |t, (from, to)| {
+        assert!(t.contains(from), "{from}");
+        t.replacen(from, to, 1)
+    });
+    let cases = [
+        (
+            LAP.replacen("factor = 8.0", "factor = 1e308", 1),
+            "interface.bolt[0].factor = 1e308 is invalid: k_shear_x (stiffness per area x lap area) is inf N/m",
+        ),
+        (
+            scaled.replacen("youngs_modulus = 2.1e11", "youngs_modulus = 1e308", 1),
+            "material.youngs_modulus = 1e308 is invalid: K (E x brick size 10 m) has inf at DOF",
+        ),
+        (
+            LAP.replacen("density = 7850.0", "density = 1e-320", 1),
+            "material.density = 1e-320 is invalid: M (density x brick size 0.01 m, cubed) has 0 at DOF",
+        ),
+        (
+            LAP.replacen("normal = 1e13", "normal = 1e-305", 1),
+            "interface.normal = 1e-305 is invalid: k_normal (stiffness per area x lap area) is ",
+        ),
+    ];
+    for (i, (text, needle)) in cases.into_iter().enumerate() {
+        let config = dir.join(format!("lap{i}.toml"));
+        std::fs::write(&config, text).unwrap();
+        let target = dir.join(format!("model{i}"));
+        let err = refused(
+            &["solid", s(&config), "--out", s(&target)],
+            &[
+                &format!("lap{i}.toml: {needle}"),
+                "outside a double's range",
+            ],
+        );
+        assert!(err.len() < 200, "{err}");
+        assert!(!target.exists(), "{needle}: nothing is written");
+    }
+    // The same specimen at its own size is made, with finite matrices.
+    let solid =
+        Solid::generate(&SolidConfig::from_toml(&scaled, Path::new("lap.toml")).unwrap()).unwrap();
+    assert!(solid.k.iter().all(|(_, _, v)| v.is_finite()));
+    let stiff = LAP.replacen("youngs_modulus = 2.1e11", "youngs_modulus = 1e306", 1);
+    let solid =
+        Solid::generate(&SolidConfig::from_toml(&stiff, Path::new("lap.toml")).unwrap()).unwrap();
+    let k_max = max_abs(solid.k.iter().map(|e| e.2));
+    let steel = max_abs(lap().k.iter().map(|e| e.2));
+    assert!(
+        (k_max / steel - 1e306 / 2.1e11).abs() < 1e-9 * (1e306 / 2.1e11),
+        "K scales with E: {k_max} against {steel}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Bad input on a 3D external model: a DOF without a direction, two DOFs at one position
 /// and direction that nothing ties (unmerged nodes), a declared rigid-body count the model
 /// does not have. Each is refused with exit 2, naming the file and what is allowed, and

@@ -169,7 +169,39 @@ fn columns(blocks: impl Iterator<Item = [[f64; 3]; 6]>) -> Vec<[f64; 6]> {
 /// The stiffness (incompatible modes condensed out) and consistent mass of the brick with
 /// nodes `x` (m, the order of the module docs) of `material`. `None` when the element is
 /// inverted or degenerate (det J <= 0 at a Gauss point).
+///
+/// The integration sees neither the modulus, the density nor the unit of length: it runs on
+/// the nodes relative to the first, divided by h, the power of two nearest their largest
+/// coordinate, with a unit modulus and density; K is then that times E h and M that times
+/// rho h^3 (exact scalings: h is a power of two). Whether a brick is degenerate is thereby a
+/// matter of its shape alone, and a modulus or a size near the ends of the floating-point
+/// range shows as an infinite or zero entry of the result, which the caller checks
+/// ([`super::Solid::generate`]), never as a failed integration.
 pub fn hex8(x: &[[f64; 3]; 8], material: &Material) -> Option<HexMatrices> {
+    let extent = x
+        .iter()
+        .flat_map(|p| (0..3).map(move |i| (p[i] - x[0][i]).abs()))
+        .fold(0.0_f64, f64::max);
+    if !(extent.is_finite() && extent > 0.0) {
+        return None;
+    }
+    let h = 2f64.powi((extent.log2().round() as i32).clamp(-1022, 1023));
+    let unit_x: [[f64; 3]; 8] =
+        std::array::from_fn(|a| std::array::from_fn(|i| (x[a][i] - x[0][i]) / h));
+    let unit = Material {
+        youngs_modulus: 1.0,
+        poisson_ratio: material.poisson_ratio,
+        density: 1.0,
+    };
+    let mut e = hex8_unit(&unit_x, &unit)?;
+    let (k_scale, m_scale) = (material.youngs_modulus * h, material.density * h * h * h);
+    e.k.iter_mut().for_each(|v| *v *= k_scale);
+    e.m.iter_mut().for_each(|v| *v *= m_scale);
+    Some(e)
+}
+
+/// [`hex8`] on nodes of any scale, as given.
+fn hex8_unit(x: &[[f64; 3]; 8], material: &Material) -> Option<HexMatrices> {
     let d = material.elasticity();
     let (inv0, det0) = jacobian(x, [0.0; 3]);
     if det0.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {

@@ -29,6 +29,7 @@ pub mod triplets;
 
 use std::collections::HashMap;
 
+use crate::input::Number;
 pub use config::SolidConfig;
 use hex::{HexMatrices, hex8};
 use mesh::Mesh;
@@ -81,47 +82,167 @@ pub struct Solid {
     pub parameters: Vec<SolidParameter>,
 }
 
-/// A mesh whose bricks cannot be integrated (a validated configuration never gives one).
+/// Why a validated configuration gives no model.
 #[derive(Debug, thiserror::Error)]
-#[error("brick {brick} (nodes {nodes:?}) is inverted or degenerate: det J <= 0 at a Gauss point")]
-pub struct DegenerateBrick {
-    /// The brick, 0-based.
-    pub brick: usize,
-    /// Its nodes, 0-based.
-    pub nodes: [usize; 8],
+pub enum SolidError {
+    /// A brick that cannot be integrated (a validated configuration never gives one).
+    #[error(
+        "cannot make the model: brick {brick} (nodes {nodes:?}) is inverted or degenerate: det J <= 0 at a Gauss point"
+    )]
+    DegenerateBrick {
+        /// The brick, 0-based.
+        brick: usize,
+        /// Its nodes, 0-based.
+        nodes: [usize; 8],
+    },
+    /// A computed value (an entry of K or M, a parameter) outside the range of a double
+    /// (infinite, or below the smallest normal number, whose reciprocal is infinite), and
+    /// the input field it comes from.
+    #[error("{field} = {value} is invalid: {reason}")]
+    OutOfRange {
+        /// The field's path in the configuration.
+        field: String,
+        /// Its value.
+        value: String,
+        /// What it gives and why that is refused.
+        reason: String,
+    },
+}
+
+/// The range of a double every computed value must lie in (by magnitude): the normal numbers,
+/// whose reciprocals are finite too.
+const RANGE: &str = "outside a double's range (2.2e-308 to 1.8e308)";
+
+/// Whether `v` is finite and, when `positive`, at least the smallest normal number.
+fn in_range(v: f64, positive: bool) -> bool {
+    v.is_finite() && (!positive || v >= f64::MIN_POSITIVE)
+}
+
+impl SolidError {
+    fn out_of_range(field: impl Into<String>, value: f64, reason: String) -> Self {
+        SolidError::OutOfRange {
+            field: field.into(),
+            value: Number(value).to_string(),
+            reason,
+        }
+    }
+}
+
+/// The first entry of `a` outside [`RANGE`] (any entry infinite or NaN, a diagonal entry not
+/// positive and normal, or absent: underflowed to 0): its DOF (1-based) and value.
+fn first_out_of_range(a: &Lower) -> Option<(usize, f64)> {
+    let mut diagonal = vec![false; a.size()];
+    for (r, c, v) in a.iter() {
+        if !in_range(v, r == c) {
+            return Some((r + 1, v));
+        }
+        diagonal[r] |= r == c;
+    }
+    diagonal.iter().position(|&d| !d).map(|r| (r + 1, 0.0))
 }
 
 impl Solid {
-    /// The model of `config`.
-    pub fn generate(config: &SolidConfig) -> Result<Solid, DegenerateBrick> {
+    /// The model of `config`. Every computed value is checked: an entry of K or M, or an
+    /// interface parameter, outside the range of a double is refused naming the field it
+    /// comes from (the modulus, the density, a stiffness per area, a bolt's factor, the lap's
+    /// size).
+    pub fn generate(config: &SolidConfig) -> Result<Solid, SolidError> {
         let mesh = Mesh::of(config);
         let (k, m) = assemble(&mesh, &config.material)?;
+        let material = &config.material;
+        let size = Number(config.mesh.size);
+        if let Some((dof, v)) = first_out_of_range(&k) {
+            return Err(SolidError::out_of_range(
+                "material.youngs_modulus",
+                material.youngs_modulus,
+                format!(
+                    "K (E x brick size {size} m) has {} at DOF {dof}, {RANGE}",
+                    Number(v)
+                ),
+            ));
+        }
+        if let Some((dof, v)) = first_out_of_range(&m) {
+            return Err(SolidError::out_of_range(
+                "material.density",
+                material.density,
+                format!(
+                    "M (density x brick size {size} m, cubed) has {} at DOF {dof}, {RANGE}",
+                    Number(v)
+                ),
+            ));
+        }
         let n = 3 * mesh.nodes.len();
         let total: f64 = mesh.pairs.iter().map(|p| p.2).sum();
+        let area = config.width * config.overlap;
+        if !in_range(area, true) {
+            return Err(SolidError::out_of_range(
+                "overlap",
+                config.overlap,
+                format!(
+                    "the lap's area, width x overlap, is {} m^2, {RANGE}",
+                    Number(area)
+                ),
+            ));
+        }
+        // Beyond the lap's area, only the bolts' factors weigh the springs: the bolt of the
+        // largest factor is named for a value too large, that of the smallest for one too small.
+        let bolt = |high: bool| {
+            let bolts = config.interface.bolts.iter().enumerate();
+            let by_factor = |a: &(usize, &config::Bolt), b: &(usize, &config::Bolt)| {
+                a.1.factor.total_cmp(&b.1.factor)
+            };
+            let chosen = if high {
+                bolts.max_by(by_factor)
+            } else {
+                bolts.min_by(by_factor)
+            };
+            chosen.map(|(i, b)| (format!("interface.bolt[{i}].factor"), b.factor))
+        };
+        if !in_range(total, true) {
+            let (field, input) = bolt(total > 1.0).unwrap_or(("overlap".into(), config.overlap));
+            return Err(SolidError::out_of_range(
+                field,
+                input,
+                format!(
+                    "the spring weights (area x bolt factor) sum to {} m^2, {RANGE}",
+                    Number(total)
+                ),
+            ));
+        }
         let per_area = [
-            config.interface.shear_x,
-            config.interface.shear_y,
-            config.interface.normal,
+            ("interface.shear_x", config.interface.shear_x),
+            ("interface.shear_y", config.interface.shear_y),
+            ("interface.normal", config.interface.normal),
         ];
-        let parameters = PARAMETERS
-            .iter()
-            .zip(per_area)
-            .enumerate()
-            .map(|(d, (&name, per_area))| {
-                let mut dk = Triplets::new(n);
-                for &(a, b, w) in &mesh.pairs {
-                    let (i, j, s) = (3 * a + d, 3 * b + d, w / total);
-                    dk.add(i, i, s);
-                    dk.add(j, j, s);
-                    dk.add(i, j, -s);
-                }
-                SolidParameter {
-                    name,
-                    value: per_area * total,
-                    dk: dk.finish(),
-                }
-            })
-            .collect();
+        let mut parameters = Vec::with_capacity(PARAMETERS.len());
+        for (d, (&name, (field, per_area))) in PARAMETERS.iter().zip(per_area).enumerate() {
+            let value = per_area * total;
+            if !in_range(value, true) {
+                let (field, input) = bolt(value > 1.0)
+                    .filter(|_| in_range(per_area * area, true))
+                    .unwrap_or((field.to_string(), per_area));
+                return Err(SolidError::out_of_range(
+                    field,
+                    input,
+                    format!(
+                        "{name} (stiffness per area x lap area) is {} N/m, {RANGE}",
+                        Number(value)
+                    ),
+                ));
+            }
+            let mut dk = Triplets::new(n);
+            for &(a, b, w) in &mesh.pairs {
+                let (i, j, s) = (3 * a + d, 3 * b + d, w / total);
+                dk.add(i, i, s);
+                dk.add(j, j, s);
+                dk.add(i, j, -s);
+            }
+            parameters.push(SolidParameter {
+                name,
+                value,
+                dk: dk.finish(),
+            });
+        }
         Ok(Solid {
             config: config.clone(),
             mesh,
@@ -139,7 +260,7 @@ impl Solid {
 
 /// K and M of the bricks of `mesh`. Bricks of the same shape (the same node offsets, bit for
 /// bit) share one integration: a structured mesh has a handful of shapes.
-pub fn assemble(mesh: &Mesh, material: &hex::Material) -> Result<(Lower, Lower), DegenerateBrick> {
+pub fn assemble(mesh: &Mesh, material: &hex::Material) -> Result<(Lower, Lower), SolidError> {
     let n = 3 * mesh.nodes.len();
     let (mut k, mut m) = (Triplets::new(n), Triplets::new(n));
     let mut shapes: HashMap<[u64; 24], HexMatrices> = HashMap::new();
@@ -152,7 +273,7 @@ pub fn assemble(mesh: &Mesh, material: &hex::Material) -> Result<(Lower, Lower),
         let element = match shapes.entry(key) {
             std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
             std::collections::hash_map::Entry::Vacant(v) => {
-                v.insert(hex8(&x, material).ok_or(DegenerateBrick {
+                v.insert(hex8(&x, material).ok_or(SolidError::DegenerateBrick {
                     brick: e,
                     nodes: *brick,
                 })?)
