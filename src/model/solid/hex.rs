@@ -170,10 +170,11 @@ fn columns(blocks: impl Iterator<Item = [[f64; 3]; 6]>) -> Vec<[f64; 6]> {
 /// nodes `x` (m, the order of the module docs) of `material`. `None` when the element is
 /// inverted or degenerate (det J <= 0 at a Gauss point).
 ///
-/// The integration sees neither the modulus, the density nor the unit of length: it runs on
-/// the nodes relative to the first, divided by h, the power of two nearest their largest
-/// coordinate, with a unit modulus and density; K is then that times E h and M that times
-/// rho h^3 (exact scalings: h is a power of two). Whether a brick is degenerate is thereby a
+/// The integration sees neither the size of the modulus, of the density nor the unit of
+/// length: it runs on the nodes relative to the first, divided by h, the power of two nearest
+/// their largest coordinate, with the modulus and the density divided by the powers of two
+/// nearest them; K is then that times those powers of E and h, M times rho's and h^3 (exact
+/// scalings, all powers of two). Whether a brick is degenerate is thereby a
 /// matter of its shape alone, and a modulus or a size near the ends of the floating-point
 /// range shows as an infinite or zero entry of the result, which the caller checks
 /// ([`super::Solid::generate`]), never as a failed integration.
@@ -188,13 +189,17 @@ pub fn hex8(x: &[[f64; 3]; 8], material: &Material) -> Option<HexMatrices> {
     let h = 2f64.powi((extent.log2().round() as i32).clamp(-1022, 1023));
     let unit_x: [[f64; 3]; 8] =
         std::array::from_fn(|a| std::array::from_fn(|i| (x[a][i] - x[0][i]) / h));
+    // Powers of two too: the integration at E / 2^a and rho / 2^b rounds exactly as at E and
+    // rho would, had the products not left a double's range.
+    let two = |v: f64| 2f64.powi((v.log2().round() as i32).clamp(-1022, 1023));
+    let (e_unit, rho_unit) = (two(material.youngs_modulus), two(material.density));
     let unit = Material {
-        youngs_modulus: 1.0,
+        youngs_modulus: material.youngs_modulus / e_unit,
         poisson_ratio: material.poisson_ratio,
-        density: 1.0,
+        density: material.density / rho_unit,
     };
     let mut e = hex8_unit(&unit_x, &unit)?;
-    let (k_scale, m_scale) = (material.youngs_modulus * h, material.density * h * h * h);
+    let (k_scale, m_scale) = (e_unit * h, rho_unit * h * h * h);
     e.k.iter_mut().for_each(|v| *v *= k_scale);
     e.m.iter_mut().for_each(|v| *v *= m_scale);
     Some(e)
