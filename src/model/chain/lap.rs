@@ -148,12 +148,13 @@ pub(crate) fn lap(
     if length > reach * (1.0 + 1e-12) {
         return Err(check.invalid(
             p("length"),
-            length,
+            Number(length),
             format!(
-                "the overlap is centred on the joint and reaches half its length into each beam: it must be at most twice the shorter of beam[{j}] ({} m) and beam[{}] ({} m), {reach} m",
-                left.length,
+                "the overlap is centred on the joint and reaches half its length into each beam: it must be at most twice the shorter of beam[{j}] ({} m) and beam[{}] ({} m), {} m",
+                Number(left.length),
                 j + 1,
-                right.length
+                Number(right.length),
+                Number(reach)
             ),
         ));
     }
