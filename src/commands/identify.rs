@@ -14,7 +14,7 @@ use jointid::measured::{MeasuredMode, MeasuredModes};
 use jointid::modal::{ModalSolution, check_elastic};
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, identify as out, write_atomically};
-use jointid::structure::Parameter;
+use jointid::structure::{Parameter, Structure};
 
 pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     let outputs: Vec<&std::path::Path> = args.out.iter().map(|p| p.as_path()).collect();
@@ -102,13 +102,38 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
             (mode, solved)
         })
         .collect();
+    let Gathered {
+        rows,
+        outcomes,
+        fallbacks,
+    } = gathered(solved, args, &model, &modal, &params, &all)?;
+    report(args, &measured, &outcomes, &fallbacks, &params, &all, &rows)
+}
+
+/// The CSV rows of every mode, with the outcomes of the paper's system and of the fallbacks.
+struct Gathered {
+    rows: Vec<out::IdentifyRow>,
+    outcomes: Vec<ModeOutcome>,
+    fallbacks: Vec<(FrequencyOutcome, Fallback)>,
+}
+
+/// Each mode's rows in mode order: its paper's outcome, else its frequency-only outcome, else
+/// empty corrections with a warning; a modal solution that fails is an error.
+fn gathered(
+    solved: Vec<Solved>,
+    args: &IdentifyArgs,
+    model: &Structure,
+    modal: &ModalSolution,
+    params: &[Parameter],
+    all: &[Parameter],
+) -> anyhow::Result<Gathered> {
     let mut rows = Vec::new();
     let mut outcomes = Vec::new();
     let mut fallbacks = Vec::new();
     for (mode, solved) in solved {
         let (why, solved) = match solved {
             Ok(o) => {
-                rows.extend(out::rows(std::slice::from_ref(&o), &params));
+                rows.extend(out::rows(std::slice::from_ref(&o), params));
                 outcomes.push(o);
                 continue;
             }
@@ -116,7 +141,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         };
         match solved {
             Ok(f) => {
-                rows.extend(out::frequency_rows(&f, mode.frequency_hz, &all));
+                rows.extend(out::frequency_rows(&f, mode.frequency_hz, all));
                 fallbacks.push((f, why));
             }
             Err(FrequencyError::Modal(e)) => {
@@ -126,7 +151,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                 eprintln!("warning: {e}; its corrections are left empty");
                 match why {
                     Fallback::RankDeficient(o) => {
-                        rows.extend(out::rows(std::slice::from_ref(&o), &params));
+                        rows.extend(out::rows(std::slice::from_ref(&o), params));
                         outcomes.push(o);
                     }
                     _ => {
@@ -134,14 +159,18 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
                             mode.mode,
                             mode.frequency_hz,
                             modal.frequency_hz(model.model_mode(mode.mode)?),
-                            &all,
+                            all,
                         ));
                     }
                 }
             }
         }
     }
-    report(args, &measured, &outcomes, &fallbacks, &params, &all, &rows)
+    Ok(Gathered {
+        rows,
+        outcomes,
+        fallbacks,
+    })
 }
 
 /// A mode and its paper's outcome, or why it fell back to its frequency and what that gave.

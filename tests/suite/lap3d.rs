@@ -68,30 +68,40 @@ fn line(case: &str, r: &Value) -> String {
     )
 }
 
+/// The lapped cases: uniform, bolted and glued interfaces at 3 and 9 sensors.
+const LAPPED: [&str; 6] = [
+    "uniform-3",
+    "uniform-9",
+    "bolts-3",
+    "bolts-9",
+    "glued-3",
+    "glued-9",
+];
+
+/// Asserts that report `r` of `case` names the lap as `effect` or `partial`, alone or with
+/// shear; its verdict and causes.
+fn lap_named(case: &str, r: &Value) -> (String, Vec<String>) {
+    let verdict = r["verdict"].as_str().unwrap().to_string();
+    assert!(
+        verdict == "effect" || verdict == "partial",
+        "{case}: {verdict}"
+    );
+    let named = causes(r);
+    assert_eq!(named[0], "layered_lap", "{case}: {named:?}");
+    assert!(named[1..].iter().all(|c| c == "shear"), "{case}: {named:?}");
+    (verdict, named)
+}
+
 #[test]
 #[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
 fn a_solid_lap_is_named_as_a_lap_by_the_users_beam_model() {
     let dir = scratch("lap3d", "laps");
-    for case in [
-        "uniform-3",
-        "uniform-9",
-        "bolts-3",
-        "bolts-9",
-        "glued-3",
-        "glued-9",
-    ] {
+    for case in LAPPED {
         let r = diagnose(case, &dir);
         eprintln!("{}", line(case, &r));
-        let verdict = r["verdict"].as_str().unwrap();
-        assert!(
-            verdict == "effect" || verdict == "partial",
-            "{case}: {verdict}"
-        );
         // The lap, alone or with shear (a glued interface too: a lap at its stiff end, never
         // refused).
-        let named = causes(&r);
-        assert_eq!(named[0], "layered_lap", "{case}: {named:?}");
-        assert!(named[1..].iter().all(|c| c == "shear"), "{case}: {named:?}");
+        let (verdict, named) = lap_named(case, &r);
         // It removes most of the point joint's frequency error: to 1% where shear comes with
         // it or three sensors leave the frequencies their weight; with nine sensors and the
         // lap alone the 1D layers' shapes hold it at 1.5% (the 3D lap's mode 6 carries 15-42%
@@ -158,26 +168,12 @@ fn a_monolithic_bar_and_an_unmodelled_end_mass_are_answered_not_refused() {
 #[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
 fn with_timoshenko_beams_the_lap_alone_brings_the_frequencies_within_1_percent() {
     let dir = scratch("lap3d", "timoshenko");
-    for case in [
-        "uniform-3",
-        "uniform-9",
-        "bolts-3",
-        "bolts-9",
-        "glued-3",
-        "glued-9",
-    ] {
+    for case in LAPPED {
         let r = diagnose_with(case, "timoshenko", &dir);
         eprintln!("{} (Timoshenko)", line(case, &r));
-        let verdict = r["verdict"].as_str().unwrap();
-        assert!(
-            verdict == "effect" || verdict == "partial",
-            "{case}: {verdict}"
-        );
         // The beams' own shear and rotary inertia declared, the lap is what the data name,
         // alone or with a correction of the declared shear, and it leaves at most 1%.
-        let named = causes(&r);
-        assert_eq!(named[0], "layered_lap", "{case}: {named:?}");
-        assert!(named[1..].iter().all(|c| c == "shear"), "{case}: {named:?}");
+        lap_named(case, &r);
         let after = number(&r["after"]["frequency_rms_pct"]);
         assert!(after <= 1.0, "{case}: after {after}%");
     }
