@@ -14,6 +14,7 @@
 //!    [`model::effects`], selection and the before/after report;
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
 //!
+//! Before them, [`calibrate`] adjusts the beams on a reference test (the paper's first step).
 //! Beside diagnose, [`amplitude`] fits the joint's amplitude dependence across excitation
 //! levels (constant, power law, four-parameter Iwan).
 //!
@@ -39,12 +40,13 @@
 //! 3. models and measurements: [`model`], [`measured`], [`extract`]
 //! 4. identification: [`identify`]
 //! 5. simulation and studies: [`simulate`], [`study`]
-//! 6. diagnosis and results: [`diagnose`], [`report`], [`cluster`], [`amplitude`]
+//! 6. diagnosis and results: [`diagnose`], [`calibrate`], [`report`], [`cluster`], [`amplitude`]
 //! 7. outputs: [`output`]
 //!
 //! Above them all, the binary (`main.rs`, `cli.rs`, `commands/`) may import any of them.
 
 pub mod amplitude;
+pub mod calibrate;
 pub mod cluster;
 pub mod diagnose;
 pub mod extract;

@@ -54,6 +54,7 @@ use serde::Deserialize;
 
 use super::Chain;
 use super::beam::{Beam, Section, Segment, Shear};
+use super::calibration::{BeamCalibration, Factor};
 use super::joint::Joint;
 use super::lap::{ROOT_PARAMETER, RawLap, lap};
 use super::setup::{PointMass, Sensor};
@@ -111,6 +112,19 @@ struct RawBeam {
     poisson: Option<f64>,
     #[serde(default)]
     segment: Vec<RawSegment>,
+    calibrated: Option<RawCalibrated>,
+}
+
+/// `[beam.calibrated]`: written by `jointid calibrate` (module
+/// [`super::calibration`]).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCalibrated {
+    stiffness_factor: Option<f64>,
+    stiffness_factor_se: Option<f64>,
+    density_factor: Option<f64>,
+    density_factor_se: Option<f64>,
+    reference: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -186,6 +200,12 @@ impl RawChain {
             .enumerate()
             .map(|(i, b)| beam(b, i, element_length, &check))
             .collect::<Result<Vec<_>, InputError>>()?;
+        let calibration = self
+            .beam
+            .iter()
+            .enumerate()
+            .filter_map(|(i, b)| Some(calibrated(b.calibrated.as_ref()?, i, &check)))
+            .collect::<Result<Vec<_>, InputError>>()?;
         if self.joint.len() + 1 != beams.len() {
             return Err(check.invalid(
                 "joint",
@@ -251,6 +271,7 @@ impl RawChain {
             masses,
             sensors,
             nodes_at,
+            calibration,
         })
     }
 }
@@ -512,6 +533,47 @@ impl DeclaredShear {
 }
 
 /// Beam `i`'s declared shear, `None` for an Euler-Bernoulli beam.
+/// `beam[i].calibrated`: each factor > 0 with a standard error >= 0 (an error needs its
+/// factor), at least one factor.
+fn calibrated(
+    c: &RawCalibrated,
+    i: usize,
+    check: &FieldCheck,
+) -> Result<BeamCalibration, InputError> {
+    let p = |field: &str| format!("beam[{i}].calibrated.{field}");
+    let factor = |name: &str, value: Option<f64>, se: Option<f64>| match (value, se) {
+        (None, None) => Ok(None),
+        (None, Some(se)) => Err(check.invalid(
+            p(&format!("{name}_se")),
+            Number(se),
+            format!("a standard error needs its factor: give {name} too"),
+        )),
+        (Some(v), se) => Ok(Some(Factor {
+            value: check.positive(p(name), v, "the factor of the typed value")?,
+            se: check.non_negative(p(&format!("{name}_se")), se.unwrap_or(0.0), "-")?,
+        })),
+    };
+    let stiffness = factor(
+        "stiffness_factor",
+        c.stiffness_factor,
+        c.stiffness_factor_se,
+    )?;
+    let density = factor("density_factor", c.density_factor, c.density_factor_se)?;
+    if stiffness.is_none() && density.is_none() {
+        return Err(check.invalid(
+            format!("beam[{i}].calibrated"),
+            "no factor",
+            "give stiffness_factor or density_factor (or leave the table out)",
+        ));
+    }
+    Ok(BeamCalibration {
+        beam: i,
+        stiffness,
+        density,
+        reference: c.reference.clone(),
+    })
+}
+
 fn shear(b: &RawBeam, i: usize, check: &FieldCheck) -> Result<Option<DeclaredShear>, InputError> {
     let p = |field: &str| format!("beam[{i}].{field}");
     let Some(factor) = b.shear_factor else {

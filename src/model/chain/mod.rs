@@ -4,6 +4,7 @@
 //! Fig. 1 is the chain of two beams and one joint, free-free.
 //!
 //! - [`beam`]: element matrices, sections and stepped segments;
+//! - [`calibration`]: the record of beams calibrated on a reference test;
 //! - [`joint`]: the joint of eq. (17) and the names of its parameters;
 //! - [`lap`], [`layered`], [`interface`]: a joint's overlap, and the layered lap that replaces
 //!   the point joint over it (two layers, a distributed interface, its element matrices);
@@ -16,6 +17,7 @@
 
 pub mod assembly;
 pub mod beam;
+pub mod calibration;
 pub mod config;
 pub mod interface;
 pub mod joint;
@@ -27,6 +29,7 @@ pub mod setup;
 pub mod support;
 
 pub use beam::{Beam, Section, Segment};
+pub use calibration::{BeamCalibration, Factor};
 pub use joint::Joint;
 pub use lap::{Lap, Layer};
 pub use mesh::Mesh;
@@ -49,6 +52,8 @@ pub struct Chain {
     pub sensors: Vec<Sensor>,
     /// Extra node positions, m.
     pub nodes_at: Vec<f64>,
+    /// The beams calibrated on a reference test (module [`calibration`]).
+    pub calibration: Vec<BeamCalibration>,
 }
 
 impl Chain {
@@ -64,6 +69,7 @@ impl Chain {
             masses: Vec::new(),
             sensors: Vec::new(),
             nodes_at: Vec::new(),
+            calibration: Vec::new(),
         }
     }
 

@@ -312,7 +312,7 @@ pub(crate) fn add_pair(s: &mut SparseSym, a: Option<usize>, b: Option<usize>, va
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use faer::Mat;
 
     use super::*;
