@@ -39,6 +39,10 @@ pub enum Command {
     /// Modal parameters from measured FRFs (universal files): poles with a stabilisation
     /// chart, residues, real modes and their complexity, as a measured-modes CSV.
     Extract(ExtractArgs),
+    /// The paper's first step: E (or rho) of the beams fitted on the modes of a reference
+    /// specimen (the beams in one piece, or one beam alone), with standard errors, written as
+    /// a calibrated model file that identify, diagnose and study read.
+    Calibrate(CalibrateArgs),
     /// Diagnose measured data: calibrate the joint, trace the residual to a missing effect,
     /// report before and after.
     Diagnose(DiagnoseArgs),
@@ -56,6 +60,44 @@ pub enum Command {
     /// Make a 3D brick model of a bolted lap specimen (two bars tied by interface springs)
     /// from a TOML file, written as an external model.
     Solid(SolidArgs),
+}
+
+/// `jointid calibrate`.
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    /// Model file (TOML, a beam chain): the jointed model whose beams are calibrated.
+    #[arg(long)]
+    pub model: PathBuf,
+    /// The reference test's modes (measured-modes CSV), positions along the specimen.
+    #[arg(long)]
+    pub reference: PathBuf,
+    /// The reference specimen: `monolithic` (the beams in one piece, every joint rigid) or
+    /// `beam:K` (beam K alone, positions from its start).
+    #[arg(long, default_value = "monolithic")]
+    pub specimen: String,
+    /// What is fitted, comma-separated: `youngs_modulus` (E, and G with it) and/or `density`,
+    /// one factor for the specimen's beams, or `:each` for one per beam.
+    #[arg(long, value_delimiter = ',', default_value = "youngs_modulus")]
+    pub fit: Vec<String>,
+    /// The calibrated model file to write (never one of the inputs).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Also write the calibration as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Relative standard deviation of the measured frequencies.
+    #[arg(long, default_value_t = 0.001)]
+    pub frequency_noise: f64,
+    /// Relative standard deviation of the measured shape components.
+    #[arg(long, default_value_t = 0.02)]
+    pub shape_noise: f64,
+    /// Weigh with the stated noise even when the reference file carries standard errors.
+    #[arg(long)]
+    pub stated_noise: bool,
+    /// Half-width of the frequency window in which a measured mode looks for its model mode,
+    /// relative to its frequency (0 < w <= 10).
+    #[arg(long, default_value_t = jointid::diagnose::pairing::DEFAULT_WINDOW)]
+    pub pairing_window: f64,
 }
 
 /// `jointid amplitude`.

@@ -5,10 +5,11 @@
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
 //! [`crate::model`], [`crate::measured`], [`crate::extract`], [`crate::identify`],
 //! [`crate::simulate`], [`crate::study`], [`crate::diagnose`], [`crate::report`],
-//! [`crate::cluster`], [`crate::amplitude`].
+//! [`crate::cluster`], [`crate::amplitude`], [`crate::calibrate`].
 
 pub mod amplitude;
 pub mod atomic;
+pub mod calibrate;
 pub mod catalogue;
 pub mod diagnose;
 pub mod diagnose_log;

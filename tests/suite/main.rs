@@ -19,6 +19,7 @@ mod amplitude_joint;
 mod amplitude_levels;
 mod analytic_beam;
 mod bounded_input;
+mod calibrate;
 mod candidates;
 mod cli_extract;
 mod cli_identify;

@@ -1,6 +1,7 @@
 //! Models and helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod continuous;
 pub mod frf;
 
 use std::path::{Path, PathBuf};
