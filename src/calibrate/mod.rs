@@ -70,14 +70,14 @@ pub enum CalibrateError {
     },
     /// E and rho where nothing tells them apart.
     #[error(
-        "youngs_modulus and density are told apart by nothing in this specimen (no mass or spring besides the beams): frequencies and unscaled shapes give their ratio only; fit one of them"
+        "only the ratio of E to rho shows in this specimen (no mass or spring besides the beams): fit one of them"
     )]
     OnlyTheRatio,
     /// The specimen's eigenproblem.
-    #[error("the reference specimen: {0}")]
+    #[error("the reference specimen has no eigensolution")]
     Modal(#[from] ModalError),
     /// The fit.
-    #[error("the reference test does not fit the specimen: {0}")]
+    #[error("the reference test does not fit the specimen")]
     Fit(#[from] FitError),
 }
 

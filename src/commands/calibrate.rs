@@ -6,7 +6,9 @@ use anyhow::Context;
 use crate::cli::CalibrateArgs;
 use crate::commands::flagged;
 use jointid::calibrate::adjusted::adjusted_model;
-use jointid::calibrate::{Request, Specimen, calibrate, parse_fits, specimen_chain};
+use jointid::calibrate::{
+    CalibrateError, Request, Specimen, calibrate, parse_fits, specimen_chain,
+};
 use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule};
 use jointid::input::read_file;
 use jointid::measured::MeasuredModes;
@@ -69,8 +71,10 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
         measured_std: !args.stated_noise,
         reference,
     };
-    let calibrated = calibrate(&chain, &measured, &request)
-        .with_context(|| format!("{}", args.reference.display()))?;
+    let calibrated = calibrate(&chain, &measured, &request).map_err(|e| match e {
+        CalibrateError::OnlyTheRatio => anyhow::anyhow!("--fit {}: {e}", args.fit.join(",")),
+        e => anyhow::Error::new(e).context(format!("{}", args.reference.display())),
+    })?;
     let header = format!(
         "{} with its beams calibrated by jointid calibrate on {} ({}).",
         args.model.display(),

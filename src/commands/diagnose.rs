@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
+use jointid::diagnose::absorbed::absorbed;
 use jointid::diagnose::{
     DiagnoseError, DiagnoseSettings, Noise, PairingRule, Pass, Step, Watch, diagnose_watched,
 };
@@ -64,6 +65,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     outputs.extend(index.as_deref());
     check_outputs(&outputs, &inputs)?;
     let model = jointid::model::from_path(&args.model)?;
+    // A chain whose beams were calibrated on a reference test: the same chain as typed.
+    let typed =
+        calibrated_chain(&args.model)?.map(|chain| (chain.typed().build(), chain.calibration));
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let measured = if args.stated_noise {
         measured.without_std()
@@ -77,13 +81,22 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     } else {
         Watch::new(&tell)
     };
-    let report = diagnose_watched(&model, &measured, settings, watch);
+    let report = diagnose_watched(&model, &measured, settings.clone(), watch);
     log.end();
-    let report = match report {
+    let mut report = match report {
         // A setting refused once the model is known (a cause that does not apply to it).
         Err(DiagnoseError::Settings(e)) => return Err(flagged(e, &FLAGS)),
         other => other.with_context(|| format!("{}", args.measured.display()))?,
     };
+    if let Some((typed, beams)) = &typed {
+        let a = absorbed(typed, beams, &measured, &settings, &report).with_context(|| {
+            format!(
+                "{}: the joint on the beams as typed (before their calibration)",
+                args.measured.display()
+            )
+        })?;
+        report.reference = Some(a);
+    }
     let mut staged = Vec::new();
     if let Some(path) = &args.json {
         staged.push(
@@ -105,6 +118,15 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     }
     commit_all(staged)?;
     super::to_stdout(|w| out::write_text(w, &report))
+}
+
+/// The chain of `model` when it is one whose beams were calibrated on a reference test.
+fn calibrated_chain(model: &std::path::Path) -> anyhow::Result<Option<jointid::model::Chain>> {
+    let text = jointid::input::read_file(model)?;
+    match jointid::model::chain_from_toml(&text, model) {
+        Ok(chain) if !chain.calibration.is_empty() => Ok(Some(chain)),
+        _ => Ok(None),
+    }
 }
 
 /// How long the log holds its lines back: a run that ends sooner logs nothing.

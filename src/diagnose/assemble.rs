@@ -134,6 +134,7 @@ pub fn assemble(f: Findings) -> Report {
             f.per_mode.n, f.per_mode.m, f.per_mode.weighting
         ),
         shape_floor: SHAPE_FLOOR,
+        reference: None,
         hypotheses: f.hypotheses,
     }
 }

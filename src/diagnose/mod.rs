@@ -38,6 +38,7 @@
 //! [`crate::identify`], [`crate::simulate`], [`crate::study`]) and, without a circle,
 //! [`crate::report`], [`crate::cluster`].
 
+pub mod absorbed;
 pub mod along;
 pub mod assemble;
 pub mod calibrate;

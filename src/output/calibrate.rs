@@ -8,9 +8,18 @@ use crate::calibrate::Calibrated;
 /// Writes the summary of `c`.
 pub fn write_text(w: &mut dyn Write, c: &Calibrated) -> io::Result<()> {
     writeln!(w, "reference specimen: {}", c.specimen)?;
-    writeln!(w, "{:<28} {:>10} {:>10} {:>8}", "factor of the typed value", "value", "se", "beams")?;
+    writeln!(
+        w,
+        "{:<28} {:>10} {:>10} {:>8}",
+        "factor of the typed value", "value", "se", "beams"
+    )?;
     for f in &c.factors {
-        let beams: Vec<String> = f.unknown.beams.iter().map(|b| (b + 1).to_string()).collect();
+        let beams: Vec<String> = f
+            .unknown
+            .beams
+            .iter()
+            .map(|b| (b + 1).to_string())
+            .collect();
         writeln!(
             w,
             "{:<28} {:>10.5} {:>10.5} {:>8}",
@@ -25,7 +34,11 @@ pub fn write_text(w: &mut dyn Write, c: &Calibrated) -> io::Result<()> {
         "frequency error RMS: {:.3}% typed, {:.3}% calibrated (chi^2 {:.4} / {} under the measurement error)",
         c.typed_rms_pct, c.calibrated_rms_pct, c.chi2, c.dof
     )?;
-    writeln!(w, "{:>5} {:>12} {:>10} {:>12}", "mode", "measured Hz", "typed %", "calibrated %")?;
+    writeln!(
+        w,
+        "{:>5} {:>12} {:>10} {:>12}",
+        "mode", "measured Hz", "typed %", "calibrated %"
+    )?;
     for m in &c.modes {
         writeln!(
             w,
@@ -38,7 +51,10 @@ pub fn write_text(w: &mut dyn Write, c: &Calibrated) -> io::Result<()> {
     }
     let d = &c.discrepancy;
     if d.is_zero() {
-        writeln!(w, "the calibrated specimen fits within the measurement error")
+        writeln!(
+            w,
+            "the calibrated specimen fits within the measurement error"
+        )
     } else {
         writeln!(
             w,

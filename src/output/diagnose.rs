@@ -202,6 +202,9 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     write_errors(out, r)?;
     write_candidates(out, r)?;
     write_parameters(out, &r.after.parameters)?;
+    if let Some(reference) = &r.reference {
+        write_absorbed(out, reference)?;
+    }
     corrections(
         out,
         &format!(
@@ -217,6 +220,47 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
         &r.per_mode_after,
         &r.flatness_after,
     )?;
+    Ok(())
+}
+
+/// The joint with the beams as typed beside the joint with the beams calibrated.
+fn write_absorbed(out: &mut dyn Write, a: &crate::diagnose::absorbed::Absorbed) -> io::Result<()> {
+    let factors: Vec<String> = a
+        .beams
+        .iter()
+        .flat_map(|b| {
+            [("E", b.stiffness), ("rho", b.density)]
+                .into_iter()
+                .filter_map(move |(name, f)| {
+                    f.map(|f| {
+                        format!(
+                            "{name} x {:.4} +- {:.4} (beam {})",
+                            f.value,
+                            f.se,
+                            b.beam + 1
+                        )
+                    })
+                })
+        })
+        .collect();
+    writeln!(
+        out,
+        "\nbeams calibrated on a reference test: {}; with the beams as typed the joint would be (frequency RMS {:.3}%):",
+        factors.join(", "),
+        a.typed_frequency_rms_pct
+    )?;
+    for p in &a.parameters {
+        writeln!(
+            out,
+            "  {} = {} typed, {} +- {} calibrated: x {:.4}, {:+.1} standard errors",
+            p.name,
+            sci(p.typed),
+            sci(p.calibrated),
+            sci(p.se),
+            p.ratio,
+            p.sigmas
+        )?;
+    }
     Ok(())
 }
 

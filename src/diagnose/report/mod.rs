@@ -240,6 +240,10 @@ pub struct Report {
     pub per_mode_settings: String,
     /// The shape-noise floor used in the weights.
     pub shape_floor: f64,
+    /// On a model whose beams were calibrated on a reference test: the joint with the beams
+    /// as typed beside this one (module `absorbed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<super::absorbed::Absorbed>,
     /// Hypotheses the selection tested (the multiple-testing count: a scan counts each of its
     /// members; for the figures, not in the JSON).
     #[serde(skip)]

@@ -39,7 +39,12 @@ fn field(s: &Span, x: f64, omega: f64, y: State) -> State {
     let b = (s.rho_a * omega * omega / s.ei).powf(0.25);
     let z = b * x;
     let (ch, c, sh, sn) = (z.cosh(), z.cos(), z.sinh(), z.sin());
-    let (ks, kt, ku, kv) = ((ch + c) / 2.0, (sh + sn) / 2.0, (ch - c) / 2.0, (sh - sn) / 2.0);
+    let (ks, kt, ku, kv) = (
+        (ch + c) / 2.0,
+        (sh + sn) / 2.0,
+        (ch - c) / 2.0,
+        (sh - sn) / 2.0,
+    );
     let ei = s.ei;
     let [w, t, m, v] = y;
     [
@@ -123,8 +128,13 @@ impl ExactChain {
             e[1]
         };
         let start = [row[1], -row[0]];
-        let w: Vec<f64> = xs.iter().map(|&x| self.state_at(x, omega, start)[0]).collect();
-        let peak = w.iter().fold(0.0f64, |a, v| if v.abs() > a.abs() { *v } else { a });
+        let w: Vec<f64> = xs
+            .iter()
+            .map(|&x| self.state_at(x, omega, start)[0])
+            .collect();
+        let peak = w
+            .iter()
+            .fold(0.0f64, |a, v| if v.abs() > a.abs() { *v } else { a });
         w.iter().map(|v| v / peak).collect()
     }
 }
@@ -154,7 +164,13 @@ impl Normal {
 
 /// The measured-modes CSV (`mode,frequency_hz,x,dof,value`) of the first `count` modes of
 /// `chain` at `xs`, each frequency times (1 + sf n) and each value plus ss n (n normal).
-pub fn measured_csv(chain: &ExactChain, count: usize, xs: &[f64], noise: [f64; 2], seed: u64) -> String {
+pub fn measured_csv(
+    chain: &ExactChain,
+    count: usize,
+    xs: &[f64],
+    noise: [f64; 2],
+    seed: u64,
+) -> String {
     let mut normal = Normal::new(seed);
     let mut csv = String::from("mode,frequency_hz,x,dof,value\n");
     for (r, f) in chain.frequencies(count, 1.0).into_iter().enumerate() {
