@@ -306,3 +306,45 @@ fn bad_requests_are_refused_by_name_and_nothing_is_written() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
+fn without_a_reference_test_the_extended_diagnosis_names_the_beams_stiffness() {
+    let dir = scratch("calibrate", "candidate");
+    write_data(&dir, 41);
+    let p = |name: &str| dir.join(name).display().to_string();
+    let out = jointid_ok(&[
+        "diagnose",
+        "--model",
+        &p("model.toml"),
+        "--measured",
+        &p("jointed.csv"),
+        "--frequency-noise",
+        "5e-4",
+        "--shape-noise",
+        "0.01",
+        "--extended",
+        "--json",
+        &p("d.json"),
+        "--quiet",
+    ]);
+    let report = json(&dir.join("d.json"));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("beam_stiffness.beam2.change"));
+    assert_eq!(
+        report["selected"], "beam_stiffness",
+        "{}",
+        report["verdict"]
+    );
+    let fitted: Vec<f64> = report["after"]["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["name"].as_str().unwrap().starts_with("beam_stiffness"))
+        .map(|p| p["value"].as_f64().unwrap())
+        .collect();
+    assert_eq!(fitted.len(), 2);
+    for change in fitted {
+        assert!((change - (TRUE_FACTOR - 1.0)).abs() < 0.005, "{change}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

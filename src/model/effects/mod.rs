@@ -16,6 +16,7 @@
 //! Layer: a model module; imports `crate::structure` and the chain builder's element matrices
 //! (`crate::model::chain`), nothing above the model.
 
+mod beam_stiffness;
 mod element_damage;
 mod end_mass;
 mod joint_coupling;
@@ -29,6 +30,7 @@ mod shear;
 mod support_flexibility;
 mod suspension;
 
+pub use beam_stiffness::BeamStiffness;
 pub use element_damage::ElementDamage;
 pub use end_mass::EndMass;
 pub use joint_coupling::JointCoupling;
@@ -173,6 +175,7 @@ pub fn registry() -> Vec<Arc<dyn Effect>> {
         Arc::new(Suspension),
         Arc::new(SupportFlexibility),
         Arc::new(Shear),
+        Arc::new(BeamStiffness),
         Arc::new(Lap),
         Arc::new(JointInertia),
         Arc::new(EndMass),
