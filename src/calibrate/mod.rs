@@ -15,7 +15,9 @@
 //! (point masses, springs): where the beams make all of K and all of M, E and rho together
 //! are refused ([`CalibrateError::OnlyTheRatio`]).
 //!
-//! Layer 6 (beside the diagnosis, whose fit it uses).
+//! Layer 6 (diagnosis and results; see the crate docs): may import the layers below
+//! ([`crate::model`], [`crate::measured`], [`crate::modal`], [`crate::optim`],
+//! [`crate::structure`]) and, without a circle, [`crate::diagnose`], whose fit it uses.
 
 pub mod adjusted;
 pub mod scaled;

@@ -9,40 +9,11 @@ use std::sync::Arc;
 use super::DiagnoseError;
 use super::calibrate::{calibrate, prepare};
 use super::fit::{self, Calibration, Discrepancy};
-use super::report::Report;
+use super::report::{Absorbed, Report, Shift};
 use super::settings::DiagnoseSettings;
 use crate::measured::MeasuredModes;
 use crate::model::chain::BeamCalibration;
 use crate::structure::Structure;
-
-/// One joint parameter with the beams calibrated and as typed.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Shift {
-    /// The parameter (`k1`, `joint2.k_n`, ...).
-    pub name: String,
-    /// Its value with the beams calibrated (the diagnosis's `before`).
-    pub calibrated: f64,
-    /// Its standard error there.
-    pub se: f64,
-    /// Its value with the beams as typed.
-    pub typed: f64,
-    /// typed / calibrated.
-    pub ratio: f64,
-    /// (typed - calibrated) / se: the shift in standard errors.
-    pub sigmas: f64,
-}
-
-/// The joint with and without the reference test.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Absorbed {
-    /// The beams' calibration, from the model file.
-    pub beams: Vec<BeamCalibration>,
-    /// Every joint parameter.
-    pub parameters: Vec<Shift>,
-    /// RMS of the relative frequency errors of the joint calibrated on the typed beams, %
-    /// (the diagnosis's `before` is that on the calibrated beams).
-    pub typed_frequency_rms_pct: f64,
-}
 
 /// The joint of `report` (a diagnosis of `measured` on the calibrated model) beside the joint
 /// calibrated on `typed`, the same model with its beams as typed; `beams` the calibration.

@@ -224,7 +224,7 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
 }
 
 /// The joint with the beams as typed beside the joint with the beams calibrated.
-fn write_absorbed(out: &mut dyn Write, a: &crate::diagnose::absorbed::Absorbed) -> io::Result<()> {
+fn write_absorbed(out: &mut dyn Write, a: &crate::diagnose::report::Absorbed) -> io::Result<()> {
     let factors: Vec<String> = a
         .beams
         .iter()

@@ -6,6 +6,7 @@
 
 mod pattern;
 mod per_mode;
+mod reference;
 mod remains;
 mod summary;
 
@@ -15,6 +16,7 @@ pub use pattern::{ModeChi2, Region, ResidualPattern};
 pub use per_mode::{
     Flatness, ModeCorrection, Source, default_settings, flatness, per_mode_corrections,
 };
+pub use reference::{Absorbed, Shift};
 pub use remains::{Lacking, Misfit, Remaining, remains};
 pub use summary::{ErrorSummary, ModeError};
 
@@ -243,7 +245,7 @@ pub struct Report {
     /// On a model whose beams were calibrated on a reference test: the joint with the beams
     /// as typed beside this one (module `absorbed`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub reference: Option<super::absorbed::Absorbed>,
+    pub reference: Option<Absorbed>,
     /// Hypotheses the selection tested (the multiple-testing count: a scan counts each of its
     /// members; for the figures, not in the JSON).
     #[serde(skip)]
