@@ -170,8 +170,61 @@ pub struct Calibrated {
     pub calibrated_rms_pct: f64,
     /// Mode by mode.
     pub modes: Vec<ModeFit>,
+    /// Where the calibrated frequencies still miss beyond the measurement error and their
+    /// errors trend with frequency: the factors absorb an effect the beam model lacks (shear,
+    /// rotary inertia, a wrong support) and are the model's, not the material's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trend: Option<Trend>,
     /// What the calibrated model file records, beam by beam.
     pub records: Vec<BeamCalibration>,
+}
+
+/// A trend of the relative frequency errors with frequency: e_r = a + slope log10(f_r),
+/// ordinary least squares.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Trend {
+    /// Change of the relative error per decade of frequency.
+    pub per_decade: f64,
+    /// The slope in its standard errors (from the scatter about the line).
+    pub sigmas: f64,
+}
+
+/// Slope of a trend beyond which it is reported, in its standard errors.
+pub const TREND_SIGMAS: f64 = 3.0;
+
+/// The trend of `errors` (relative) with the frequencies `hz`, when it is significant
+/// ([`TREND_SIGMAS`]) and the frequencies miss by more than twice their stated noise
+/// (`discrepancy` beyond `noise`); None with fewer than three modes.
+pub fn trend(hz: &[f64], errors: &[f64], discrepancy: f64, noise: f64) -> Option<Trend> {
+    let n = hz.len();
+    if n < 3 || discrepancy <= 2.0 * noise {
+        return None;
+    }
+    let x: Vec<f64> = hz.iter().map(|f| f.log10()).collect();
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / n as f64;
+    let (mx, me) = (mean(&x), mean(errors));
+    let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
+    if sxx <= 0.0 {
+        return None;
+    }
+    let slope = x
+        .iter()
+        .zip(errors)
+        .map(|(a, e)| (a - mx) * (e - me))
+        .sum::<f64>()
+        / sxx;
+    let scatter: f64 = x
+        .iter()
+        .zip(errors)
+        .map(|(a, e)| (e - me - slope * (a - mx)).powi(2))
+        .sum::<f64>()
+        / (n - 2) as f64;
+    let se = (scatter / sxx).sqrt().max(f64::MIN_POSITIVE);
+    let sigmas = slope / se;
+    (sigmas.abs() >= TREND_SIGMAS).then_some(Trend {
+        per_decade: slope,
+        sigmas,
+    })
 }
 
 /// The unknowns of `fits` on the beams of `specimen`.
@@ -281,8 +334,16 @@ fn outcome(
         shape_floor: SHAPE_FLOOR,
         measured_std: request.measured_std,
     };
+    let hz: Vec<f64> = measured.modes().iter().map(|m| m.frequency_hz).collect();
+    let trend = trend(
+        &hz,
+        &after.frequency,
+        fitted.discrepancy.frequency,
+        request.noise.frequency,
+    );
     Calibrated {
         specimen: request.specimen.to_string(),
+        trend,
         discrepancy: fitted.discrepancy.clone(),
         chi2: fit::chi2_of(&after, measured, &alone),
         dof: fitted.dof,
@@ -326,4 +387,27 @@ fn records(chain: &Chain, factors: &[FactorEstimate], reference: &str) -> Vec<Be
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_straight_trend_is_found_with_its_slope_and_a_flat_scatter_is_not() {
+        let hz = [100.0, 300.0, 1000.0, 3000.0, 10000.0];
+        let line: Vec<f64> = hz
+            .iter()
+            .zip([1.0, -1.0, 1.0, -1.0, 1.0])
+            .map(|(f, s)| -0.01 + 0.02 * f64::log10(*f / 100.0) + 1e-4 * s)
+            .collect();
+        let t = trend(&hz, &line, 0.01, 0.001).unwrap();
+        assert!((t.per_decade - 0.02).abs() < 1e-3, "{t:?}");
+        assert!(t.sigmas > 10.0);
+        // Within twice the stated noise: nothing to report.
+        assert!(trend(&hz, &line, 0.0015, 0.001).is_none());
+        let flat = [1e-3, -1e-3, 2e-3, -2e-3, 1e-3];
+        assert!(trend(&hz, &flat, 0.01, 0.001).is_none());
+        assert!(trend(&hz[..2], &line[..2], 0.01, 0.001).is_none());
+    }
 }

@@ -49,6 +49,14 @@ pub fn write_text(w: &mut dyn Write, c: &Calibrated) -> io::Result<()> {
             100.0 * m.calibrated_error
         )?;
     }
+    if let Some(t) = &c.trend {
+        writeln!(
+            w,
+            "the calibrated frequencies still trend with frequency ({:+.2}% per decade, {:.1} standard errors): the factors absorb an effect the beam model lacks (shear and rotary inertia of a thick beam: a Timoshenko beam; a support), and are the model's, not the material's",
+            100.0 * t.per_decade,
+            t.sigmas
+        )?;
+    }
     let d = &c.discrepancy;
     if d.is_zero() {
         writeln!(
