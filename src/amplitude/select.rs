@@ -122,16 +122,12 @@ fn starts(law: Law, data: &Series) -> Vec<Vec<f64>> {
 /// The Iwan law under macroslip from a microslip fit: phi_max started at each amplitude of
 /// the upper half (scaled).
 fn macroslip_starts(micro: &Fitted, data: &Series) -> Vec<Vec<f64>> {
-    let top = data.amplitude.iter().fold(0.0_f64, |m, &a| m.max(a));
-    let e = micro.parameters[1] + 1.0;
-    let mut x: Vec<f64> = data.amplitude.iter().map(|a| a / top).collect();
+    let mut x: Vec<f64> = data.amplitude.iter().map(|a| a / micro.reference).collect();
     x.sort_by(f64::total_cmp);
-    let mut p = micro.parameters.clone();
-    p[2] *= top.powf(e);
     x[x.len() / 2..]
         .iter()
         .map(|&phi| {
-            let mut s = p.clone();
+            let mut s = micro.scaled.clone();
             s.push(phi * 0.999);
             s
         })
@@ -200,8 +196,8 @@ fn band(f: &Fitted, data: &Series) -> Vec<BandPoint> {
     (0..BAND_POINTS)
         .map(|i| {
             let a = lo + (hi - lo) * i as f64 / (BAND_POINTS - 1) as f64;
-            let e = f.law.evaluate(f.regime, &f.parameters, a);
-            let se = |g: &[f64]| match &f.covariance {
+            let e = f.evaluate(a);
+            let se = |g: &[f64]| match &f.scaled_covariance {
                 Some(c) => (0..g.len())
                     .map(|p| (0..g.len()).map(|q| g[p] * c[p][q] * g[q]).sum::<f64>())
                     .sum::<f64>()

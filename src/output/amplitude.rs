@@ -217,10 +217,9 @@ pub fn write_joint_parameters(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Resu
 fn parameters(w: &mut dyn Write, views: &[View]) -> io::Result<()> {
     writeln!(w, "mode,law,selected,parameter,value,std")?;
     for m in views {
-        let amplitudes = &m.data.amplitude;
         for j in &m.fit.laws {
             let law = j.fitted.law;
-            for e in estimates(j, amplitudes) {
+            for e in estimates(j) {
                 writeln!(
                     w,
                     "{},{},{},{},{},{}",
