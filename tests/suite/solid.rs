@@ -481,7 +481,7 @@ fn bad_3d_models_are_refused_and_nothing_is_written() {
     assert!(dofs.contains("\n3,1:z,0,0,0,z\n") && dofs.contains("\n6,2:z,0,0,0.01,z\n"));
     let last = solid.mesh.nodes.len();
     let coincident = format!(
-        "and dof {} (`{last}:x`) are both direction x at (0, 0, 0) m, and no entry of K or of a dK/dp couples them",
+        "and dof {} (`{last}:x`), both x at (0, 0, 0) m, are coupled by no entry of K or dK/dp",
         3 * last - 2
     );
     let cases = [

@@ -413,9 +413,11 @@ fn beam(
             if count > MAX_ELEMENTS_PER_BEAM as f64 {
                 return Err(check.invalid(
                     "mesh.element_length",
-                    h,
+                    Number(h),
                     format!(
-                        "beam[{i}] ({length} m) would need {count} elements, above {MAX_ELEMENTS_PER_BEAM}"
+                        "beam[{i}] ({} m) would need {} elements, above {MAX_ELEMENTS_PER_BEAM}",
+                        Number(length),
+                        Number(count)
                     ),
                 ));
             }

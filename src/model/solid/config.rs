@@ -446,7 +446,7 @@ pub(crate) mod tests {
             (
                 "[mesh]",
                 "[[interface.bolt]]\nx = 0.01\ny = 0.01\nradius = 0.001\nfactor = 5\n[mesh]",
-                "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.07999999999999999 to 0.12 m",
+                "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.08 to 0.12 m",
             ),
             (
                 "[mesh]",
