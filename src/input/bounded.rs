@@ -230,10 +230,17 @@ mod tests {
         let stream = io::repeat(7).take(limits.bytes);
         let bytes = read_all(stream, limits).unwrap();
         assert_eq!(bytes.len() as u64, limits.bytes);
-        assert!(bytes.capacity() as u64 <= limits.bytes + (1 << 16), "{}", bytes.capacity());
+        assert!(
+            bytes.capacity() as u64 <= limits.bytes + (1 << 16),
+            "{}",
+            bytes.capacity()
+        );
         // An endless one (`/dev/zero`): refused once past the limit.
         let err = read_all(io::repeat(0), limits).unwrap_err();
-        assert!(err.to_string().contains("larger than 3145728 bytes"), "{err}");
+        assert!(
+            err.to_string().contains("larger than 3145728 bytes"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -328,7 +328,12 @@ fn masses_within_bound(
         }
     }
     match sensors.iter().position(|s| s.mass > most) {
-        Some(i) => Err(over(format!("sensor[{i}].mass"), sensors[i].mass, most, "kg")),
+        Some(i) => Err(over(
+            format!("sensor[{i}].mass"),
+            sensors[i].mass,
+            most,
+            "kg",
+        )),
         None => Ok(()),
     }
 }
