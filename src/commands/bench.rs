@@ -3,7 +3,6 @@
 //! with every core, optionally beside the numpy baseline, runs interleaved so that both see
 //! the same machine load. Medians of `--repeat` runs.
 
-use std::io::Write;
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;

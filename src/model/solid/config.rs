@@ -224,6 +224,43 @@ impl SolidConfig {
     }
 }
 
+/// The stiffest interface per area, bolt patches included, relative to the thinner bar's own
+/// stiffness per area through its thickness, E / t. An interface a million times stiffer than
+/// the bar is rigid to any test; beyond it the matrices lose the bars' stiffness to rounding
+/// and the model `solid` writes is refused by its own reader (extra rigid-body modes, a
+/// failed factorisation: issue 42, a normal stiffness of 1e308 or a modulus of 1e-300).
+pub const MAX_INTERFACE_RATIO: f64 = 1e6;
+
+/// Refuses an interface stiffer than [`MAX_INTERFACE_RATIO`] times the bars.
+fn interface_within_bars(
+    interface: &Interface,
+    material: &Material,
+    bars: &[BarSize; 2],
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    let factor = interface.bolts.iter().fold(1.0_f64, |m, b| m.max(b.factor));
+    let thinner = bars[0].thickness.min(bars[1].thickness);
+    let most = MAX_INTERFACE_RATIO * material.youngs_modulus / thinner;
+    for (field, value) in [
+        ("interface.normal", interface.normal),
+        ("interface.shear_x", interface.shear_x),
+        ("interface.shear_y", interface.shear_y),
+    ] {
+        if !(value * factor <= most) {
+            return Err(check.invalid(
+                field,
+                Number(value),
+                format!(
+                    "times the bolt factor {} it must be at most {} N/m^3, 1e6 E / t of the thinner bar",
+                    Number(factor),
+                    Number(most)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl RawSolid {
     pub(crate) fn validate(self, file: &Path) -> Result<SolidConfig, InputError> {
         let check = FieldCheck { file };
@@ -307,6 +344,7 @@ impl RawSolid {
                 )?,
             });
         }
+        interface_within_bars(&interface, &material, &bars, &check)?;
         let size = check.positive("mesh.size", self.mesh.size, "m")?;
         let layers =
             check.int_range("mesh.layers", self.mesh.layers.unwrap_or(2), 1, MAX_LAYERS)?;
@@ -442,6 +480,16 @@ pub(crate) mod tests {
                 "normal = 1e13",
                 "normal = 0",
                 "lap.toml: interface.normal = 0 is invalid: it must be finite and > 0 (N/m^3, stiffness per area of the lap)",
+            ),
+            (
+                "normal = 1e13",
+                "normal = 1e308",
+                "lap.toml: interface.normal = 1e308 is invalid: times the bolt factor 1 it must be at most 2.625e19 N/m^3, 1e6 E / t of the thinner bar",
+            ),
+            (
+                "youngs_modulus = 2.1e11",
+                "youngs_modulus = 1e-300",
+                "lap.toml: interface.normal = 1e13 is invalid: times the bolt factor 1 it must be at most 1.25e-292 N/m^3, 1e6 E / t of the thinner bar",
             ),
             (
                 "[mesh]",
