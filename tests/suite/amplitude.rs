@@ -404,7 +404,8 @@ fn a_law_that_did_not_converge_is_not_physical_or_interpolates_is_not_chosen() {
     // (levels, noise of stiffness and damping, seed, the laws of smaller AICc than the
     // chosen one and why each may not be chosen). Found by a scan of seeds: on these levels
     // the smallest AICc used to be chosen whatever its fit.
-    let cases: [(usize, f64, f64, u64, &[(Law, &str)]); 3] = [
+    type Case = (usize, f64, f64, u64, &'static [(Law, &'static str)]);
+    let cases: [Case; 3] = [
         (
             3,
             200.0,

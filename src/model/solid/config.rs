@@ -246,7 +246,8 @@ fn interface_within_bars(
         ("interface.shear_x", interface.shear_x),
         ("interface.shear_y", interface.shear_y),
     ] {
-        if !(value * factor <= most) {
+        let within = value * factor <= most;
+        if !within {
             return Err(check.invalid(
                 field,
                 Number(value),
