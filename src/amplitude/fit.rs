@@ -121,7 +121,7 @@ impl Fitted {
     }
 }
 
-/// The weighted problem on amplitudes `x` (scaled or natural).
+/// The weighted problem on amplitudes `x` (divided by the reference amplitude).
 struct Weighted<'a> {
     law: Law,
     regime: Regime,

@@ -41,7 +41,7 @@ pub struct Judged {
     pub aicc: f64,
     /// BIC = chi^2 + k ln n.
     pub bic: f64,
-    /// AICc minus the smallest AICc of the mode.
+    /// AICc minus the chosen law's (negative for an ineligible law of smaller AICc).
     pub delta_aicc: f64,
     /// Akaike weight exp(-delta/2) / sum over the eligible laws (0 for the others).
     pub weight: f64,

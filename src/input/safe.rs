@@ -42,7 +42,10 @@ pub fn clip_quotes(message: String) -> String {
         .split('`')
         .enumerate()
         .map(|(i, part)| {
-            let number = part.parse::<f64>().ok().filter(|v| v.is_finite());
+            // A long decimal (not an integer, which is echoed whole: a count or an index; not
+            // a short one, echoed as typed).
+            let decimal = part.contains(['.', 'e', 'E']) && part.len() > 12;
+            let number = part.parse::<f64>().ok().filter(|v| v.is_finite() && decimal);
             // A span [`quoted`] already cut (`... (N bytes)`) is short enough to keep.
             if let (1, Some(v)) = (i % 2, number) {
                 super::Number(v).to_string()
