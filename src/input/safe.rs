@@ -45,7 +45,10 @@ pub fn clip_quotes(message: String) -> String {
             // A long decimal (not an integer, which is echoed whole: a count or an index; not
             // a short one, echoed as typed).
             let decimal = part.contains(['.', 'e', 'E']) && part.len() > 12;
-            let number = part.parse::<f64>().ok().filter(|v| v.is_finite() && decimal);
+            let number = part
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && decimal);
             // A span [`quoted`] already cut (`... (N bytes)`) is short enough to keep.
             if let (1, Some(v)) = (i % 2, number) {
                 super::Number(v).to_string()

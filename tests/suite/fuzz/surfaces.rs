@@ -9,11 +9,22 @@ use std::path::Path;
 
 use proptest::prelude::*;
 
-use super::{
-    config, exits_cleanly, finite_csv, jointid, measured_csv, mutate_toml, names, wild_number,
-};
+use super::{exits_cleanly, finite_csv, jointid, measured_csv, mutate_toml, names, wild_number};
 use crate::common::scratch;
 use crate::messages::LAP_MODEL;
+
+/// The fuzz suite's case count, from a fixed seed: `cargo test` runs the same cases on every
+/// machine (`PROPTEST_RNG_SEED` explores others).
+fn config() -> ProptestConfig {
+    let seed = std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(42);
+    ProptestConfig {
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
+        ..super::config()
+    }
+}
 
 const UNESP: &str = include_str!("../../../models/unesp-bert.toml");
 const MODES: &str = include_str!("../../../results/unesp-bert/modes_0p05V.csv");
