@@ -146,7 +146,7 @@ pub fn parse_toml<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Inp
         file: file.to_path_buf(),
         line,
         path,
-        message: message.trim().to_string(),
+        message: safe::clip_quotes(message.trim().to_string()),
     };
     let de = toml::Deserializer::parse(text)
         .map_err(|e| format_error(span_line(text, e.span()), String::new(), e.message()))?;
@@ -240,19 +240,35 @@ impl TaggedTable {
     }
 }
 
-/// A number as a message shows it: the shortest form that reads back to the same value,
-/// in exponent form when it is very large or very small (never 309 digits).
+/// A number as a message shows it, compact: the shortest form that reads back to the same
+/// value when that is short (a value as the user typed it), else six significant digits; in
+/// exponent form when it is very large or very small (never 309 digits, never 17). Data
+/// outputs write their numbers in full, never through this.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Number(pub f64);
 
+/// The longest shortest-round-trip form [`Number`] shows as it is.
+const NUMBER_CHARS: usize = 12;
+
+impl Number {
+    fn shortest(v: f64) -> String {
+        if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+            format!("{v}")
+        } else {
+            format!("{v:e}")
+        }
+    }
+}
+
 impl std::fmt::Display for Number {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
-            write!(f, "{v}")
-        } else {
-            write!(f, "{v:e}")
+        let exact = Self::shortest(self.0);
+        if exact.len() <= NUMBER_CHARS {
+            return f.write_str(&exact);
         }
+        // Six significant digits, then the shortest form of that rounded value.
+        let rounded: f64 = format!("{:.5e}", self.0).parse().unwrap_or(self.0);
+        f.write_str(&Self::shortest(rounded))
     }
 }
 
@@ -357,12 +373,12 @@ mod tests {
     use super::Number;
 
     #[test]
-    fn numbers_in_messages_are_short_and_exact() {
+    fn numbers_in_messages_are_short_and_exact_when_typed_short() {
         assert_eq!(Number(1e300).to_string(), "1e300");
         assert_eq!(Number(-2.5e-7).to_string(), "-2.5e-7");
         assert_eq!(Number(0.04).to_string(), "0.04");
         assert_eq!(Number(20000000.0).to_string(), "20000000");
-        assert_eq!(Number(f64::MAX).to_string(), "1.7976931348623157e308");
+        assert_eq!(Number(f64::MAX).to_string(), "1.79769e308");
         assert_eq!(Number(f64::NAN).to_string(), "NaN");
         for v in [1e300, 3.3e-200, 0.1, 12345.678, 1e9, 9.99e8] {
             assert_eq!(Number(v).to_string().parse::<f64>().unwrap(), v);

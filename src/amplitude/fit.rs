@@ -5,16 +5,20 @@
 //! The residuals are (law - data) / sigma, sigma_i^2 = s_i^2 + tau^2 per series (stiffness,
 //! damping): s_i the standard error the data state, tau an extra standard deviation common to
 //! the series' levels, estimated by [`extra_sd`] (zero when the stated errors explain the
-//! scatter). The fit runs on the amplitude scaled by its largest value (the parameters then
-//! have sizes near one), from several starts; the parameters are then unscaled and their
-//! covariance is (J^T J)^-1 of the weighted Jacobian at the natural parameters
-//! ([`crate::optim::lstsq::inverse_gram`]).
+//! scatter). The fit runs on the amplitude divided by a reference amplitude, its largest value
+//! (the parameters then have sizes near one), from several starts. Everything computed from
+//! the fit is computed there too: chi^2, residuals, bands and the covariance (J^T J)^-1 of the
+//! weighted Jacobian ([`crate::optim::lstsq::inverse_gram`]). Only the reported parameters
+//! are mapped back to the natural amplitude, with their covariance by the map's Jacobian. The
+//! laws on the natural amplitude overflow when its unit changes (A^b of A = 1e145 m), while
+//! on the scaled amplitude the choice and the fit are the same in every unit, and the natural
+//! parameters change by the unit conversion only.
 //!
 //! Imports: [`super::laws`], [`crate::optim`].
 
 use faer::Mat;
 
-use super::laws::{Law, Regime};
+use super::laws::{Evaluation, Law, Regime};
 use crate::optim::{LevenbergMarquardt, Linearisation, Problem, lstsq};
 
 /// Iteration limit of one fit.
@@ -88,6 +92,12 @@ pub struct Fitted {
     pub parameters: Vec<f64>,
     /// Their covariance, when the data determine every one.
     pub covariance: Option<Vec<Vec<f64>>>,
+    /// The reference amplitude the law was fitted on (the largest amplitude, > 0).
+    pub reference: f64,
+    /// The parameters on the amplitude divided by `reference` ([`Fitted::evaluate`]).
+    pub scaled: Vec<f64>,
+    /// Their covariance, when the data determine every one.
+    pub scaled_covariance: Option<Vec<Vec<f64>>>,
     /// Weighted sum of squares of the stiffness residuals.
     pub chi2_stiffness: f64,
     /// Weighted sum of squares of the damping residuals.
@@ -101,9 +111,17 @@ impl Fitted {
     pub fn chi2(&self) -> f64 {
         self.chi2_stiffness + self.chi2_damping
     }
+
+    /// The law at the natural amplitude `a` > 0, evaluated on `a / reference` with the scaled
+    /// parameters; the gradients are in the scaled parameters (their covariance is
+    /// `scaled_covariance`).
+    pub fn evaluate(&self, a: f64) -> Evaluation {
+        self.law
+            .evaluate(self.regime, &self.scaled, a / self.reference)
+    }
 }
 
-/// The weighted problem on amplitudes `x` (scaled or natural).
+/// The weighted problem on amplitudes `x` (divided by the reference amplitude).
 struct Weighted<'a> {
     law: Law,
     regime: Regime,
@@ -161,23 +179,56 @@ impl Problem for Weighted<'_> {
     }
 }
 
-/// The natural parameters of parameters fitted on amplitudes divided by `scale`.
-fn unscale(law: Law, regime: Regime, p: &[f64], scale: f64) -> Vec<f64> {
+/// The natural parameters of parameters fitted on amplitudes divided by `scale`, and the
+/// Jacobian d natural / d scaled of the map.
+fn unscale(law: Law, regime: Regime, p: &[f64], scale: f64) -> (Vec<f64>, Vec<Vec<f64>>) {
     let mut q = p.to_vec();
+    let mut jac: Vec<Vec<f64>> = (0..p.len())
+        .map(|i| {
+            (0..p.len())
+                .map(|j| if i == j { 1.0 } else { 0.0 })
+                .collect()
+        })
+        .collect();
+    // A coefficient of (A / scale)^e: natural = scaled * scale^-e, d/d e = -natural ln(scale).
+    let mut power = |q: &mut Vec<f64>, coefficient: usize, exponent: usize, e: f64| {
+        let factor = scale.powf(-e);
+        q[coefficient] = p[coefficient] * factor;
+        jac[coefficient][coefficient] = factor;
+        jac[coefficient][exponent] = -q[coefficient] * scale.ln();
+    };
     match law {
         Law::Constant => {}
         Law::PowerLaw => {
-            q[1] = p[1] / scale.powf(p[2]);
-            q[4] = p[4] / scale.powf(p[5]);
+            power(&mut q, 1, 2, p[2]);
+            power(&mut q, 4, 5, p[5]);
         }
         Law::Iwan => {
-            q[2] = p[2] / scale.powf(p[1] + 1.0);
+            power(&mut q, 2, 1, p[1] + 1.0);
             if regime == Regime::Macroslip {
                 q[4] = p[4] * scale;
+                jac[4][4] = scale;
             }
         }
     }
-    q
+    (q, jac)
+}
+
+/// J C J^T.
+fn congruence(jac: &[Vec<f64>], c: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let n = jac.len();
+    (0..n)
+        .map(|a| {
+            (0..n)
+                .map(|b| {
+                    (0..n)
+                        .flat_map(|i| (0..n).map(move |j| (i, j)))
+                        .map(|(i, j)| jac[a][i] * c[i][j] * jac[b][j])
+                        .sum()
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// Fits `law` in `regime` to `data` with `weights` from each of `starts` (parameters for the
@@ -204,27 +255,23 @@ pub fn fit(
         .iter()
         .filter_map(|start| solver.minimise(&scaled, start.clone()).ok())
         .min_by(|a, b| a.cost.total_cmp(&b.cost))?;
-    let parameters = unscale(law, regime, &best.x, scale);
-    let natural = Weighted {
-        law,
-        regime,
-        x: data.amplitude.clone(),
-        data,
-        weights,
-    };
-    let (r, j) = natural.residuals(&parameters);
+    let (r, j) = scaled.residuals(&best.x);
     let n = data.len();
     let sum = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>();
-    let covariance = lstsq::inverse_gram(j.as_ref()).map(|c| {
+    let scaled_covariance: Option<Vec<Vec<f64>>> = lstsq::inverse_gram(j.as_ref()).map(|c| {
         (0..c.nrows())
             .map(|a| (0..c.ncols()).map(|b| c[(a, b)]).collect())
             .collect()
     });
+    let (parameters, jac) = unscale(law, regime, &best.x, scale);
     Some(Fitted {
         law,
         regime,
         parameters,
-        covariance,
+        covariance: scaled_covariance.as_ref().map(|c| congruence(&jac, c)),
+        reference: scale,
+        scaled: best.x,
+        scaled_covariance,
         chi2_stiffness: sum(&r[..n]),
         chi2_damping: sum(&r[n..]),
         converged: best.termination.converged(),
@@ -273,7 +320,7 @@ pub fn raw_residuals(fitted: &Fitted, data: &Series) -> (Vec<f64>, Vec<f64>) {
         .iter()
         .enumerate()
         .map(|(i, &a)| {
-            let e = fitted.law.evaluate(fitted.regime, &fitted.parameters, a);
+            let e = fitted.evaluate(a);
             (e.stiffness - data.stiffness[i], e.damping - data.damping[i])
         })
         .unzip()

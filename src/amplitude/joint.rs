@@ -183,10 +183,10 @@ pub fn level_errors(
     fit: &ModeFit,
 ) -> Result<Vec<LevelError>, AmplitudeError> {
     let law_value = |law: Law, a: f64| {
-        fit.laws.iter().find(|j| j.fitted.law == law).map(|j| {
-            law.evaluate(j.fitted.regime, &j.fitted.parameters, a)
-                .stiffness
-        })
+        fit.laws
+            .iter()
+            .find(|j| j.fitted.law == law)
+            .map(|j| j.fitted.evaluate(a).stiffness)
     };
     data.rows
         .iter()

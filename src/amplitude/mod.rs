@@ -163,8 +163,10 @@ pub fn fit_levels(levels: &Levels, joint: Option<&str>) -> Result<AmplitudeFit, 
 /// Segalman's F_S and beta: under macroslip with standard errors by the delta method (the
 /// conversion's gradient by central differences); under microslip, where phi_max is only
 /// bounded (above the largest amplitude, below where S = 0), their values at both bounds
-/// (`_at_phi_max_min`, `_at_phi_max_max`, no standard error).
-pub fn estimates(judged: &Judged, amplitudes: &[f64]) -> Vec<Estimate> {
+/// (`_at_phi_max_min`, `_at_phi_max_max`, no standard error). The Iwan quantities are
+/// computed on the scaled amplitude of the fit ([`fit::Fitted::evaluate`]): F_S and phi_max
+/// are then multiplied by the reference amplitude, beta is a ratio.
+pub fn estimates(judged: &Judged) -> Vec<Estimate> {
     let f = &judged.fitted;
     let names = f.law.parameters(f.regime);
     let std = |i: usize| {
@@ -181,77 +183,88 @@ pub fn estimates(judged: &Judged, amplitudes: &[f64]) -> Vec<Estimate> {
             std: std(i),
         })
         .collect();
-    if f.law != Law::Iwan {
-        return out;
-    }
-    let p = &f.parameters;
-    let at = |phi_max: f64| Iwan {
-        k_t: p[0],
-        chi: p[1],
-        r: p[2],
-        phi_max,
-    };
-    match f.regime {
-        Regime::Macroslip => {
-            let s = at(p[4]).segalman();
-            for (k, value) in [("F_S", s.f_s), ("beta", s.beta)] {
-                let pick = |q: &[f64]| {
-                    let m = Iwan {
-                        k_t: q[0],
-                        chi: q[1],
-                        r: q[2],
-                        phi_max: q[4],
-                    }
-                    .segalman();
-                    if k == "F_S" { m.f_s } else { m.beta }
-                };
-                let grad: Vec<f64> = (0..p.len())
-                    .map(|j| {
-                        let h = 1e-6 * p[j].abs().max(1e-300);
-                        let (mut up, mut down) = (p.clone(), p.clone());
-                        up[j] += h;
-                        down[j] -= h;
-                        (pick(&up) - pick(&down)) / (2.0 * h)
-                    })
-                    .collect();
-                let var = f.covariance.as_ref().map_or(f64::NAN, |c| {
-                    (0..p.len())
-                        .map(|a| {
-                            (0..p.len())
-                                .map(|b| grad[a] * c[a][b] * grad[b])
-                                .sum::<f64>()
-                        })
-                        .sum()
-                });
-                out.push(Estimate {
-                    name: k.to_string(),
-                    value,
-                    std: var.max(0.0).sqrt(),
-                });
-            }
+    if f.law == Law::Iwan {
+        match f.regime {
+            Regime::Macroslip => out.extend(segalman_estimates(f)),
+            Regime::Microslip => out.extend(microslip_bounds(f)),
         }
-        Regime::Microslip => {
-            let lo = amplitudes.iter().fold(0.0_f64, |m, &a| m.max(a));
-            let e = p[1] + 1.0;
-            let hi = if p[2] > 0.0 {
-                (p[0] * e / p[2]).powf(1.0 / e)
-            } else {
-                f64::INFINITY
+    }
+    out
+}
+
+/// The Iwan element of scaled parameters `q` with phi_max (scaled) `phi`.
+fn scaled_iwan(q: &[f64], phi: f64) -> Iwan {
+    Iwan {
+        k_t: q[0],
+        chi: q[1],
+        r: q[2],
+        phi_max: phi,
+    }
+}
+
+/// F_S and beta of a macroslip Iwan fit, with standard errors by the delta method.
+fn segalman_estimates(f: &fit::Fitted) -> Vec<Estimate> {
+    let p = &f.scaled;
+    let s = scaled_iwan(p, p[4]).segalman();
+    [("F_S", s.f_s, f.reference), ("beta", s.beta, 1.0)]
+        .into_iter()
+        .map(|(k, value, unit)| {
+            let pick = |q: &[f64]| {
+                let m = scaled_iwan(q, q[4]).segalman();
+                if k == "F_S" { m.f_s } else { m.beta }
             };
-            for (suffix, phi) in [("min", lo), ("max", hi)] {
-                let s = at(phi).segalman();
-                for (name, value) in [
-                    (format!("phi_max_{suffix}"), phi),
-                    (format!("F_S_at_phi_max_{suffix}"), s.f_s),
-                    (format!("beta_at_phi_max_{suffix}"), s.beta),
-                ] {
-                    out.push(Estimate {
-                        name,
-                        value,
-                        std: f64::NAN,
-                    });
-                }
+            let grad: Vec<f64> = (0..p.len())
+                .map(|j| {
+                    let h = 1e-6 * p[j].abs().max(1e-300);
+                    let (mut up, mut down) = (p.clone(), p.clone());
+                    up[j] += h;
+                    down[j] -= h;
+                    (pick(&up) - pick(&down)) / (2.0 * h)
+                })
+                .collect();
+            let var = f.scaled_covariance.as_ref().map_or(f64::NAN, |c| {
+                (0..p.len())
+                    .map(|a| {
+                        (0..p.len())
+                            .map(|b| grad[a] * c[a][b] * grad[b])
+                            .sum::<f64>()
+                    })
+                    .sum()
+            });
+            Estimate {
+                name: k.to_string(),
+                value: value * unit,
+                std: var.max(0.0).sqrt() * unit,
             }
+        })
+        .collect()
+}
+
+/// phi_max's bounds of a microslip Iwan fit (the largest amplitude, where S = 0), with F_S
+/// and beta at each.
+fn microslip_bounds(f: &fit::Fitted) -> Vec<Estimate> {
+    let p = &f.scaled;
+    // The scaled amplitudes reach 1 (the reference is the largest amplitude).
+    let lo = 1.0;
+    let e = p[1] + 1.0;
+    let hi = if p[2] > 0.0 {
+        (p[0] * e / p[2]).powf(1.0 / e)
+    } else {
+        f64::INFINITY
+    };
+    let mut out = Vec::new();
+    for (suffix, phi) in [("min", lo), ("max", hi)] {
+        let s = scaled_iwan(p, phi).segalman();
+        for (name, value) in [
+            (format!("phi_max_{suffix}"), phi * f.reference),
+            (format!("F_S_at_phi_max_{suffix}"), s.f_s * f.reference),
+            (format!("beta_at_phi_max_{suffix}"), s.beta),
+        ] {
+            out.push(Estimate {
+                name,
+                value,
+                std: f64::NAN,
+            });
         }
     }
     out

@@ -11,7 +11,12 @@
 //!    is kept).
 //! 3. The choice: the smallest AICc = chi^2 + 2k + 2k(k+1)/(n-k-1) (n = 2 x levels data, k
 //!    parameters; the small-sample form of Akaike's criterion, needed with a few levels); a
-//!    law needs n - k - 1 >= 1. BIC and the Akaike weights are reported beside it.
+//!    law needs n - k - 1 >= 1. BIC and the Akaike weights are reported beside it. Only an
+//!    eligible law is chosen ([`ineligible`]): its fit converged, the levels determine every
+//!    parameter (a curve of as many parameters as levels interpolates them and has no
+//!    standard errors), and its damping is physical (zeta_0 >= 0, zeta >= 0 at every level).
+//!    The Akaike weights are shared among the eligible laws; when none is, the smallest AICc
+//!    is chosen and every row says why it is not eligible.
 //! 4. The band: the delta method, se(y(A))^2 = g^T C g, g = dy/dtheta, on a grid of
 //!    amplitudes over the data's range.
 //!
@@ -36,10 +41,12 @@ pub struct Judged {
     pub aicc: f64,
     /// BIC = chi^2 + k ln n.
     pub bic: f64,
-    /// AICc minus the smallest AICc of the mode.
+    /// AICc minus the chosen law's (negative for an ineligible law of smaller AICc).
     pub delta_aicc: f64,
-    /// Akaike weight exp(-delta/2) / sum.
+    /// Akaike weight exp(-delta/2) / sum over the eligible laws (0 for the others).
     pub weight: f64,
+    /// Why the law may not be chosen, or None when it may ([`ineligible`]).
+    pub ineligible: Option<String>,
 }
 
 /// A band point: a law's stiffness and damping at one amplitude, with standard errors.
@@ -70,7 +77,7 @@ pub struct ModeFit {
     pub laws: Vec<Judged>,
     /// The laws not fitted, with why.
     pub skipped: Vec<(Law, String)>,
-    /// The chosen law (smallest AICc).
+    /// The chosen law (the smallest AICc of the eligible laws).
     pub selected: Law,
     /// The band of every fitted law, in the order of `laws`.
     pub bands: Vec<Vec<BandPoint>>,
@@ -122,16 +129,12 @@ fn starts(law: Law, data: &Series) -> Vec<Vec<f64>> {
 /// The Iwan law under macroslip from a microslip fit: phi_max started at each amplitude of
 /// the upper half (scaled).
 fn macroslip_starts(micro: &Fitted, data: &Series) -> Vec<Vec<f64>> {
-    let top = data.amplitude.iter().fold(0.0_f64, |m, &a| m.max(a));
-    let e = micro.parameters[1] + 1.0;
-    let mut x: Vec<f64> = data.amplitude.iter().map(|a| a / top).collect();
+    let mut x: Vec<f64> = data.amplitude.iter().map(|a| a / micro.reference).collect();
     x.sort_by(f64::total_cmp);
-    let mut p = micro.parameters.clone();
-    p[2] *= top.powf(e);
     x[x.len() / 2..]
         .iter()
         .map(|&phi| {
-            let mut s = p.clone();
+            let mut s = micro.scaled.clone();
             s.push(phi * 0.999);
             s
         })
@@ -200,8 +203,8 @@ fn band(f: &Fitted, data: &Series) -> Vec<BandPoint> {
     (0..BAND_POINTS)
         .map(|i| {
             let a = lo + (hi - lo) * i as f64 / (BAND_POINTS - 1) as f64;
-            let e = f.law.evaluate(f.regime, &f.parameters, a);
-            let se = |g: &[f64]| match &f.covariance {
+            let e = f.evaluate(a);
+            let se = |g: &[f64]| match &f.scaled_covariance {
                 Some(c) => (0..g.len())
                     .map(|p| (0..g.len()).map(|q| g[p] * c[p][q] * g[q]).sum::<f64>())
                     .sum::<f64>()
@@ -218,6 +221,75 @@ fn band(f: &Fitted, data: &Series) -> Vec<BandPoint> {
             }
         })
         .collect()
+}
+
+/// The parameters of the stiffness's own curve (the damping's own: 1, or the power law's 3).
+fn stiffness_parameters(law: Law, regime: Regime) -> usize {
+    match (law, regime) {
+        (Law::Constant, _) => 1,
+        (Law::PowerLaw, _) | (Law::Iwan, Regime::Microslip) => 3,
+        (Law::Iwan, Regime::Macroslip) => 4,
+    }
+}
+
+/// Why a fitted law may not be chosen (module docs, step 3), or None when it may.
+pub fn ineligible(f: &Fitted, data: &Series) -> Option<String> {
+    let levels = data.len();
+    let curve = stiffness_parameters(f.law, f.regime);
+    let damping = if f.law == Law::PowerLaw { 3 } else { 1 };
+    let zeta_0 = f
+        .law
+        .parameters(f.regime)
+        .iter()
+        .position(|&n| n == "zeta_0");
+    let determined = f
+        .scaled_covariance
+        .as_ref()
+        .is_some_and(|c| (0..c.len()).all(|i| c[i][i].is_finite() && c[i][i] >= 0.0));
+    if !f.converged {
+        Some("its fit did not converge".to_string())
+    } else if curve.max(damping) >= levels {
+        Some(format!(
+            "it interpolates the {levels} levels: {} parameters of one curve",
+            curve.max(damping)
+        ))
+    } else if !determined {
+        Some("the levels do not determine its parameters (no standard errors)".to_string())
+    } else if let Some(z) = zeta_0.map(|i| f.parameters[i]).filter(|&z| z < 0.0) {
+        Some(format!("zeta_0 = {z:.3e} < 0 is not physical"))
+    } else if data.amplitude.iter().any(|&a| f.evaluate(a).damping < 0.0) {
+        Some("its damping ratio is negative at a level".to_string())
+    } else {
+        None
+    }
+}
+
+/// The law of smallest AICc among the eligible ones (all of them when none is), with every
+/// law's delta AICc from it and the Akaike weights of the eligible laws.
+fn choose(laws: &mut [Judged]) -> Law {
+    let any = laws.iter().any(|j| j.ineligible.is_none());
+    let counts = |j: &Judged| !any || j.ineligible.is_none();
+    let Some(best) = laws
+        .iter()
+        .filter(|j| counts(j))
+        .min_by(|a, b| a.aicc.total_cmp(&b.aicc))
+        .map(|j| (j.aicc, j.fitted.law))
+    else {
+        return Law::Constant;
+    };
+    let weight = |j: &Judged| {
+        if counts(j) {
+            (-(j.aicc - best.0) / 2.0).exp()
+        } else {
+            0.0
+        }
+    };
+    let total: f64 = laws.iter().map(weight).sum();
+    for j in laws.iter_mut() {
+        j.delta_aicc = j.aicc - best.0;
+        j.weight = weight(j) / total;
+    }
+    best.1
 }
 
 /// Fits and judges every law on one mode's levels (module docs). At least two levels.
@@ -242,22 +314,14 @@ pub fn fit_mode(data: &Series) -> ModeFit {
         laws.push(Judged {
             aicc: aicc(fitted.chi2(), k, n),
             bic: fitted.chi2() + k as f64 * (n as f64).ln(),
-            fitted,
             k,
             delta_aicc: 0.0,
             weight: 0.0,
+            ineligible: ineligible(&fitted, data),
+            fitted,
         });
     }
-    let best = laws.iter().map(|j| j.aicc).fold(f64::INFINITY, f64::min);
-    let total: f64 = laws.iter().map(|j| (-(j.aicc - best) / 2.0).exp()).sum();
-    for j in &mut laws {
-        j.delta_aicc = j.aicc - best;
-        j.weight = (-j.delta_aicc / 2.0).exp() / total;
-    }
-    let selected = laws
-        .iter()
-        .find(|j| j.delta_aicc == 0.0)
-        .map_or(Law::Constant, |j| j.fitted.law);
+    let selected = choose(&mut laws);
     let bands = laws.iter().map(|j| band(&j.fitted, data)).collect();
     ModeFit {
         tau_stiffness,

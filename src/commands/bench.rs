@@ -109,8 +109,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             numpy.push(run_numpy(script, args.trials)?);
         }
     }
-    println!(
-        "paper cell: case I, n 10, m 5, NF 5, inverse, uniform 4%, modes 1-4; {} trials per run, median of {}",
+    // Written through the checked stdout at the end: a closed or full stdout is an error
+    // (exit 2), not a panic.
+    let mut text = format!(
+        "paper cell: case I, n 10, m 5, NF 5, inverse, uniform 4%, modes 1-4; {} trials per run, median of {}\n",
         args.trials, args.repeat
     );
     let mut single = 0.0;
@@ -119,11 +121,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         if *threads == 1 {
             single = rate;
         }
-        println!("jointid, {threads} thread(s): {rate:.3e} trial-modes/s");
+        text += &format!("jointid, {threads} thread(s): {rate:.3e} trial-modes/s\n");
     }
     if !numpy.is_empty() {
-        println!(
-            "numpy baseline (batched):  {:.3e} trial-modes/s",
+        text += &format!(
+            "numpy baseline (batched):  {:.3e} trial-modes/s\n",
             median(numpy)
         );
     }
@@ -133,15 +135,15 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         flops: limits[0].flops,
         flop_rate: median(limits.iter().map(|l| l.flop_rate).collect()),
     };
-    println!(
-        "kernel, 1 thread: {kernel_ns:.1} ns per trial-mode; limit {:.1} ns = draws alone {:.1} ns + {} flops at {:.3e} flop/s (measured peak of independent mul and add, same runs); {:.1}x the limit",
+    text += &format!(
+        "kernel, 1 thread: {kernel_ns:.1} ns per trial-mode; limit {:.1} ns = draws alone {:.1} ns + {} flops at {:.3e} flop/s (measured peak of independent mul and add, same runs); {:.1}x the limit\n",
         limit.ns(),
         limit.draws_ns,
         limit.flops,
         limit.flop_rate,
         kernel_ns / limit.ns()
     );
-    Ok(())
+    super::to_stdout(|w| w.write_all(text.as_bytes()))
 }
 
 fn run_numpy(script: &Path, trials: usize) -> anyhow::Result<f64> {

@@ -5,6 +5,7 @@ use anyhow::Context;
 use crate::cli::ReportArgs;
 use std::path::{Path, PathBuf};
 
+use jointid::output::atomic::stage_folder;
 use jointid::output::study_report::{Figure, index_html, study_figures};
 use jointid::output::{Staged, check_outputs, commit_all, stage};
 use jointid::report::StudyResults;
@@ -36,8 +37,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     })
 }
 
-/// The figures and the page, staged in `dir` (created if absent and registered, so that a
-/// failed or interrupted run removes it again), to be committed with the run's other outputs.
+/// The figures and the page, staged in `dir`, to be committed with the run's other outputs.
+/// An existing `dir` gets each file staged beside its target; an absent one is staged whole
+/// beside it and appears only on the commit ([`stage_folder`]), so that a failed or
+/// interrupted run never leaves it empty or half filled.
 pub fn stage_page(
     dir: &Path,
     figures: &[Figure],
@@ -52,12 +55,22 @@ pub fn stage_page(
         .collect();
     let refs: Vec<&Path> = paths.iter().map(|p| p.as_path()).collect();
     check_outputs(&refs, inputs)?;
-    jointid::output::atomic::create_folders(dir)
-        .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
-    let contents = figures
+    let contents: Vec<&[u8]> = figures
         .iter()
         .map(|f| f.svg.as_bytes())
-        .chain(std::iter::once(page.as_bytes()));
+        .chain(std::iter::once(page.as_bytes()))
+        .collect();
+    if !dir.exists() {
+        let names: Vec<&str> = figures
+            .iter()
+            .map(|f| f.name.as_str())
+            .chain(std::iter::once("index.html"))
+            .collect();
+        let files: Vec<(&str, &[u8])> = names.into_iter().zip(contents).collect();
+        let staged = stage_folder(dir, &files)
+            .with_context(|| format!("{}: cannot write the folder", dir.display()))?;
+        return Ok(vec![staged]);
+    }
     let mut staged = Vec::with_capacity(paths.len());
     for (path, bytes) in paths.iter().zip(contents) {
         staged.push(

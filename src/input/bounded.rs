@@ -113,11 +113,39 @@ fn too_large(limits: &Limits) -> io::Error {
     ))
 }
 
-/// The whole of `reader` within `limits`.
+/// The whole of `reader` within `limits`, its buffer never larger than `limits.bytes` and
+/// a read block: a stream of unknown size (a pipe, `/dev/zero`) costs at most the limit in
+/// memory, where `read_to_end`'s doubling would reserve twice that.
 pub fn read_all<R: Read>(reader: R, limits: Limits) -> io::Result<Vec<u8>> {
-    let mut bytes = Vec::new();
-    Bounded::new(reader, limits).read_to_end(&mut bytes)?;
-    Ok(bytes)
+    read_within(Bounded::new(reader, limits), Vec::new())
+}
+
+/// Reads `reader` to its end into `bytes`, growing the buffer by doubling but never past its
+/// byte limit and one block.
+fn read_within<R: Read>(mut reader: Bounded<R>, mut bytes: Vec<u8>) -> io::Result<Vec<u8>> {
+    const BLOCK: usize = 1 << 16;
+    let most = usize::try_from(reader.limits.bytes)
+        .unwrap_or(usize::MAX)
+        .saturating_add(BLOCK);
+    loop {
+        if bytes.len() == bytes.capacity() {
+            // Double, but not past the limit (a block at least, for the read that passes it).
+            let room = most.saturating_sub(bytes.capacity()).max(BLOCK);
+            bytes.reserve_exact(bytes.capacity().max(BLOCK).min(room));
+        }
+        let len = bytes.len();
+        let room = (bytes.capacity() - len).min(BLOCK);
+        bytes.resize(len + room, 0);
+        match reader.read(&mut bytes[len..]) {
+            Ok(0) => {
+                bytes.truncate(len);
+                return Ok(bytes);
+            }
+            Ok(n) => bytes.truncate(len + n),
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => bytes.truncate(len),
+            Err(e) => return Err(e),
+        }
+    }
 }
 
 /// The file at `path`, opened to be read within `limits`: a regular file whose size passes
@@ -134,11 +162,9 @@ pub fn open(path: &Path, limits: Limits) -> io::Result<Bounded<std::fs::File>> {
 /// The whole file at `path` within `limits` ([`open`]): its memory stays within the limit
 /// whatever the file holds.
 pub fn read_path(path: &Path, limits: Limits) -> io::Result<Vec<u8>> {
-    let mut reader = open(path, limits)?;
+    let reader = open(path, limits)?;
     let size = reader.inner.metadata()?.len();
-    let mut bytes = Vec::with_capacity(size as usize);
-    reader.read_to_end(&mut bytes)?;
-    Ok(bytes)
+    read_within(reader, Vec::with_capacity(size as usize))
 }
 
 impl<R: Read> Read for Bounded<R> {
@@ -189,6 +215,32 @@ mod tests {
         let mut out = Vec::new();
         Bounded::new(bytes, SMALL).read_to_end(&mut out)?;
         Ok(out)
+    }
+
+    #[test]
+    fn a_stream_of_unknown_size_costs_at_most_its_limit_in_memory() {
+        let limits = Limits {
+            line_bytes: usize::MAX,
+            lines: u64::MAX,
+            bytes: 3 << 20,
+            what: "a stream",
+        };
+        // Exactly the limit: read whole, in a buffer not above the limit and a block (where
+        // doubling from empty would reserve 4 MiB).
+        let stream = io::repeat(7).take(limits.bytes);
+        let bytes = read_all(stream, limits).unwrap();
+        assert_eq!(bytes.len() as u64, limits.bytes);
+        assert!(
+            bytes.capacity() as u64 <= limits.bytes + (1 << 16),
+            "{}",
+            bytes.capacity()
+        );
+        // An endless one (`/dev/zero`): refused once past the limit.
+        let err = read_all(io::repeat(0), limits).unwrap_err();
+        assert!(
+            err.to_string().contains("larger than 3145728 bytes"),
+            "{err}"
+        );
     }
 
     #[test]

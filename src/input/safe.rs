@@ -31,8 +31,9 @@ pub fn quoted(text: &str) -> String {
 }
 
 /// `message` with every span between backquotes shown as [`quoted`] shows a value: cut to
-/// [`QUOTE_CHARS`] characters, control characters escaped. The readers pass their line
-/// errors through it, so that no error echoes a huge field or line.
+/// [`QUOTE_CHARS`] characters, control characters escaped, and a number as
+/// [`super::Number`] shows it (a parser's echo of `1e308` has 309 digits). The readers pass
+/// their line errors through it, so that no error echoes a huge field or line.
 pub fn clip_quotes(message: String) -> String {
     if !message.contains('`') {
         return message;
@@ -41,8 +42,17 @@ pub fn clip_quotes(message: String) -> String {
         .split('`')
         .enumerate()
         .map(|(i, part)| {
+            // A long decimal (not an integer, which is echoed whole: a count or an index; not
+            // a short one, echoed as typed).
+            let decimal = part.contains(['.', 'e', 'E']) && part.len() > 12;
+            let number = part
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && decimal);
             // A span [`quoted`] already cut (`... (N bytes)`) is short enough to keep.
-            if i % 2 == 1 && part.chars().count() > QUOTE_CHARS + 40 {
+            if let (1, Some(v)) = (i % 2, number) {
+                super::Number(v).to_string()
+            } else if i % 2 == 1 && part.chars().count() > QUOTE_CHARS + 40 {
                 let q = quoted(part);
                 q[1..q.len() - 1].to_string()
             } else if i % 2 == 1 {

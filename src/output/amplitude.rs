@@ -159,7 +159,7 @@ fn laws(w: &mut dyn Write, views: &[View]) -> io::Result<()> {
     writeln!(
         w,
         "mode,law,regime,parameters,levels,chi2_stiffness,chi2_damping,tau_stiffness,\
-         tau_damping,weights_from,aicc,bic,delta_aicc,akaike_weight,converged,selected,note"
+         tau_damping,weights_from,aicc,bic,delta_aicc,akaike_weight,converged,eligible,selected,note"
     )?;
     for m in views {
         let f = m.fit;
@@ -168,7 +168,7 @@ fn laws(w: &mut dyn Write, views: &[View]) -> io::Result<()> {
             let l = &j.fitted;
             writeln!(
                 w,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 m.mode,
                 l.law.name(),
                 if l.law == crate::amplitude::Law::Iwan {
@@ -188,13 +188,17 @@ fn laws(w: &mut dyn Write, views: &[View]) -> io::Result<()> {
                 j.delta_aicc,
                 j.weight,
                 if l.converged { "yes" } else { "no" },
+                if j.ineligible.is_none() { "yes" } else { "no" },
                 if l.law == f.selected { "yes" } else { "no" },
+                j.ineligible
+                    .as_deref()
+                    .map_or(String::new(), |why| format!("not eligible: {why}")),
             )?;
         }
         for (law, why) in &f.skipped {
             writeln!(
                 w,
-                "{},{},,,{levels},,,,,,,,,,,no,not fitted: {why}",
+                "{},{},,,{levels},,,,,,,,,,,no,no,not fitted: {why}",
                 m.mode,
                 law.name()
             )?;
@@ -217,10 +221,9 @@ pub fn write_joint_parameters(w: &mut dyn Write, fit: &AmplitudeFit) -> io::Resu
 fn parameters(w: &mut dyn Write, views: &[View]) -> io::Result<()> {
     writeln!(w, "mode,law,selected,parameter,value,std")?;
     for m in views {
-        let amplitudes = &m.data.amplitude;
         for j in &m.fit.laws {
             let law = j.fitted.law;
-            for e in estimates(j, amplitudes) {
+            for e in estimates(j) {
                 writeln!(
                     w,
                     "{},{},{},{},{},{}",
@@ -484,12 +487,15 @@ fn laws_summary(m: &View, unit: &str) -> String {
     );
     for j in &f.laws {
         out += &format!(
-            "  {:<10} k = {}  chi2 = {:>9.3}  AICc = {:>9.3}  dAICc = {:>7.3}\n",
+            "  {:<10} k = {}  chi2 = {:>9.3}  AICc = {:>9.3}  dAICc = {:>7.3}{}\n",
             j.fitted.law.name(),
             j.k,
             j.fitted.chi2(),
             j.aicc,
-            j.delta_aicc
+            j.delta_aicc,
+            j.ineligible
+                .as_deref()
+                .map_or(String::new(), |why| format!("  not eligible: {why}"))
         );
     }
     for (law, why) in &f.skipped {

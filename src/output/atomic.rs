@@ -99,11 +99,18 @@ pub fn create_folders(dir: &Path) -> io::Result<()> {
         at = d.parent();
     }
     for d in missing.into_iter().rev() {
+        // Registered before it is created, under the lock that a signal's clean-up keeps: no
+        // moment exists when the folder is there and the clean-up does not know it.
         let mut guard = live();
+        guard.folders.push(d.clone());
         match std::fs::create_dir(&d) {
-            Ok(()) => guard.folders.push(d),
-            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && d.is_dir() => {}
-            Err(e) => return Err(e),
+            Ok(()) => {}
+            Err(e) => {
+                guard.folders.pop();
+                if !(e.kind() == io::ErrorKind::AlreadyExists && d.is_dir()) {
+                    return Err(e);
+                }
+            }
         }
     }
     if dir.as_os_str().is_empty() || dir.is_dir() {
@@ -147,11 +154,20 @@ pub fn create_staged_file(path: &Path) -> io::Result<std::fs::File> {
     std::fs::File::create_new(path)
 }
 
-/// A complete temporary file waiting to replace its target.
+/// A complete temporary file or folder waiting to replace its target.
 #[derive(Debug)]
 pub struct Staged {
-    tmp: Option<tempfile::NamedTempFile>,
+    tmp: Option<Temporary>,
     path: PathBuf,
+}
+
+/// What a [`Staged`] output holds until its commit.
+#[derive(Debug)]
+enum Temporary {
+    /// A file beside the target ([`stage`]).
+    File(tempfile::NamedTempFile),
+    /// A filled staging folder beside the target folder ([`stage_folder`]).
+    Folder(PathBuf),
 }
 
 impl Staged {
@@ -162,25 +178,68 @@ impl Staged {
 
     /// Renames the temporary over the target.
     pub fn commit(mut self) -> io::Result<()> {
-        refuse_non_regular(&self.path)?;
-        let tmp = self.tmp.take().expect("a staged file holds its temporary");
-        let tmp_path = tmp.path().to_path_buf();
-        // Under the registry's lock: a signal's clean-up never meets a half-renamed file.
-        let mut guard = live();
-        let result = tmp.persist(&self.path).map_err(|e| e.error);
-        guard.temporaries.retain(|t| t != &tmp_path);
-        result.map(|_| ())
+        match self
+            .tmp
+            .take()
+            .expect("a staged output holds its temporary")
+        {
+            Temporary::File(tmp) => {
+                refuse_non_regular(&self.path)?;
+                let tmp_path = tmp.path().to_path_buf();
+                // Under the registry's lock: a signal's clean-up never meets a half-renamed
+                // file.
+                let mut guard = live();
+                let result = tmp.persist(&self.path).map_err(|e| e.error);
+                guard.temporaries.retain(|t| t != &tmp_path);
+                result.map(|_| ())
+            }
+            Temporary::Folder(dir) => {
+                let result = commit_folder(&dir, &self.path);
+                if result.is_err() {
+                    let _ = std::fs::remove_dir_all(&dir);
+                    untrack(&dir);
+                }
+                result
+            }
+        }
     }
 }
 
 impl Drop for Staged {
     fn drop(&mut self) {
-        if let Some(tmp) = self.tmp.take() {
-            let path = tmp.path().to_path_buf();
-            drop(tmp);
-            live().temporaries.retain(|t| t != &path);
-        }
+        let path = match self.tmp.take() {
+            None => return,
+            Some(Temporary::File(tmp)) => {
+                let path = tmp.path().to_path_buf();
+                drop(tmp);
+                path
+            }
+            Some(Temporary::Folder(dir)) => {
+                let _ = std::fs::remove_dir_all(&dir);
+                dir
+            }
+        };
+        live().temporaries.retain(|t| t != &path);
     }
+}
+
+/// The folder `dir` (absent) with `files` (name, content) in it, staged whole: the files
+/// are written into a staging folder beside it ([`staging_folder`], its missing ancestors
+/// made by [`create_folders`]), renamed to `dir` on commit. Until then `dir` does not exist,
+/// so an interrupted or failed run never leaves it empty or half filled.
+pub fn stage_folder(dir: &Path, files: &[(&str, &[u8])]) -> io::Result<Staged> {
+    create_folders(folder_of(dir))?;
+    let tmp = staging_folder(dir)?;
+    let staged = Staged {
+        tmp: Some(Temporary::Folder(tmp.clone())),
+        path: dir.to_path_buf(),
+    };
+    for (name, bytes) in files {
+        let mut f = create_staged_file(&tmp.join(name))?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+    }
+    Ok(staged)
 }
 
 /// An existing target that is not a regular file (a directory, a device) is never replaced.
@@ -215,11 +274,13 @@ where
         tmp
     };
     let mut staged = Staged {
-        tmp: Some(tmp),
+        tmp: Some(Temporary::File(tmp)),
         path: path.to_path_buf(),
     };
-    let file = staged.tmp.as_mut().expect("just created").as_file_mut();
-    let mut w = BufWriter::new(file);
+    let Some(Temporary::File(tmp)) = staged.tmp.as_mut() else {
+        unreachable!("just created as a file")
+    };
+    let mut w = BufWriter::new(tmp.as_file_mut());
     fill(&mut w)?;
     let file = w.into_inner().map_err(|e| e.into_error())?;
     file.sync_all()?;
@@ -338,6 +399,41 @@ mod tests {
             .filter(|e| e.as_ref().unwrap().file_type().unwrap().is_symlink())
             .count();
         assert_eq!(links, 3, "the planted links are not the run's to remove");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_staged_folder_appears_whole_on_commit_and_never_empty() {
+        let _serial = serial();
+        let dir = scratch("folder");
+        let target = dir.join("plots/deep");
+        let files: [(&str, &[u8]); 2] = [("a.svg", b"a"), ("index.html", b"i")];
+        let staged = stage_folder(&target, &files).unwrap();
+        // Before the commit: the target does not exist, its staging folder is hidden.
+        assert!(!target.exists());
+        let inside: Vec<String> = std::fs::read_dir(dir.join("plots"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(
+            inside.len() == 1 && inside[0].starts_with(".deep."),
+            "{inside:?}"
+        );
+        staged.commit().unwrap();
+        assert_eq!(
+            std::fs::read_to_string(target.join("index.html")).unwrap(),
+            "i"
+        );
+        // An interrupted one: the clean-up removes the staging folder and the folder made
+        // for it.
+        let other = dir.join("more/deep");
+        std::mem::forget(stage_folder(&other, &files).unwrap());
+        remove_temporaries();
+        assert!(!dir.join("more").exists());
+        assert!(target.join("a.svg").exists());
+        // A dropped one leaves no staging folder.
+        drop(stage_folder(&dir.join("plots/other"), &files).unwrap());
+        assert_eq!(std::fs::read_dir(dir.join("plots")).unwrap().count(), 1);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -161,14 +161,9 @@ fn iwan_levels(p: Segalman, zeta_0: f64, amplitudes: &[f64], s_k: f64, s_z: f64)
     }
 }
 
-pub fn param(
-    fit: &jointid::amplitude::ModeFit,
-    law: Law,
-    name: &str,
-    amplitudes: &[f64],
-) -> (f64, f64) {
+pub fn param(fit: &jointid::amplitude::ModeFit, law: Law, name: &str) -> (f64, f64) {
     let j = fit.laws.iter().find(|j| j.fitted.law == law).unwrap();
-    let e = estimates(j, amplitudes);
+    let e = estimates(j);
     let e = e
         .iter()
         .find(|e| e.name == name)
@@ -191,12 +186,7 @@ fn noise_free_microslip_levels_give_back_the_iwan_parameters_and_choose_it() {
         ("R", m.r),
         ("zeta_0", 0.004),
     ] {
-        close(
-            param(&fit, Law::Iwan, name, &amplitudes).0,
-            truth,
-            1e-6,
-            name,
-        );
+        close(param(&fit, Law::Iwan, name).0, truth, 1e-6, name);
     }
 }
 
@@ -215,12 +205,7 @@ fn noise_free_levels_into_macroslip_give_back_all_four_segalman_parameters() {
         ("F_S", p.f_s),
         ("beta", p.beta),
     ] {
-        close(
-            param(&fit, Law::Iwan, name, &amplitudes).0,
-            truth,
-            1e-5,
-            name,
-        );
+        close(param(&fit, Law::Iwan, name).0, truth, 1e-5, name);
     }
 }
 
@@ -259,7 +244,7 @@ fn noisy_levels_give_back_the_iwan_parameters_within_three_standard_errors() {
         ("R", m.r),
         ("zeta_0", 0.004),
     ] {
-        let (v, se) = param(&fit, Law::Iwan, name, &amplitudes);
+        let (v, se) = param(&fit, Law::Iwan, name);
         assert!(se.is_finite() && se > 0.0, "{name}: se {se}");
         assert!(
             (v - truth).abs() <= 3.0 * se,
@@ -294,12 +279,7 @@ fn a_power_law_with_its_own_damping_exponent_is_recovered_and_chosen() {
         ("d", d),
         ("g", g),
     ] {
-        close(
-            param(&fit, Law::PowerLaw, name, &amplitudes).0,
-            truth,
-            1e-6,
-            name,
-        );
+        close(param(&fit, Law::PowerLaw, name).0, truth, 1e-6, name);
     }
 }
 
@@ -345,5 +325,129 @@ fn few_levels_fit_the_laws_they_can_and_say_why_not_the_others() {
                 .iter()
                 .all(|(_, why)| why.starts_with("needs at least"))
         );
+    }
+}
+
+/// The power of the amplitude's unit in a parameter's unit (R is per A^(chi+1), c per A^b, d
+/// per A^g; phi_max and F_S are amplitudes; the others are free of it).
+fn amplitude_power(name: &str, value_of: &dyn Fn(&str) -> f64) -> f64 {
+    match name {
+        "R" => -(value_of("chi") + 1.0),
+        "c" => -value_of("b"),
+        "d" => -value_of("g"),
+        n if n.starts_with("phi_max") || n.starts_with("F_S") => 1.0,
+        _ => 0.0,
+    }
+}
+
+#[test]
+fn a_change_of_the_amplitudes_unit_changes_the_parameters_by_the_conversion_only() {
+    let p = joint();
+    let m = Iwan::from_segalman(p);
+    // Into macroslip, with noise: every law fitted, every parameter with a standard error.
+    let amplitudes: Vec<f64> = (1..=10).map(|i| 0.25 * i as f64 * m.phi_max).collect();
+    let (s_k, s_z) = (20.0, 2e-5);
+    let mut base = iwan_levels(p, 0.004, &amplitudes, s_k, s_z);
+    let mut noise = Normal(0x0dd_5eed);
+    for (k, z) in base.stiffness.iter_mut().zip(base.damping.iter_mut()) {
+        *k += s_k * noise.next();
+        *z += s_z * noise.next();
+    }
+    let reference = fit_mode(&base);
+    for factor in [1e150, 1e-200] {
+        let mut data = base.clone();
+        data.amplitude.iter_mut().for_each(|a| *a *= factor);
+        let fit = fit_mode(&data);
+        assert_eq!(fit.selected, reference.selected, "factor {factor:e}");
+        for (j, r) in fit.laws.iter().zip(&reference.laws) {
+            let law = r.fitted.law;
+            assert_eq!(j.fitted.law, law);
+            assert_eq!(j.fitted.regime, r.fitted.regime, "{law:?}");
+            close(j.aicc, r.aicc, 1e-6, &format!("{law:?} AICc"));
+            let (got, want) = (estimates(j), estimates(r));
+            let value_of = |name: &str| want.iter().find(|e| e.name == name).unwrap().value;
+            for (g, w) in got.iter().zip(&want) {
+                let what = format!("{law:?} {} at factor {factor:e}", w.name);
+                assert!(g.value.is_finite(), "{what}: {}", g.value);
+                let unit = factor.powf(amplitude_power(&w.name, &value_of));
+                close(g.value, w.value * unit, 1e-6, &what);
+                if amplitude_power(&w.name, &value_of) == 0.0 && w.std.is_finite() {
+                    close(g.std, w.std, 1e-4, &format!("{what} std"));
+                }
+            }
+        }
+        for band in &fit.bands {
+            assert!(band.iter().all(|b| b.stiffness.is_finite()
+                && b.damping.is_finite()
+                && b.stiffness_se.is_finite()
+                && b.damping_se.is_finite()));
+        }
+    }
+}
+
+/// Iwan levels at `0.15 i phi_max` (i = 1..levels) with Gaussian noise of `seed`.
+fn noisy_levels(levels: usize, s_k: f64, s_z: f64, seed: u64) -> Series {
+    let p = joint();
+    let m = Iwan::from_segalman(p);
+    let amplitudes: Vec<f64> = (1..=levels).map(|i| 0.15 * i as f64 * m.phi_max).collect();
+    let mut data = iwan_levels(p, 0.004, &amplitudes, s_k, s_z);
+    let mut noise = Normal(seed);
+    for (k, z) in data.stiffness.iter_mut().zip(data.damping.iter_mut()) {
+        *k += s_k * noise.next();
+        *z += s_z * noise.next();
+    }
+    data
+}
+
+#[test]
+fn a_law_that_did_not_converge_is_not_physical_or_interpolates_is_not_chosen() {
+    // (levels, noise of stiffness and damping, seed, the laws of smaller AICc than the
+    // chosen one and why each may not be chosen). Found by a scan of seeds: on these levels
+    // the smallest AICc used to be chosen whatever its fit.
+    type Case = (usize, f64, f64, u64, &'static [(Law, &'static str)]);
+    let cases: [Case; 3] = [
+        (
+            3,
+            200.0,
+            1e-3,
+            8,
+            &[(Law::Iwan, "it interpolates the 3 levels")],
+        ),
+        (
+            4,
+            2000.0,
+            3e-3,
+            9,
+            &[
+                (Law::PowerLaw, "its fit did not converge"),
+                (Law::Iwan, "zeta_0 = -2.777e-3 < 0 is not physical"),
+            ],
+        ),
+        (
+            4,
+            2000.0,
+            3e-3,
+            13,
+            &[(Law::PowerLaw, "zeta_0 = -1.156e-4 < 0")],
+        ),
+    ];
+    for (levels, s_k, s_z, seed, better) in cases {
+        let fit = fit_mode(&noisy_levels(levels, s_k, s_z, seed));
+        let chosen = fit
+            .laws
+            .iter()
+            .find(|j| j.fitted.law == fit.selected)
+            .unwrap();
+        assert_eq!(chosen.ineligible, None, "seed {seed}");
+        assert_eq!(chosen.delta_aicc, 0.0);
+        for &(law, why) in better {
+            let j = fit.laws.iter().find(|j| j.fitted.law == law).unwrap();
+            assert!(j.delta_aicc < 0.0, "seed {seed} {law:?}: {}", j.delta_aicc);
+            assert_eq!(j.weight, 0.0);
+            let reason = j.ineligible.as_deref().unwrap_or("eligible");
+            assert!(reason.starts_with(why), "seed {seed} {law:?}: {reason}");
+        }
+        let total: f64 = fit.laws.iter().map(|j| j.weight).sum();
+        assert!((total - 1.0).abs() < 1e-12);
     }
 }

@@ -209,7 +209,7 @@ fn amplitude_dependence_of_unesp_bert() {
             constant.delta_aicc
         );
         assert_eq!(m.fit.selected, Law::Iwan, "mode {}", m.data.mode);
-        let (chi, se) = param(&m.fit, Law::Iwan, "chi", &d.amplitude);
+        let (chi, se) = param(&m.fit, Law::Iwan, "chi");
         assert!(
             chi > -1.0 && chi < 0.0 && se < 0.1,
             "mode {}: chi {chi} +- {se}",

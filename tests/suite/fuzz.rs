@@ -7,11 +7,13 @@
 //! strategies, independent of the code under test. `cargo test` runs a bounded number of
 //! cases (32 per property); for a long run: `PROPTEST_CASES=5000 cargo test --release --test suite fuzz::`.
 //! The security surfaces (cluster scripts, merge, external models, geometry) are in
-//! [`security`].
+//! [`security`]; the fourth round's (levels files, lap tables, standard-error columns, solid
+//! specimens) in [`surfaces`].
 
 use crate::common;
 
 mod security;
+mod surfaces;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -114,7 +114,7 @@ fn overlaps_longer_than_the_beams_shorter_than_the_mesh_resolves_or_not_positive
     for (length, message) in [
         (
             "0.9",
-            "joint[0].lap.length = 0.9 is invalid: the overlap is centred on the joint and reaches half its length into each beam: it must be at most twice the shorter of beam[0] (0.35 m) and beam[1] (0.35 m), 0.7 m",
+            "joint[0].lap.length = 0.9 is invalid: a centred overlap reaches half its length into each beam: at most twice the shorter of beam[0] (0.35 m) and beam[1] (0.35 m), 0.7 m",
         ),
         (
             "-0.1",

@@ -42,6 +42,7 @@ mod layered_lap;
 mod layered_lap_cli;
 mod matrices;
 mod merge_integrity;
+mod messages;
 mod numerics_refused;
 mod outputs_guarded;
 mod registry;

@@ -260,7 +260,7 @@ fn bad_inputs_are_refused_with_file_line_and_field() {
                 ("dofs.csv", "dof,label,x,y,z,direction\n1,m1,0,0,0,x\n2,m2,0,0,0,x\n".into()),
                 ("dK.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1\n2 2 1\n".into()),
             ],
-            "dofs.csv: dof 1 (`m1`) and dof 2 (`m2`) are both direction x at (0, 0, 0) m, and no entry of K or of a dK/dp couples them: coincident nodes that nothing ties are unmerged nodes (a crack in the mesh); merge them, tie them (a spring between them), or correct their positions",
+            "dofs.csv: dof 1 (`m1`) and dof 2 (`m2`), both x at (0, 0, 0) m, are coupled by no entry of K or dK/dp: unmerged nodes; merge or tie them",
         ),
         (
             "k-indefinite",

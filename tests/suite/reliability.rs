@@ -497,3 +497,10 @@ fn an_interrupted_study_leaves_no_temporary() {
         ["big.toml", "meas.csv", "model.toml", "one.toml"]
     );
 }
+
+/// `bench` with its stdout on /dev/full: its figures cannot be printed, an error (exit 2,
+/// the cause said), not a panic.
+#[test]
+fn a_bench_whose_stdout_is_full_exits_2_not_101() {
+    crate::common::stdout_refused(&["bench", "--trials", "10", "--repeat", "1"]);
+}

@@ -160,3 +160,34 @@ fn an_interrupted_export_or_study_leaves_no_staging_folder_and_no_empty_folder()
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_interrupted_report_leaves_its_folder_whole_or_absent() {
+    let dir = scratch("signals", "report");
+    let results = std::path::absolute("results/ci-bias.csv").unwrap();
+    let args = ["report", results.to_str().unwrap(), "--out", "plots/deep"];
+    common::jointid_ok(&[&args[..3], &[dir.join("whole").to_str().unwrap()]].concat());
+    let whole = entries(&dir.join("whole"));
+    std::fs::remove_dir_all(dir.join("whole")).unwrap();
+    // Delays spread over the whole run (tens of milliseconds), its figures' writing among them.
+    interrupt(
+        &dir,
+        &args,
+        "-TERM",
+        60,
+        Duration::from_millis(120),
+        &[],
+        |code, left| {
+            no_leftovers(code, left);
+            let written: Vec<String> = left
+                .iter()
+                .filter_map(|e| e.strip_prefix("plots/deep/").map(str::to_string))
+                .collect();
+            assert!(
+                left.is_empty() || written.len() == whole.len(),
+                "exit {code:?} left {left:?}"
+            );
+        },
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -421,31 +421,34 @@ fn computed_values_outside_a_doubles_range_are_refused_naming_their_field() {
     let cases = [
         (
             LAP.replacen("factor = 8.0", "factor = 1e308", 1),
-            "interface.bolt[0].factor = 1e308 is invalid: k_shear_x (stiffness per area x lap area) is inf N/m",
+            "interface.bolt[0].factor = 1e308 is invalid: 1e13 x the bolt factor 1e308 must be at most 2.625e19 N/m^3",
+            "1e6 E / t",
         ),
         (
             scaled.replacen("youngs_modulus = 2.1e11", "youngs_modulus = 1e308", 1),
-            "material.youngs_modulus = 1e308 is invalid: K (E x brick size 10 m) has inf at DOF",
+            "interface.normal = 1e13 is invalid: it must be at least 1e298 N/m^3",
+            "1e-9 E / t",
         ),
         (
             LAP.replacen("density = 7850.0", "density = 1e-320", 1),
             "material.density = 1e-320 is invalid: M (density x brick size 0.01 m, cubed) has 0 at DOF",
+            "outside a double's range",
         ),
         (
             LAP.replacen("normal = 1e13", "normal = 1e-305", 1),
-            "interface.normal = 1e-305 is invalid: k_normal (stiffness per area x lap area) is ",
+            "interface.normal = 1e-305 is invalid: it must be at least 21000 N/m^3",
+            "1e-9 E / t",
         ),
     ];
-    for (i, (text, needle)) in cases.into_iter().enumerate() {
+    // The interface's bounds relative to the bars (`MAX_INTERFACE_RATIO`,
+    // `MIN_INTERFACE_RATIO`) now refuse three of them where the specimen is read.
+    for (i, (text, needle, why)) in cases.into_iter().enumerate() {
         let config = dir.join(format!("lap{i}.toml"));
         std::fs::write(&config, text).unwrap();
         let target = dir.join(format!("model{i}"));
         let err = refused(
             &["solid", s(&config), "--out", s(&target)],
-            &[
-                &format!("lap{i}.toml: {needle}"),
-                "outside a double's range",
-            ],
+            &[&format!("lap{i}.toml: {needle}"), why],
         );
         assert!(err.len() < 200, "{err}");
         assert!(!target.exists(), "{needle}: nothing is written");
@@ -454,7 +457,12 @@ fn computed_values_outside_a_doubles_range_are_refused_naming_their_field() {
     let solid =
         Solid::generate(&SolidConfig::from_toml(&scaled, Path::new("lap.toml")).unwrap()).unwrap();
     assert!(solid.k.iter().all(|(_, _, v)| v.is_finite()));
-    let stiff = LAP.replacen("youngs_modulus = 2.1e11", "youngs_modulus = 1e306", 1);
+    let stiff = LAP
+        .replacen("youngs_modulus = 2.1e11", "youngs_modulus = 1e306", 1)
+        .replacen("normal = 1e13", "normal = 1e300", 1)
+        .replacen("shear_x = 2e12", "shear_x = 1e300", 1)
+        .replacen("shear_y = 3e12", "shear_y = 1e300", 1)
+        .replacen("factor = 8.0", "factor = 1.0", 1);
     let solid =
         Solid::generate(&SolidConfig::from_toml(&stiff, Path::new("lap.toml")).unwrap()).unwrap();
     let k_max = max_abs(solid.k.iter().map(|e| e.2));
@@ -481,7 +489,7 @@ fn bad_3d_models_are_refused_and_nothing_is_written() {
     assert!(dofs.contains("\n3,1:z,0,0,0,z\n") && dofs.contains("\n6,2:z,0,0,0.01,z\n"));
     let last = solid.mesh.nodes.len();
     let coincident = format!(
-        "and dof {} (`{last}:x`) are both direction x at (0, 0, 0) m, and no entry of K or of a dK/dp couples them",
+        "and dof {} (`{last}:x`), both x at (0, 0, 0) m, are coupled by no entry of K or dK/dp",
         3 * last - 2
     );
     let cases = [

@@ -254,6 +254,7 @@ impl RawChain {
             .map(|(i, m)| point_mass(m, i, &check, &position))
             .collect::<Result<Vec<_>, InputError>>()?;
         let sensors = sensors(&self.sensor, &check, &position)?;
+        masses_within_bound(&beams, &masses, &sensors, &check)?;
         sensors_on_motions(&sensors, &supports, length, &check)?;
         identified_within_limit(&joints, &supports, &masses, &check)?;
         let nodes_at = self
@@ -308,6 +309,54 @@ fn point_mass(
             .transpose()?,
         identify: m.identify,
     })
+}
+
+/// The largest point mass (a `[[mass]]`, a sensor's), relative to the beams' own mass; the
+/// largest rotary inertia likewise relative to the beams' mass times the chain's length
+/// squared. A shaker's armature or a clamp is tens of times a test beam's mass; a million
+/// times leaves the beams a rounding error of the mass matrix (issue 42: masses of 1e60 kg
+/// were accepted).
+pub const MAX_MASS_RATIO: f64 = 1e6;
+
+/// Refuses a point mass or rotary inertia beyond [`MAX_MASS_RATIO`] of the beams'.
+fn masses_within_bound(
+    beams: &[Beam],
+    masses: &[PointMass],
+    sensors: &[Sensor],
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    let own: f64 = beams.iter().map(|b| b.density * b.area * b.length).sum();
+    let length: f64 = beams.iter().map(|b| b.length).sum();
+    let (most, most_inertia) = (MAX_MASS_RATIO * own, MAX_MASS_RATIO * own * length * length);
+    let over = |path: String, value: f64, bound: f64, unit: &str| {
+        check.invalid(
+            path,
+            Number(value),
+            format!(
+                "it must be at most {} {unit}, a million times the beams' mass {} kg",
+                Number(bound),
+                Number(own)
+            ),
+        )
+    };
+    for (i, m) in masses.iter().enumerate() {
+        if m.mass > most {
+            return Err(over(format!("mass[{i}].mass"), m.mass, most, "kg"));
+        }
+        if m.rotary_inertia > most_inertia {
+            let path = format!("mass[{i}].rotary_inertia");
+            return Err(over(path, m.rotary_inertia, most_inertia, "kg m^2"));
+        }
+    }
+    match sensors.iter().position(|s| s.mass > most) {
+        Some(i) => Err(over(
+            format!("sensor[{i}].mass"),
+            sensors[i].mass,
+            most,
+            "kg",
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The `[[sensor]]` tables: direction, a unique label, position, mass.
@@ -434,9 +483,11 @@ fn beam(
             if count > MAX_ELEMENTS_PER_BEAM as f64 {
                 return Err(check.invalid(
                     "mesh.element_length",
-                    h,
+                    Number(h),
                     format!(
-                        "beam[{i}] ({length} m) would need {count} elements, above {MAX_ELEMENTS_PER_BEAM}"
+                        "beam[{i}] ({} m) would need {} elements, above {MAX_ELEMENTS_PER_BEAM}",
+                        Number(length),
+                        Number(count)
                     ),
                 ));
             }
@@ -939,6 +990,18 @@ k2 = 1.0e4
             (
                 "[[mass]]\nx = 0.1\nmass = -0.01\n",
                 "m.toml: mass[0].mass = -0.01 is invalid: it must be finite and > 0 (kg)",
+            ),
+            (
+                "[[mass]]\nx = 0.1\nmass = 1e60\n",
+                "m.toml: mass[0].mass = 1e60 is invalid: it must be at most 9420000 kg, a million times the beams' mass 9.42 kg",
+            ),
+            (
+                "[[sensor]]\nx = 0.1\nmass = 1e100\n",
+                "m.toml: sensor[0].mass = 1e100 is invalid: it must be at most 9420000 kg, a million times the beams' mass 9.42 kg",
+            ),
+            (
+                "[[mass]]\nx = 0.1\nmass = 1\nrotary_inertia = 1e70\n",
+                "m.toml: mass[0].rotary_inertia = 1e70 is invalid: it must be at most 2355000 kg m^2, a million times the beams' mass 9.42 kg",
             ),
             (
                 "[[sensor]]\nx = 0.1\ndof = \"u\"\n",

@@ -150,7 +150,7 @@ pub(crate) fn lap(
             p("length"),
             Number(length),
             format!(
-                "the overlap is centred on the joint and reaches half its length into each beam: it must be at most twice the shorter of beam[{j}] ({} m) and beam[{}] ({} m), {} m",
+                "a centred overlap reaches half its length into each beam: at most twice the shorter of beam[{j}] ({} m) and beam[{}] ({} m), {} m",
                 Number(left.length),
                 j + 1,
                 Number(right.length),

@@ -26,7 +26,7 @@ use std::path::Path;
 pub use config::{MatricesFile, ParameterFile};
 pub use export::{Export, ExportError, export};
 
-use crate::input::{InputError, parse_toml};
+use crate::input::{InputError, Number, parse_toml};
 use crate::model::matrix_market::MatrixMarketError;
 use crate::structure::Structure;
 use dof_table::DofTableError;
@@ -55,8 +55,8 @@ pub enum MatricesError {
     },
     /// Two DOFs at the same position and direction that nothing couples.
     #[error(
-        "dofs: {file}: dof {first} (`{first_label}`) and dof {second} (`{second_label}`) are both direction {direction} at ({}, {}, {}) m, and no entry of K or of a dK/dp couples them: coincident nodes that nothing ties are unmerged nodes (a crack in the mesh); merge them, tie them (a spring between them), or correct their positions",
-        position[0], position[1], position[2]
+        "dofs: {file}: dof {first} (`{first_label}`) and dof {second} (`{second_label}`), both {direction} at ({}, {}, {}) m, are coupled by no entry of K or dK/dp: unmerged nodes; merge or tie them",
+        Number(position[0]), Number(position[1]), Number(position[2])
     )]
     Coincident {
         /// The DOF table.

@@ -224,6 +224,74 @@ impl SolidConfig {
     }
 }
 
+/// The stiffest interface per area, bolt patches included, relative to the thinner bar's own
+/// stiffness per area through its thickness, E / t. An interface a million times stiffer than
+/// the bar is rigid to any test; beyond it the matrices lose the bars' stiffness to rounding
+/// and the model `solid` writes is refused by its own reader (extra rigid-body modes, a
+/// failed factorisation: issue 42, a normal stiffness of 1e308 or a modulus of 1e-300).
+pub const MAX_INTERFACE_RATIO: f64 = 1e6;
+
+/// The softest interface per area relative to the thicker bar's E / t: softer, the two bars
+/// part to rounding and the model has 12 rigid-body modes, not 6.
+pub const MIN_INTERFACE_RATIO: f64 = 1e-9;
+
+/// Refuses an interface stiffer than [`MAX_INTERFACE_RATIO`] times the bars, or softer than
+/// [`MIN_INTERFACE_RATIO`] times them.
+fn interface_within_bars(
+    interface: &Interface,
+    material: &Material,
+    bars: &[BarSize; 2],
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    let stiffest = (0..interface.bolts.len()).max_by(|&a, &b| {
+        interface.bolts[a]
+            .factor
+            .total_cmp(&interface.bolts[b].factor)
+    });
+    let factor = stiffest.map_or(1.0, |i| interface.bolts[i].factor.max(1.0));
+    let thinner = bars[0].thickness.min(bars[1].thickness);
+    let most = MAX_INTERFACE_RATIO * material.youngs_modulus / thinner;
+    let thicker = bars[0].thickness.max(bars[1].thickness);
+    let least = MIN_INTERFACE_RATIO * material.youngs_modulus / thicker;
+    for (field, value) in [
+        ("interface.normal", interface.normal),
+        ("interface.shear_x", interface.shear_x),
+        ("interface.shear_y", interface.shear_y),
+    ] {
+        let soft = value < least || value.is_nan();
+        if soft {
+            return Err(check.invalid(
+                field,
+                Number(value),
+                format!(
+                    "it must be at least {} N/m^3, 1e-9 E / t of the thicker bar",
+                    Number(least)
+                ),
+            ));
+        }
+        let within = value * factor <= most;
+        if within {
+            continue;
+        }
+        // The bolt's factor is named when the interface alone is within the bound.
+        let (field, shown) = match stiffest.filter(|_| value <= most) {
+            Some(i) => (format!("interface.bolt[{i}].factor"), factor),
+            None => (field.to_string(), value),
+        };
+        return Err(check.invalid(
+            field,
+            Number(shown),
+            format!(
+                "{} x the bolt factor {} must be at most {} N/m^3, 1e6 E / t of the thinner bar",
+                Number(value),
+                Number(factor),
+                Number(most)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl RawSolid {
     pub(crate) fn validate(self, file: &Path) -> Result<SolidConfig, InputError> {
         let check = FieldCheck { file };
@@ -260,6 +328,16 @@ impl RawSolid {
         for (i, (raw, bar)) in [lower, upper].into_iter().zip(&mut bars).enumerate() {
             bar.thickness = check.positive(format!("bar[{i}].thickness"), raw.thickness, "m")?;
             bar.length = check.positive(format!("bar[{i}].length"), raw.length, "m")?;
+            if bar.thickness > bar.length {
+                return Err(check.invalid(
+                    format!("bar[{i}].thickness"),
+                    Number(bar.thickness),
+                    format!(
+                        "a bar is at most as thick as long, {} m",
+                        Number(bar.length)
+                    ),
+                ));
+            }
             if bar.length < overlap {
                 return Err(check.invalid(
                     format!("bar[{i}].length"),
@@ -307,6 +385,7 @@ impl RawSolid {
                 )?,
             });
         }
+        interface_within_bars(&interface, &material, &bars, &check)?;
         let size = check.positive("mesh.size", self.mesh.size, "m")?;
         let layers =
             check.int_range("mesh.layers", self.mesh.layers.unwrap_or(2), 1, MAX_LAYERS)?;
@@ -444,9 +523,19 @@ pub(crate) mod tests {
                 "lap.toml: interface.normal = 0 is invalid: it must be finite and > 0 (N/m^3, stiffness per area of the lap)",
             ),
             (
+                "normal = 1e13",
+                "normal = 1e308",
+                "lap.toml: interface.normal = 1e308 is invalid: 1e308 x the bolt factor 1 must be at most 2.625e19 N/m^3, 1e6 E / t of the thinner bar",
+            ),
+            (
+                "youngs_modulus = 2.1e11",
+                "youngs_modulus = 1e-300",
+                "lap.toml: interface.normal = 1e13 is invalid: 1e13 x the bolt factor 1 must be at most 1.25e-292 N/m^3, 1e6 E / t of the thinner bar",
+            ),
+            (
                 "[mesh]",
                 "[[interface.bolt]]\nx = 0.01\ny = 0.01\nradius = 0.001\nfactor = 5\n[mesh]",
-                "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.07999999999999999 to 0.12 m",
+                "lap.toml: interface.bolt[0].x = 0.01 is invalid: the centre must lie on the lap: from 0.08 to 0.12 m",
             ),
             (
                 "[mesh]",
