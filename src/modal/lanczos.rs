@@ -279,7 +279,7 @@ pub fn lowest_modes(
                 converged: count - unconverged.len(),
                 requested: count,
                 restarts: restart,
-                stage: "backward error after refinement",
+                stage: "backward error",
                 unconverged,
                 tolerance: tol,
             });
@@ -289,7 +289,7 @@ pub fn lowest_modes(
                 converged,
                 requested: count,
                 restarts: restart,
-                stage: "shift-invert residual",
+                stage: "residual",
                 unconverged: (0..count)
                     .filter(|&j| shift_invert[j] > tol)
                     .map(|j| (j + 1, shift_invert[j]))

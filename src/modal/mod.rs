@@ -126,9 +126,8 @@ pub enum ModalError {
     /// the user to check the model's values and units (a caller of [`lanczos::lowest_modes`]
     /// with settings of its own may raise `max_restarts` or `basis_size` instead).
     #[error(
-        "the Lanczos eigensolver converged {converged} of {requested} pairs in {restarts} \
-         restarts ({stage} above {tolerance:e}: {}): the model is likely ill scaled; check its \
-         values and units",
+        "eigensolver: {converged} of {requested} pairs converged ({stage} > {tolerance:.0e}: {}); \
+         the model is likely ill scaled; check its values and units",
         listed(unconverged)
     )]
     NotConverged {
@@ -211,11 +210,11 @@ pub enum ModalError {
 fn listed(unconverged: &[(usize, f64)]) -> String {
     let mut text: Vec<String> = unconverged
         .iter()
-        .take(3)
+        .take(1)
         .map(|(j, r)| format!("pair {j} {r:.1e}"))
         .collect();
-    if unconverged.len() > 3 {
-        text.push(format!("{} more", unconverged.len() - 3));
+    if unconverged.len() > 1 {
+        text.push(format!("{} more", unconverged.len() - 1));
     }
     text.join(", ")
 }

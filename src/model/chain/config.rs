@@ -1109,3 +1109,34 @@ k2 = 1.0e4
         }
     }
 }
+
+#[cfg(test)]
+mod lap_height {
+    /// A fuzzing find: a lapped beam of area 1e-308 m^2 (height sqrt(12 I / A) ~ 2e151 m)
+    /// assembled matrices past double precision; it is refused where the layers are made.
+    #[test]
+    fn a_lapped_beam_higher_than_long_is_refused_naming_it() {
+        let beam = |area: &str| {
+            format!(
+                "[[beam]]\nlength = 0.3\nelements = 10\nyoungs_modulus = 2e11\ndensity = 7850\narea = {area}\nsecond_moment = 4.3e-9\n"
+            )
+        };
+        let text = |area: &str| {
+            format!(
+                "{}{}[[joint]]\nk1 = 1e9\nk2 = 1e5\n[joint.lap]\nlength = 0.1\n",
+                beam("3.2e-4"),
+                beam(area)
+            )
+        };
+        let file = std::path::Path::new("m.toml");
+        assert!(crate::model::chain_from_toml(&text("3.2e-4"), file).is_ok());
+        let e = crate::model::chain_from_toml(&text("1e-308"), file)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("beam[1]") && e.contains("no higher than it is long"),
+            "{e}"
+        );
+        assert!(e.len() < 200, "{e}");
+    }
+}

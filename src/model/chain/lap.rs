@@ -178,6 +178,22 @@ pub(crate) fn lap(
         ));
     }
     let sections = [left.section_at(left.length), right.section_at(0.0)];
+    // The layers are beams: a section higher than its beam is long (an area of 1e-308 m^2
+    // against its second moment) would put their centroids off the axis by more than any
+    // structure spans, and their matrices past double precision.
+    for (k, (beam, section)) in [left, right].iter().zip(&sections).enumerate() {
+        let h = notch::height(section);
+        if !(h.is_finite() && h <= beam.length) {
+            return Err(check.invalid(
+                format!("beam[{}]", j + k),
+                format!("height sqrt(12 I / A) = {} m", Number(h)),
+                format!(
+                    "a lapped beam is no higher than it is long ({} m): check area and second_moment",
+                    Number(beam.length)
+                ),
+            ));
+        }
+    }
     let layers = match (raw.layers.as_deref(), &raw.upper, &raw.lower) {
         (_, Some(u), Some(l)) if raw.layers.is_none() => [
             layer(u, sections[0], &p("upper"), check)?,
