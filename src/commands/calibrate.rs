@@ -68,7 +68,7 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
         fits,
         noise,
         pairing,
-        measured_std: !args.stated_noise,
+        measured_std: measured.has_std(),
         reference,
     };
     let calibrated = calibrate(&chain, &measured, &request).map_err(|e| match e {
