@@ -401,3 +401,49 @@ fn on_the_3d_monolithic_bar_a_timoshenko_model_finds_the_solids_e_and_an_euler_b
     let trend = &euler["trend"];
     assert!(trend["per_decade"].as_f64().unwrap() > 0.01, "{euler}");
 }
+
+#[test]
+fn one_beam_alone_calibrates_that_beam_and_only_it() {
+    let dir = scratch("calibrate", "alone");
+    std::fs::write(dir.join("model.toml"), model()).unwrap();
+    // Beam 2 (0.3 m) tested alone, free-free, sensors from its own start.
+    let alone = ExactChain {
+        spans: vec![span(0.3)],
+        joints: Vec::new(),
+    };
+    let xs: Vec<f64> = (0..=6).map(|i| 0.05 * i as f64).collect();
+    std::fs::write(
+        dir.join("beam2.csv"),
+        measured_csv(&alone, 3, &xs, NOISE, 51),
+    )
+    .unwrap();
+    let p = |name: &str| dir.join(name).display().to_string();
+    jointid_ok(&[
+        "calibrate",
+        "--model",
+        &p("model.toml"),
+        "--reference",
+        &p("beam2.csv"),
+        "--specimen",
+        "beam:2",
+        "--out",
+        &p("calibrated.toml"),
+        "--json",
+        &p("c.json"),
+        "--frequency-noise",
+        "5e-4",
+        "--shape-noise",
+        "0.01",
+    ]);
+    let c = json(&dir.join("c.json"));
+    let f = &c["factors"][0]["factor"];
+    let (value, se) = (f["value"].as_f64().unwrap(), f["se"].as_f64().unwrap());
+    assert!((value - TRUE_FACTOR).abs() <= 2.0 * se && se < 2e-3, "{c}");
+    assert_eq!(c["records"].as_array().unwrap().len(), 1, "{c}");
+    assert_eq!(c["records"][0]["beam"], 1, "{c}");
+    let text = std::fs::read_to_string(dir.join("calibrated.toml")).unwrap();
+    let first = text.find("[beam.calibrated]").unwrap();
+    // The record sits under the second [[beam]] only.
+    assert!(text[..first].matches("[[beam]]").count() == 2, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
