@@ -4,8 +4,10 @@ use std::f64::consts::PI;
 
 use faer::c64;
 
+use super::choice::{self, Decision, Reason, Rules};
+use super::excitation::{self, BandSource, EdgeNote};
 use super::lscf::{self, Lscf};
-use super::stabilization::{self, Chosen, Criteria, OrderPoles};
+use super::stabilization::{self, ChartPole, Criteria, OrderPoles};
 use super::uncertainty::{self, ModeStd, NoiseSource};
 use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
 
@@ -118,20 +120,19 @@ fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64>
         .collect()
 }
 
-/// The modes of the chosen chains with their final poles, residues and standard errors,
-/// ascending in frequency.
+/// The modes of the kept decisions (the first `poles.len()` of `kept`, ascending in frequency)
+/// with their final poles, residues and standard errors.
 fn modes_of(
-    chosen: &[Chosen],
+    kept: &[Decision],
     poles: &[c64],
     residues: &[Vec<c64>],
     std: Vec<ModeStd>,
 ) -> Vec<Mode> {
-    let mut modes: Vec<Mode> = chosen
-        .iter()
+    kept.iter()
         .zip(poles)
         .zip(residues)
         .zip(std)
-        .map(|(((c, &pole), residues), std)| {
+        .map(|(((d, &pole), residues), std)| {
             let real = shapes::real_mode(residues);
             Mode {
                 frequency_hz: frequency(pole),
@@ -142,14 +143,12 @@ fn modes_of(
                 real_shape: real.shape,
                 mpc: real.mpc,
                 mpd_deg: real.mpd_deg,
-                stable_orders: c.orders,
-                stable_count: c.stable_count,
+                stable_orders: d.stable_orders,
+                stable_count: d.stable_count,
                 std,
             }
         })
-        .collect();
-    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
-    modes
+        .collect()
 }
 
 /// The settings and the FRFs checked, and the analysis band, which must hold enough lines for
@@ -173,6 +172,15 @@ fn checked_band(frf: &FrfSet, settings: &Settings) -> Result<frf::Band, ExtractE
     Ok(band)
 }
 
+/// The rules of the automatic choice.
+fn rules_of(settings: &Settings) -> Rules {
+    Rules {
+        mpc_min: settings.mpc_min,
+        low_order_share: settings.low_order_share,
+        max_order: settings.max_order,
+    }
+}
+
 /// The thresholds of the chart and of the choice.
 fn criteria_of(settings: &Settings) -> Criteria {
     Criteria {
@@ -187,13 +195,86 @@ fn criteria_of(settings: &Settings) -> Criteria {
 }
 
 /// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
-/// called after each response of the reduction, each model order and at the end.
+/// called after each response of the reduction, each model order and at the end (a band
+/// extended for the modes' margins starts the count again).
 pub fn extract(
     frf: &FrfSet,
     settings: &Settings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Extraction, ExtractError> {
     let band = checked_band(frf, settings)?;
+    if band.source == BandSource::Given {
+        return extract_in(frf, settings, band, progress).map(|ex| with_edges(ex, settings, None));
+    }
+    let first = extract_in(frf, settings, band.clone(), progress)?;
+    let kept: Vec<(f64, f64)> = first
+        .modes
+        .iter()
+        .map(|m| (m.frequency_hz, m.damping_ratio))
+        .collect();
+    let data = data_band(frf);
+    let Some((lo, hi)) = excitation::extended(first.band_hz, &kept, settings.edge_margin, data)
+    else {
+        return Ok(with_edges(first, settings, None));
+    };
+    let wider = frf::band_of(frf, (lo, hi), band.source);
+    let from = Some(first.band_hz);
+    match extract_in(frf, settings, wider, progress) {
+        Ok(ex) => Ok(with_edges(ex, settings, from)),
+        Err(_) => Ok(with_edges(first, settings, None)),
+    }
+}
+
+/// The first and last lines above 0 Hz of the data (Hz).
+fn data_band(frf: &FrfSet) -> (f64, f64) {
+    let f = &frf.frequencies_hz;
+    let first = f.iter().copied().find(|&x| x > 0.0).unwrap_or(f[0]);
+    (first, f[f.len() - 1])
+}
+
+/// The extraction with every decision's margins to the band's edges and, for a kept mode
+/// short of `settings.edge_margin`, why the band does not give it more; `extended_from`: the
+/// automatic band before its extension.
+fn with_edges(
+    mut ex: Extraction,
+    settings: &Settings,
+    extended_from: Option<(f64, f64)>,
+) -> Extraction {
+    let (lo, hi) = ex.band_hz;
+    let data = (
+        ex.frequencies_hz[0],
+        ex.frequencies_hz[ex.frequencies_hz.len() - 1],
+    );
+    for d in &mut ex.decisions {
+        let bandwidth = 2.0 * d.damping_ratio * d.frequency_hz;
+        d.margins = (
+            (d.frequency_hz - lo) / bandwidth,
+            (hi - d.frequency_hz) / bandwidth,
+        );
+        let short = d.margins.0.min(d.margins.1) < settings.edge_margin;
+        d.edge = (short && d.mode.is_some()).then(|| match (ex.band_source, extended_from) {
+            (BandSource::Given, _) => EdgeNote::BandGiven,
+            (_, Some(_)) => EdgeNote::ExtendedOnce,
+            _ => EdgeNote::DataEnd {
+                edge_hz: if d.margins.0 < d.margins.1 {
+                    data.0
+                } else {
+                    data.1
+                },
+            },
+        });
+    }
+    ex.extended_from = extended_from;
+    ex
+}
+
+/// The extraction in `band` (see [`extract`]), without the edges' margins.
+fn extract_in(
+    frf: &FrfSet,
+    settings: &Settings,
+    band: frf::Band,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Extraction, ExtractError> {
     let max_order = settings.max_order;
     let f = &frf.frequencies_hz;
     let frequencies_hz: Vec<f64> = band.lines.iter().map(|&k| f[k]).collect();
@@ -235,54 +316,158 @@ pub fn extract(
     }
 
     let criteria = criteria_of(settings);
+    let rules = rules_of(settings);
     let mut chart = stabilization::classify(&orders, &criteria);
     let residue_refs: Vec<&[c64]> = orders
         .iter()
         .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
         .collect();
-    let chosen = stabilization::choose(&mut chart, &residue_refs, &criteria, settings.n_modes);
-    enough_modes(chosen.len(), settings, &criteria, (lo, hi))?;
-
-    let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
-    let (poles, refined) =
-        final_poles(&omega, &band, start, basis, &responses, &criteria, settings);
-    let ls = lsfd::least_squares(&omega, &band.weights, &poles, basis, &responses);
-    let fit = lsfd::unpack(&ls.x, poles.len(), basis, ls.rank);
-    let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
-    let fit_error = relative_errors(&responses, &synthesized);
-    let (noise, variances) = line_variances(
-        frf,
-        settings,
-        &band,
-        &responses,
-        &synthesized,
-        basis,
-        poles.len(),
+    let chains = stabilization::chains(&chart);
+    let weak_chains = chains
+        .iter()
+        .filter(|c| c.stable_count < criteria.min_stable)
+        .count();
+    let decisions = choice::choose(
+        &mut chart,
+        &chains,
+        &residue_refs,
+        &criteria,
+        &rules,
+        settings.n_modes,
     );
-    let std = uncertainty::standard_errors(&omega, &band.weights, &poles, basis, &ls, &variances);
-    let modes = modes_of(&chosen, &poles, &fit.residues, std);
+    let problem = Problem {
+        omega: &omega,
+        band: &band,
+        basis,
+        responses: &responses,
+        criteria: &criteria,
+        settings,
+    };
+    let fitted = fit_kept(&problem, &mut chart, decisions)?;
     let mean_coherence = frf.coherence.as_ref().map(|c| {
         c.iter()
             .map(|r| band.lines.iter().map(|&k| r[k]).sum::<f64>() / band.lines.len() as f64)
             .collect()
     });
+    let (noise, variances) = line_variances(
+        frf,
+        settings,
+        &band,
+        &responses,
+        &fitted.synthesized,
+        basis,
+        fitted.poles.len(),
+    );
+    let std = uncertainty::standard_errors(
+        &omega,
+        &band.weights,
+        &fitted.poles,
+        basis,
+        &fitted.ls,
+        &variances,
+    );
+    let mut modes = modes_of(&fitted.decisions, &fitted.poles, &fitted.fit.residues, std);
+    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    let decisions = choice::number_kept(&mut chart, fitted.decisions);
     progress(total, total);
     Ok(Extraction {
         modes,
         chart,
         criteria,
+        rules,
+        edge_margin: settings.edge_margin,
+        decisions,
+        weak_chains,
         max_order,
         band_hz: (lo, hi),
+        band_source: band.source,
+        extended_from: None,
         frequencies_hz,
         lines: band.lines,
-        synthesized,
-        fit_error,
-        lower_residual: fit.lower,
-        upper_residual: fit.upper,
+        fit_error: relative_errors(&responses, &fitted.synthesized),
+        synthesized: fitted.synthesized,
+        lower_residual: fitted.fit.lower,
+        upper_residual: fitted.fit.upper,
         mean_coherence,
-        refined,
+        refined: fitted.refined,
         noise,
     })
+}
+
+/// What the final fit works on.
+struct Problem<'a> {
+    omega: &'a [f64],
+    band: &'a frf::Band,
+    basis: lsfd::Basis,
+    responses: &'a [Vec<c64>],
+    criteria: &'a Criteria,
+    settings: &'a Settings,
+}
+
+/// The final fit of the kept modes: their poles, the least squares of the residues, the FRFs
+/// of the model, and the decisions with the kept ones first, in the order of the poles.
+struct Fitted {
+    poles: Vec<c64>,
+    refined: bool,
+    ls: crate::optim::lstsq::LeastSquares,
+    fit: lsfd::Fit,
+    synthesized: Vec<Vec<c64>>,
+    decisions: Vec<Decision>,
+}
+
+/// Fits the kept modes of `decisions` (see [`Fitted`]); in the automatic choice, rejects
+/// those whose MPC falls below `mpc_min` in the fit and fits again without them.
+fn fit_kept(
+    p: &Problem,
+    chart: &mut [ChartPole],
+    mut decisions: Vec<Decision>,
+) -> Result<Fitted, ExtractError> {
+    let (lo, hi) = (p.band.lo, p.band.hi);
+    loop {
+        let kept = decisions.iter().filter(|d| d.mode.is_some()).count();
+        enough_modes(kept, p.settings, p.criteria, (lo, hi))?;
+        let start: Vec<c64> = decisions[..kept]
+            .iter()
+            .map(|d| chart[d.pole].pole)
+            .collect();
+        let (poles, refined) = final_poles(
+            p.omega,
+            p.band,
+            start,
+            p.basis,
+            p.responses,
+            p.criteria,
+            p.settings,
+        );
+        let ls = lsfd::least_squares(p.omega, &p.band.weights, &poles, p.basis, p.responses);
+        let fit = lsfd::unpack(&ls.x, poles.len(), p.basis, ls.rank);
+        let mut complex = false;
+        for ((d, pole), residues) in decisions.iter_mut().zip(&poles).zip(&fit.residues) {
+            d.frequency_hz = frequency(*pole);
+            d.damping_ratio = -pole.re / pole.norm();
+            d.mpc = shapes::real_mode(residues).mpc;
+            if p.settings.n_modes.is_none() && d.mpc < p.settings.mpc_min {
+                d.rejected = Some(Reason::ComplexAfterFit {
+                    mpc: d.mpc,
+                    min: p.settings.mpc_min,
+                });
+                complex = true;
+            }
+        }
+        if complex {
+            decisions = choice::number_kept(chart, decisions);
+            continue;
+        }
+        let synthesized = lsfd::synthesize(p.omega, &poles, p.basis, &fit);
+        return Ok(Fitted {
+            poles,
+            refined,
+            ls,
+            fit,
+            synthesized,
+            decisions,
+        });
+    }
 }
 
 /// The poles the modes are given with: the chart's `start` refined when the settings ask for

@@ -32,7 +32,19 @@ fn assert_modes(
             )
         })
         .collect();
-    assert_eq!(ex.modes.len(), modes.len(), "found {table:#?}");
+    let rejected: Vec<String> = ex
+        .decisions
+        .iter()
+        .filter_map(|d| {
+            let why = d.rejected.as_ref()?;
+            Some(format!("{:.4} Hz: {why}", d.frequency_hz))
+        })
+        .collect();
+    assert_eq!(
+        ex.modes.len(),
+        modes.len(),
+        "found {table:#?}, rejected {rejected:#?}"
+    );
     for (m, &r) in ex.modes.iter().zip(modes) {
         let (f, z) = (sys.frequencies_hz[r], sys.damping[r]);
         let ef = (m.frequency_hz - f) / f;
