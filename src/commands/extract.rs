@@ -257,7 +257,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: cannot write", args.out.display()))?,
     ];
     if let Some(path) = &args.report {
-        let report = Report::of(&ex, args.modes.is_none());
+        let report = Report::of(&ex);
         staged.push(
             stage(path, |w| report.write(w))
                 .with_context(|| format!("{}: cannot write", path.display()))?,

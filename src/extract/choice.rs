@@ -73,6 +73,20 @@ pub enum Reason {
     NotRequested { rank: usize, requested: usize },
 }
 
+impl Reason {
+    /// A word or two for the chart's marks.
+    pub fn code(&self) -> &'static str {
+        match self {
+            Reason::Damped { .. } => "damped",
+            Reason::ShortRun { .. } => "short run",
+            Reason::LateStart { .. } => "high orders",
+            Reason::Complex { .. } | Reason::ComplexAfterFit { .. } => "MPC",
+            Reason::Duplicate { .. } => "duplicate",
+            Reason::NotRequested { .. } => "beyond --modes",
+        }
+    }
+}
+
 impl std::fmt::Display for Reason {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

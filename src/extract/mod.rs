@@ -239,6 +239,8 @@ pub struct Extraction {
     pub criteria: Criteria,
     /// The rules of the automatic choice.
     pub rules: Rules,
+    /// The number of modes requested; None: the automatic choice.
+    pub requested: Option<usize>,
     /// The least distance of a mode to the band's edges asked for (half-power bandwidths).
     pub edge_margin: f64,
     /// Every candidate (chain with `min_stable` or more stable poles): the kept ones first,

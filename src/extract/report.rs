@@ -54,9 +54,8 @@ pub struct Report<'a> {
 }
 
 impl<'a> Report<'a> {
-    /// The report of `ex`; `automatic`: whether the modes were chosen without a requested
-    /// number.
-    pub fn of(ex: &'a Extraction, automatic: bool) -> Self {
+    /// The report of `ex`.
+    pub fn of(ex: &'a Extraction) -> Self {
         let c = &ex.criteria;
         Report {
             version: VERSION,
@@ -72,7 +71,7 @@ impl<'a> Report<'a> {
                 max_damping: c.max_damping,
                 min_stable: c.min_stable,
                 max_order: ex.max_order,
-                automatic,
+                automatic: ex.requested.is_none(),
                 mpc_min: ex.rules.mpc_min,
                 low_order_share: ex.rules.low_order_share,
                 last_start: ex.rules.last_start(),

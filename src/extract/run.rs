@@ -375,6 +375,7 @@ fn extract_in(
         chart,
         criteria,
         rules,
+        requested: settings.n_modes,
         edge_margin: settings.edge_margin,
         decisions,
         weak_chains,

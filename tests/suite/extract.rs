@@ -9,7 +9,7 @@
 use crate::common::frf;
 
 use frf::{add_noise, frf_set, lines, mac, prescribed, receptance, shape_at};
-use jointid::extract::{Extraction, Quantity, Settings, extract};
+use jointid::extract::{BandSource, Extraction, Quantity, Settings, extract};
 
 /// Frequencies within `f_tol` (relative), damping within `z_tol` (relative), MAC of the real
 /// shapes against the true ones at the responses >= `mac_min`; one mode per true mode.
@@ -195,6 +195,44 @@ fn frfs_scaled_far_from_one_give_the_same_modes() {
                 a.mpc,
                 b.mpc
             );
+        }
+    }
+}
+
+/// The FRFs of bench/extract_vs_sdypy.py (the case of the first test above, drawn by the same
+/// generator: tests/common/frf.rs is its Rust twin, independent of the extractor), with no
+/// number of modes: the automatic choice keeps the five true modes of the bench's band
+/// 80-800 Hz and nothing else; with no band either, the band is the data's (no coherence: the
+/// level stands above the noise everywhere) and the modes are the six true modes below the
+/// last line (1000 Hz), and nothing else. Every rejected candidate says why.
+#[test]
+fn the_automatic_choice_keeps_the_true_modes_of_the_bench_case_and_nothing_else() {
+    let f = [40.0, 120.0, 210.0, 330.0, 480.0, 650.0, 1500.0];
+    let z = [0.01, 0.02, 0.005, 0.01, 0.03, 0.002, 0.01];
+    let sys = prescribed(&f, &z, 5);
+    let freqs = lines(0.25, 1000.0);
+    let responses: Vec<usize> = (0..7).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Velocity);
+    add_noise(&mut set, 0.02, 1e-4, 11);
+    for (band, modes) in [
+        (Some((80.0, 800.0)), vec![1, 2, 3, 4, 5]),
+        (None, vec![0, 1, 2, 3, 4, 5]),
+    ] {
+        let settings = Settings {
+            band_hz: band,
+            ..Settings::default()
+        };
+        let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+        assert_modes(&ex, &sys, &modes, &responses, 1e-3, 0.1, 0.999);
+        let kept: Vec<usize> = ex.decisions.iter().filter_map(|d| d.mode).collect();
+        assert_eq!(kept, (1..=modes.len()).collect::<Vec<_>>(), "{band:?}");
+        for d in &ex.decisions {
+            assert_eq!(d.mode.is_some(), d.rejected.is_none(), "{d:?}");
+        }
+        if band.is_none() {
+            assert_eq!(ex.band_source, BandSource::Level);
+            assert_eq!(ex.band_hz, (0.25, 1000.0));
         }
     }
 }
