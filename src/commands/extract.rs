@@ -37,8 +37,8 @@ fn band_origin(ex: &Extraction) -> String {
     }
 }
 
-/// Says the band and every mode found, why each candidate was kept or rejected, and notes
-/// the complex modes.
+/// Says the band and every mode found, why each candidate was kept or rejected (when the band
+/// or the modes were chosen automatically), and notes the complex modes.
 fn describe(ex: &Extraction, say: &dyn Fn(String)) {
     say(format!(
         "band {:.3}..{:.3} Hz{}, {} modes:",
@@ -74,7 +74,9 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
             m.stable_orders.1
         ));
     }
-    for d in &ex.decisions {
+    // With both the band and the number of modes given, the lines of the earlier versions only.
+    let automatic = ex.band_source != BandSource::Given || ex.requested.is_none();
+    for d in ex.decisions.iter().filter(|_| automatic) {
         let what = match (&d.rejected, d.mode) {
             (Some(why), _) => format!("  rejected {:.4} Hz: {why}", d.frequency_hz),
             (None, Some(r)) => format!("  kept mode {r}"),
