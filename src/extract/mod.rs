@@ -44,6 +44,7 @@ pub mod stabilization;
 pub mod uncertainty;
 pub mod universal;
 
+mod final_fit;
 mod run;
 
 use faer::c64;

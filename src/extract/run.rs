@@ -4,36 +4,16 @@ use std::f64::consts::PI;
 
 use faer::c64;
 
-use super::choice::{self, Decision, Reason, Rules};
+use super::choice::{self, Decision, Rules};
 use super::excitation::{self, BandSource, EdgeNote};
+use super::final_fit::{Problem, fit_kept};
 use super::lscf::{self, Lscf};
 use super::stabilization::{self, ChartPole, Criteria, OrderPoles};
 use super::uncertainty::{self, ModeStd, NoiseSource};
-use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
+use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, shapes};
 
 fn frequency(s: c64) -> f64 {
     s.norm() / (2.0 * PI)
-}
-
-/// Whether refined poles can replace the chart's: each stays stable, in the band, below the
-/// damping bound and within the frequency tolerance of its start (in |delta s| / |s|), and no
-/// two merge.
-fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Criteria) -> bool {
-    let each = refined.iter().zip(start).all(|(r, s)| {
-        let f = frequency(*r);
-        r.re < 0.0
-            && r.im > 0.0
-            && f >= band.0
-            && f <= band.1
-            && -r.re / r.norm() < criteria.max_damping
-            && (r - s).norm() < criteria.frequency_tolerance * s.norm()
-    });
-    let distinct = refined.iter().enumerate().all(|(i, a)| {
-        refined[i + 1..]
-            .iter()
-            .all(|b| (a - b).norm() > 1e-9 * a.norm())
-    });
-    each && distinct
 }
 
 /// The RMS of `h`; computed relative to its largest magnitude when the plain sum of squares
@@ -76,35 +56,6 @@ fn band_poles(lscf: &Lscf, order: usize, (lo, hi): (f64, f64)) -> Vec<c64> {
         .collect();
     poles.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
     poles
-}
-
-/// Whether `found` chains are enough: at least one, and the modes `settings` asks for.
-fn enough_modes(
-    found: usize,
-    settings: &Settings,
-    criteria: &Criteria,
-    (lo, hi): (f64, f64),
-) -> Result<(), ExtractError> {
-    if found == 0 {
-        return Err(ExtractError::NoModes {
-            lo,
-            hi,
-            min_stable: criteria.min_stable,
-            max_order: settings.max_order,
-        });
-    }
-    if let Some(requested) = settings.n_modes
-        && found < requested
-    {
-        return Err(ExtractError::TooFewModes {
-            requested,
-            found,
-            min_stable: criteria.min_stable,
-            lo,
-            hi,
-        });
-    }
-    Ok(())
 }
 
 /// ||H - H_model|| / ||H|| of every response over the band.
@@ -204,7 +155,8 @@ pub fn extract(
 ) -> Result<Extraction, ExtractError> {
     let band = checked_band(frf, settings)?;
     if band.source == BandSource::Given {
-        return extract_in(frf, settings, band, progress).map(|ex| with_edges(ex, settings, None));
+        return extract_in(frf, settings, band, progress)
+            .map(|ex| with_edges(ex, settings, data_band(frf), None));
     }
     let first = extract_in(frf, settings, band.clone(), progress)?;
     let kept: Vec<(f64, f64)> = first
@@ -215,13 +167,13 @@ pub fn extract(
     let data = data_band(frf);
     let Some((lo, hi)) = excitation::extended(first.band_hz, &kept, settings.edge_margin, data)
     else {
-        return Ok(with_edges(first, settings, None));
+        return Ok(with_edges(first, settings, data, None));
     };
     let wider = frf::band_of(frf, (lo, hi), band.source);
     let from = Some(first.band_hz);
     match extract_in(frf, settings, wider, progress) {
-        Ok(ex) => Ok(with_edges(ex, settings, from)),
-        Err(_) => Ok(with_edges(first, settings, None)),
+        Ok(ex) => Ok(with_edges(ex, settings, data, from)),
+        Err(_) => Ok(with_edges(first, settings, data, None)),
     }
 }
 
@@ -233,18 +185,15 @@ fn data_band(frf: &FrfSet) -> (f64, f64) {
 }
 
 /// The extraction with every decision's margins to the band's edges and, for a kept mode
-/// short of `settings.edge_margin`, why the band does not give it more; `extended_from`: the
-/// automatic band before its extension.
+/// short of `settings.edge_margin`, why the band does not give it more; `data`: the first and
+/// last lines above 0 Hz; `extended_from`: the automatic band before its extension.
 fn with_edges(
     mut ex: Extraction,
     settings: &Settings,
+    data: (f64, f64),
     extended_from: Option<(f64, f64)>,
 ) -> Extraction {
     let (lo, hi) = ex.band_hz;
-    let data = (
-        ex.frequencies_hz[0],
-        ex.frequencies_hz[ex.frequencies_hz.len() - 1],
-    );
     for d in &mut ex.decisions {
         let bandwidth = 2.0 * d.damping_ratio * d.frequency_hz;
         d.margins = (
@@ -266,6 +215,38 @@ fn with_edges(
     }
     ex.extended_from = extended_from;
     ex
+}
+
+/// The stabilisation chart of `orders` and the choice made on it.
+struct Charted {
+    chart: Vec<ChartPole>,
+    decisions: Vec<Decision>,
+    weak_chains: usize,
+}
+
+/// Classifies the poles of `orders`, gathers their chains and chooses the modes among them.
+fn charted(
+    orders: &[OrderPoles],
+    criteria: &Criteria,
+    rules: &Rules,
+    n_modes: Option<usize>,
+) -> Charted {
+    let mut chart = stabilization::classify(orders, criteria);
+    let residues: Vec<&[c64]> = orders
+        .iter()
+        .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
+        .collect();
+    let chains = stabilization::chains(&chart);
+    let weak_chains = chains
+        .iter()
+        .filter(|c| c.stable_count < criteria.min_stable)
+        .count();
+    let decisions = choice::choose(&mut chart, &chains, &residues, criteria, rules, n_modes);
+    Charted {
+        chart,
+        decisions,
+        weak_chains,
+    }
 }
 
 /// The extraction in `band` (see [`extract`]), without the edges' margins.
@@ -317,24 +298,11 @@ fn extract_in(
 
     let criteria = criteria_of(settings);
     let rules = rules_of(settings);
-    let mut chart = stabilization::classify(&orders, &criteria);
-    let residue_refs: Vec<&[c64]> = orders
-        .iter()
-        .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
-        .collect();
-    let chains = stabilization::chains(&chart);
-    let weak_chains = chains
-        .iter()
-        .filter(|c| c.stable_count < criteria.min_stable)
-        .count();
-    let decisions = choice::choose(
-        &mut chart,
-        &chains,
-        &residue_refs,
-        &criteria,
-        &rules,
-        settings.n_modes,
-    );
+    let Charted {
+        mut chart,
+        decisions,
+        weak_chains,
+    } = charted(&orders, &criteria, &rules, settings.n_modes);
     let problem = Problem {
         omega: &omega,
         band: &band,
@@ -393,104 +361,6 @@ fn extract_in(
         refined: fitted.refined,
         noise,
     })
-}
-
-/// What the final fit works on.
-struct Problem<'a> {
-    omega: &'a [f64],
-    band: &'a frf::Band,
-    basis: lsfd::Basis,
-    responses: &'a [Vec<c64>],
-    criteria: &'a Criteria,
-    settings: &'a Settings,
-}
-
-/// The final fit of the kept modes: their poles, the least squares of the residues, the FRFs
-/// of the model, and the decisions with the kept ones first, in the order of the poles.
-struct Fitted {
-    poles: Vec<c64>,
-    refined: bool,
-    ls: crate::optim::lstsq::LeastSquares,
-    fit: lsfd::Fit,
-    synthesized: Vec<Vec<c64>>,
-    decisions: Vec<Decision>,
-}
-
-/// Fits the kept modes of `decisions` (see [`Fitted`]); in the automatic choice, rejects
-/// those whose MPC falls below `mpc_min` in the fit and fits again without them.
-fn fit_kept(
-    p: &Problem,
-    chart: &mut [ChartPole],
-    mut decisions: Vec<Decision>,
-) -> Result<Fitted, ExtractError> {
-    let (lo, hi) = (p.band.lo, p.band.hi);
-    loop {
-        let kept = decisions.iter().filter(|d| d.mode.is_some()).count();
-        enough_modes(kept, p.settings, p.criteria, (lo, hi))?;
-        let start: Vec<c64> = decisions[..kept]
-            .iter()
-            .map(|d| chart[d.pole].pole)
-            .collect();
-        let (poles, refined) = final_poles(
-            p.omega,
-            p.band,
-            start,
-            p.basis,
-            p.responses,
-            p.criteria,
-            p.settings,
-        );
-        let ls = lsfd::least_squares(p.omega, &p.band.weights, &poles, p.basis, p.responses);
-        let fit = lsfd::unpack(&ls.x, poles.len(), p.basis, ls.rank);
-        let mut complex = false;
-        for ((d, pole), residues) in decisions.iter_mut().zip(&poles).zip(&fit.residues) {
-            d.frequency_hz = frequency(*pole);
-            d.damping_ratio = -pole.re / pole.norm();
-            d.mpc = shapes::real_mode(residues).mpc;
-            if p.settings.n_modes.is_none() && d.mpc < p.settings.mpc_min {
-                d.rejected = Some(Reason::ComplexAfterFit {
-                    mpc: d.mpc,
-                    min: p.settings.mpc_min,
-                });
-                complex = true;
-            }
-        }
-        if complex {
-            decisions = choice::number_kept(chart, decisions);
-            continue;
-        }
-        let synthesized = lsfd::synthesize(p.omega, &poles, p.basis, &fit);
-        return Ok(Fitted {
-            poles,
-            refined,
-            ls,
-            fit,
-            synthesized,
-            decisions,
-        });
-    }
-}
-
-/// The poles the modes are given with: the chart's `start` refined when the settings ask for
-/// it and the refined poles are [`acceptable`], else `start`; and whether they were refined.
-fn final_poles(
-    omega: &[f64],
-    band: &frf::Band,
-    start: Vec<c64>,
-    basis: lsfd::Basis,
-    responses: &[Vec<c64>],
-    criteria: &Criteria,
-    settings: &Settings,
-) -> (Vec<c64>, bool) {
-    if !settings.refine {
-        return (start, false);
-    }
-    let r = refine::refine(omega, &band.weights, &start, basis, responses);
-    if acceptable(&r.poles, &start, (band.lo, band.hi), criteria) {
-        (r.poles, true)
-    } else {
-        (start, false)
-    }
 }
 
 /// The noise of every line of the band (see [`uncertainty`]): from the coherence when the

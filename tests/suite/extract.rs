@@ -236,3 +236,37 @@ fn the_automatic_choice_keeps_the_true_modes_of_the_bench_case_and_nothing_else(
         }
     }
 }
+
+/// A mode near where the excitation stops: the coherence is 0.99 below 150 Hz and 0.05 above,
+/// and the mode at 146 Hz (1% damping, half-power bandwidth 2.92 Hz) would sit 1.4 bandwidths
+/// from the edge of the excited band. The band is moved out to 10 bandwidths above it, and
+/// the mode keeps its margin of 5 there; the band before the move is reported.
+#[test]
+fn a_mode_at_the_edge_of_the_excited_band_moves_the_edge_out() {
+    let f = [60.0, 146.0, 260.0];
+    let z = [0.01, 0.01, 0.01];
+    let sys = prescribed(&f, &z, 3);
+    let freqs = lines(0.25, 300.0);
+    let responses: Vec<usize> = (0..3).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Displacement);
+    let coherence: Vec<f64> = freqs
+        .iter()
+        .map(|&x| if x < 150.0 { 0.99 } else { 0.05 })
+        .collect();
+    set.coherence = Some(vec![coherence; 3]);
+    let settings = Settings {
+        max_order: 24,
+        ..Settings::default()
+    };
+    let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    let (lo, hi) = ex.extended_from.expect("the band was extended");
+    assert!(lo <= 1.0 && (148.0..150.0).contains(&hi), "{lo} {hi}");
+    let top = 146.0 * (1.0 + 2.0 * 5.0 * 2.0 * 0.01);
+    assert!((ex.band_hz.1 - top).abs() < 0.1, "{:?}", ex.band_hz);
+    assert_eq!(ex.modes.len(), 2);
+    let d = &ex.decisions[1];
+    assert_eq!(d.mode, Some(2));
+    assert!((d.frequency_hz - 146.0).abs() < 0.01, "{d:?}");
+    assert!(d.margins.1 >= 5.0 && d.edge.is_none(), "{d:?}");
+}
