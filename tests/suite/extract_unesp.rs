@@ -1,7 +1,8 @@
 //! `jointid::extract` on the real FRFs of UNESP-BERT (bolted cantilever, six excitation
 //! levels), read through `jointid::uff` and `extract::universal` as `jointid extract` reads
 //! them, with the settings of scripts/unesp-bert.sh (band 10-110 Hz, two modes, model orders up to
-//! 30; up to 60 gives the same modes to 5 digits).
+//! 30; up to 60 gives the same modes to 5 digits), and with none (the automatic band and
+//! choice, against those settings' modes).
 //!
 //! The reference values are not computed here: 18.80 and 98.38 Hz at 0.05 V and the softening
 //! with level come from the data set's README (its authors' peak readings); the test checks
@@ -153,4 +154,43 @@ fn unesp_bert_automatic_extraction_finds_the_two_modes_at_every_level() {
             assert!(d.run.0 <= auto.rules.last_start(), "{level}: {d:?}");
         }
     }
+}
+
+/// With the band and the number of modes given (scripts/unesp-bert.sh's command), `jointid
+/// extract` writes the modes committed in results/unesp-bert/ byte for byte: the automatic
+/// band and choice leave explicit settings as they were.
+#[test]
+#[ignore = "needs ../shared/data/unesp-bert (outside the project): .ci/run runs it where present"]
+fn unesp_bert_explicit_band_and_modes_give_the_committed_modes() {
+    let Some(dir) = common::unesp_dir() else {
+        return;
+    };
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scratch = common::scratch("extract", "explicit");
+    for level in LEVELS {
+        let out = scratch.join(format!("modes_{level}V.csv"));
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_jointid"))
+            .args(["extract", "--quiet", "--frf"])
+            .arg(dir.join(format!("frf_{level}V.uff")))
+            .arg("--geometry")
+            .arg(dir.join("geometry.uff"))
+            .args(["--band", "10:110", "--modes", "2", "--max-order", "30"])
+            .args(["--averages", "54", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let committed = root.join(format!("results/unesp-bert/modes_{level}V.csv"));
+        assert!(
+            std::fs::read(&out).unwrap() == std::fs::read(&committed).unwrap(),
+            "{} differs from {}",
+            out.display(),
+            committed.display()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
 }
