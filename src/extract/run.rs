@@ -201,7 +201,7 @@ fn with_edges(
             (hi - d.frequency_hz) / bandwidth,
         );
         let short = d.margins.0.min(d.margins.1) < settings.edge_margin;
-        d.edge = (short && d.mode.is_some()).then(|| match (ex.band_source, extended_from) {
+        let note = match (ex.band_source, extended_from) {
             (BandSource::Given, _) => EdgeNote::BandGiven,
             (_, Some(_)) => EdgeNote::ExtendedOnce,
             _ => EdgeNote::DataEnd {
@@ -211,7 +211,8 @@ fn with_edges(
                     data.1
                 },
             },
-        });
+        };
+        d.edge = (short && d.mode.is_some()).then_some(note);
     }
     ex.extended_from = extended_from;
     ex
