@@ -279,3 +279,108 @@ fn duplicate_of(
         })
         .map(|k| chart[k.pole].frequency_hz)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pole(frequency_hz: f64) -> ChartPole {
+        let w = 2.0 * std::f64::consts::PI * frequency_hz;
+        ChartPole {
+            order: 1,
+            pole: c64::new(-0.01 * w, w),
+            frequency_hz,
+            damping_ratio: 0.01,
+            stable_frequency: true,
+            stable_damping: true,
+            stable_shape: true,
+            chain: 0,
+            selected: false,
+        }
+    }
+
+    fn chain(pole: usize, orders: std::ops::RangeInclusive<usize>) -> Chain {
+        let stable_orders: Vec<usize> = orders.collect();
+        Chain {
+            pole,
+            stable_count: stable_orders.len(),
+            orders: (stable_orders[0], stable_orders[stable_orders.len() - 1]),
+            run: (stable_orders[0], stable_orders.len()),
+            stable_orders,
+            median_damping: 0.01,
+        }
+    }
+
+    /// Four candidates at 60 orders: a real mode stable from order 5 (A, 100 Hz), a pole of
+    /// the high orders (B, 150 Hz, from 45), a complex one (C, 200 Hz) and A again, broken
+    /// off and resumed at other orders (D).
+    #[test]
+    fn each_rule_rejects_its_candidate_and_a_requested_count_keeps_the_old_choice() {
+        let real = [c64::new(1.0, 0.0), c64::new(-0.5, 0.0), c64::new(0.2, 0.0)];
+        let complex = [c64::new(1.0, 0.0), c64::new(0.0, 1.0), c64::new(-0.7, -0.7)];
+        let residues: Vec<&[c64]> = vec![&real, &real, &complex, &real];
+        let chains = [
+            chain(0, 5..=60),
+            chain(1, 45..=60),
+            chain(2, 10..=50),
+            chain(3, 1..=4),
+        ];
+        let mut chart = vec![pole(100.0), pole(150.0), pole(200.0), pole(100.2)];
+        let criteria = Criteria {
+            frequency_tolerance: 0.01,
+            damping_tolerance: 0.05,
+            mac_min: 0.98,
+            min_stable: 4,
+            max_damping: 0.2,
+        };
+        let rules = Rules {
+            mpc_min: MPC_MIN,
+            low_order_share: LOW_ORDER_SHARE,
+            max_order: 60,
+        };
+        let got = choose(&mut chart, &chains, &residues, &criteria, &rules, None);
+        let reasons: Vec<(f64, Option<Reason>)> = got
+            .iter()
+            .map(|d| (d.frequency_hz, d.rejected.clone()))
+            .collect();
+        assert_eq!(
+            reasons,
+            [
+                (100.0, None),
+                (
+                    200.0,
+                    Some(Reason::Complex {
+                        mpc: real_mode(&complex).mpc,
+                        min: 0.95
+                    })
+                ),
+                (
+                    150.0,
+                    Some(Reason::LateStart {
+                        first: 45,
+                        last_allowed: 40
+                    })
+                ),
+                (100.2, Some(Reason::Duplicate { of_hz: 100.0 })),
+            ]
+        );
+        assert_eq!(got[0].mode, Some(1));
+        assert!(chart[0].selected && !chart[1].selected && !chart[2].selected);
+        // Two requested: the two with the most stable poles, whatever their MPC.
+        let got = choose(&mut chart, &chains, &residues, &criteria, &rules, Some(2));
+        let kept: Vec<f64> = got
+            .iter()
+            .filter(|d| d.mode.is_some())
+            .map(|d| d.frequency_hz)
+            .collect();
+        assert_eq!(kept, [100.0, 200.0]);
+        assert_eq!(
+            got[2].rejected,
+            Some(Reason::NotRequested {
+                rank: 3,
+                requested: 2
+            })
+        );
+        assert!(chart[2].selected && !chart[1].selected);
+    }
+}

@@ -461,5 +461,26 @@ mod tests {
             }),
             "mac_min = 1 is invalid: it must be in (0, 1)"
         );
+        assert_eq!(
+            check(Settings {
+                mpc_min: 0.0,
+                ..Settings::default()
+            }),
+            "mpc_min = 0 is invalid: it must be in (0, 1]"
+        );
+        assert_eq!(
+            check(Settings {
+                low_order_share: 1.5,
+                ..Settings::default()
+            }),
+            "low_order_share = 1.5 is invalid: it must be in (0, 1]"
+        );
+        assert_eq!(
+            check(Settings {
+                edge_margin: f64::INFINITY,
+                ..Settings::default()
+            }),
+            "edge_margin = inf is invalid: it must be a finite number >= 0 (half-power bandwidths)"
+        );
     }
 }

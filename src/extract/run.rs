@@ -71,8 +71,8 @@ fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64>
         .collect()
 }
 
-/// The modes of the kept decisions (the first `poles.len()` of `kept`, ascending in frequency)
-/// with their final poles, residues and standard errors.
+/// The modes of the kept decisions (the first `poles.len()` of `kept`, in the order of the
+/// poles) with their final poles, residues and standard errors.
 fn modes_of(
     kept: &[Decision],
     poles: &[c64],
