@@ -89,8 +89,8 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
             None => "",
         };
         say(format!(
-            "{what} (stable from order {} over {} orders, MPC {:.3}, {:.1} and {:.1} half-power \
-             bandwidths from the band's edges{edge})",
+            "{what} (stable from order {}, a run of {} orders, MPC {:.3}, {:.1} and {:.1} \
+             half-power bandwidths from the band's edges{edge})",
             d.run.0, d.run.1, d.mpc, d.margins.0, d.margins.1
         ));
     }

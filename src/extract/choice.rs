@@ -96,9 +96,10 @@ impl std::fmt::Display for Reason {
                 100.0 * damping_ratio,
                 100.0 * max
             ),
-            Reason::ShortRun { length, needed } => {
-                write!(f, "stable over {length} consecutive orders < {needed}")
-            }
+            Reason::ShortRun { length, needed } => write!(
+                f,
+                "its longest run of consecutive stable orders is {length} < {needed}"
+            ),
             Reason::LateStart {
                 first,
                 last_allowed,
