@@ -85,7 +85,9 @@ fn five_modes_with_modes_outside_the_band_noisy_velocity() {
         ..Settings::default()
     };
     let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    // No number of modes: the automatic choice, which keeps the five and nothing else.
     assert_modes(&ex, &sys, &[1, 2, 3, 4, 5], &responses, 1e-3, 0.1, 0.999);
+    assert_kept_are_the_modes(&ex);
 }
 
 #[test]
@@ -200,13 +202,13 @@ fn frfs_scaled_far_from_one_give_the_same_modes() {
 }
 
 /// The FRFs of bench/extract_vs_sdypy.py (the case of the first test above, drawn by the same
-/// generator: tests/common/frf.rs is its Rust twin, independent of the extractor), with no
-/// number of modes: the automatic choice keeps the five true modes of the bench's band
-/// 80-800 Hz and nothing else; with no band either, the band is the data's (no coherence: the
-/// level stands above the noise everywhere) and the modes are the six true modes below the
-/// last line (1000 Hz), and nothing else. Every rejected candidate says why.
+/// generator: tests/common/frf.rs is its Rust twin, independent of the extractor) with neither
+/// a band nor a number of modes: the band is the data's (no coherence: the level stands above
+/// the noise on every line) and the automatic choice keeps the six true modes below the last
+/// line (1000 Hz) and nothing else; every rejected candidate says why. (With the bench's band
+/// 80-800 Hz, the first test above: the five true modes in it.)
 #[test]
-fn the_automatic_choice_keeps_the_true_modes_of_the_bench_case_and_nothing_else() {
+fn without_a_band_the_automatic_choice_keeps_the_six_true_modes_of_the_bench_case() {
     let f = [40.0, 120.0, 210.0, 330.0, 480.0, 650.0, 1500.0];
     let z = [0.01, 0.02, 0.005, 0.01, 0.03, 0.002, 0.01];
     let sys = prescribed(&f, &z, 5);
@@ -215,25 +217,19 @@ fn the_automatic_choice_keeps_the_true_modes_of_the_bench_case_and_nothing_else(
     let h = receptance(&sys, 0, &freqs);
     let mut set = frf_set(&h, &freqs, &responses, Quantity::Velocity);
     add_noise(&mut set, 0.02, 1e-4, 11);
-    for (band, modes) in [
-        (Some((80.0, 800.0)), vec![1, 2, 3, 4, 5]),
-        (None, vec![0, 1, 2, 3, 4, 5]),
-    ] {
-        let settings = Settings {
-            band_hz: band,
-            ..Settings::default()
-        };
-        let ex = extract(&set, &settings, &|_, _| {}).unwrap();
-        assert_modes(&ex, &sys, &modes, &responses, 1e-3, 0.1, 0.999);
-        let kept: Vec<usize> = ex.decisions.iter().filter_map(|d| d.mode).collect();
-        assert_eq!(kept, (1..=modes.len()).collect::<Vec<_>>(), "{band:?}");
-        for d in &ex.decisions {
-            assert_eq!(d.mode.is_some(), d.rejected.is_none(), "{d:?}");
-        }
-        if band.is_none() {
-            assert_eq!(ex.band_source, BandSource::Level);
-            assert_eq!(ex.band_hz, (0.25, 1000.0));
-        }
+    let ex = extract(&set, &Settings::default(), &|_, _| {}).unwrap();
+    assert_eq!(ex.band_source, BandSource::Level);
+    assert_eq!(ex.band_hz, (0.25, 1000.0));
+    assert_modes(&ex, &sys, &[0, 1, 2, 3, 4, 5], &responses, 1e-3, 0.1, 0.999);
+    assert_kept_are_the_modes(&ex);
+}
+
+/// The decisions number the kept candidates 1..=modes, and every other one says why not.
+fn assert_kept_are_the_modes(ex: &Extraction) {
+    let kept: Vec<usize> = ex.decisions.iter().filter_map(|d| d.mode).collect();
+    assert_eq!(kept, (1..=ex.modes.len()).collect::<Vec<_>>());
+    for d in &ex.decisions {
+        assert_eq!(d.mode.is_some(), d.rejected.is_none(), "{d:?}");
     }
 }
 
