@@ -327,6 +327,19 @@ mod tests {
     }
 
     #[test]
+    fn data_without_coherent_lines_have_no_automatic_band() {
+        let mut frf = set(150.0);
+        frf.coherence = Some(vec![vec![0.3; frf.frequencies_hz.len()]]);
+        let got = crate::extract::frf::band(&frf, &crate::extract::Settings::default());
+        assert_eq!(
+            got.unwrap_err().to_string(),
+            "no frequency band shows excitation: the mean coherence, smoothed over 1% of the \
+             lines, reaches 0.3 at best (0.8 needed); give the band explicitly or lower the \
+             coherence threshold"
+        );
+    }
+
+    #[test]
     fn edges_move_out_for_a_mode_near_them_within_the_data() {
         // 20 Hz, 1%: a bandwidth of 0.4 Hz; 5 of them is 2 Hz, so 21 Hz is too near.
         let modes = [(20.0, 0.01), (80.0, 0.01)];

@@ -360,10 +360,12 @@ pub enum ExtractError {
         frequency_hz: f64,
         value: f64,
     },
-    /// No line is coherent enough for the automatic band.
+    /// No line shows excitation for the automatic band.
     #[error(
-        "no frequency band has a mean coherence >= {threshold} (best line {best}); give the band \
-         explicitly or lower the coherence threshold"
+        "no frequency band shows excitation: the mean coherence, smoothed over 1% of the lines, \
+         reaches {} at best ({threshold} needed); give the band explicitly or lower the \
+         coherence threshold",
+        Number((best * 1000.0).round() / 1000.0)
     )]
     NoCoherentBand { threshold: f64, best: f64 },
     /// A band given where the coherence shows no excitation.
