@@ -7,8 +7,8 @@
 //!   (outside the excitation's band). With the output noise smooth in frequency, the input's
 //!   spectrum is, up to a constant, x = [c / (1 - c)] / sum_o |H_o|^2 (the signal-to-noise
 //!   ratio of the response over the response's power), which tells them apart. A line is
-//!   *coherent* when c reaches `coherence_min`. A line is excited when its c reaches [`LEVEL_COHERENCE_FLOOR`] and
-//!   either its x is within [`LEVEL_RATIO`] of the input's plateau (the upper quartile of x
+//!   *coherent* when c reaches `coherence_min`, and *excited* when its c reaches
+//!   [`LEVEL_COHERENCE_FLOOR`] and either its x is within [`LEVEL_RATIO`] of the input's plateau (the upper quartile of x
 //!   over the coherent lines) or its c reaches [`COHERENCE_CEILING`] (near a resonance c
 //!   stays at its ceiling, set by bias errors, while |H| grows: there x only bounds the input
 //!   from below). Where the input rolls off (a band-limited random excitation), x falls by

@@ -63,7 +63,8 @@ pub use uncertainty::{ModeStd, NoiseSource};
 
 /// Default highest model order (degree of the common denominator).
 pub const MAX_ORDER: usize = 60;
-/// Default least coherence (averaged over the responses) of the lines of the automatic band.
+/// Default least coherence (averaged over the responses) of the coherent lines of the
+/// automatic band ([`excitation`]).
 pub const COHERENCE_MIN: f64 = 0.8;
 
 /// Settings of the extraction; [`Settings::default`] gives the documented defaults.
@@ -88,7 +89,9 @@ pub struct Settings {
     pub mac_min: f64,
     /// Largest damping ratio of a physical pole, in (0, 1]; default [`MAX_DAMPING`].
     pub max_damping: f64,
-    /// Least mean coherence of the automatic band, in [0, 1]; default [`COHERENCE_MIN`].
+    /// Least mean coherence of the lines that set the input's plateau of the automatic band
+    /// (without coherence: of the level's equivalent; see [`excitation`]), in [0, 1]; default
+    /// [`COHERENCE_MIN`].
     pub coherence_min: f64,
     /// Least MPC of a mode of the automatic choice, in (0, 1]; default [`MPC_MIN`].
     pub mpc_min: f64,
