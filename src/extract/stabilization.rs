@@ -1,4 +1,4 @@
-//! The stabilisation chart and the automatic choice of the physical poles.
+//! The stabilisation chart and its chains of poles.
 //!
 //! Classification: the poles of order n are matched one-to-one with those of order n - 1,
 //! nearest first in |s_n - s_(n-1)| / |s_(n-1)| (a pole keeps the previous pole nearest to it
@@ -10,16 +10,11 @@
 //! - stable in shape when the MAC of their LSFD residue vectors > `mac_min` ([`MAC_MIN`] = 0.98).
 //!
 //! Chains: a pole stable in frequency continues the chain of its match; any other pole starts
-//! a chain. A pole stable in all three is *stable*.
-//!
-//! Choice (the rule): a chain is physical when it holds at least `min_stable` stable poles
-//! ([`min_stable_default`]: 20% of the orders, at least 5) and the median damping of its
-//! stable poles is below `max_damping`. Its pole is the stable pole of median frequency.
-//! Two physical chains within the frequency tolerance are one mode when they never share an
-//! order (a chain broken and resumed) or when their shapes agree (MAC > `mac_min`: one pole
-//! split in two): the chain with more stable poles stays. Close modes (distinct shapes,
-//! present at the same orders) stay apart. With a requested number of modes, the chains with
-//! the most stable poles are kept; the modes are returned by ascending frequency.
+//! a chain. A pole stable in all three is *stable*. A chain's pole is its stable pole of
+//! median frequency; it carries its stable orders, their longest run of consecutive orders
+//! and the median damping of its stable poles ([`Chain`]). Which chains are modes:
+//! [`super::choice`] (candidates: at least `min_stable` stable poles, [`min_stable_default`]:
+//! 20% of the orders, at least 5).
 
 use faer::c64;
 
