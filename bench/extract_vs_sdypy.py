@@ -9,7 +9,8 @@ damping 0.2% to 3%, mobility of every DOF to a force at DOF 0 solved directly pe
 to 1000 Hz, band 80-800 Hz.
 
 Both sides read the text file this script writes; jointid through the example
-examples/extract_synthetic.rs (release build). sdypy-EMA is given the true frequencies as its
+examples/extract_synthetic.rs (release build), with the band and with none (jointid's
+automatic band; the modes are jointid's automatic choice in both). sdypy-EMA is given the true frequencies as its
 approximate ones for `select_closest_poles` (it has no automatic choice), its polynomial
 order up to 2 x 30 = 60 like jointid's default, its band 80-800 Hz.
 
@@ -129,13 +130,15 @@ def run_sdypy(f, h, truth):
     }
 
 
-def run_jointid(path, extra):
+def run_jointid(path, extra, band=("80", "800")):
     cmd = ["cargo", "run", "--quiet", "--release", "--example", "extract_synthetic", "--",
-           path, "--band", "80", "800"] + extra
+           path] + (["--band", *band] if band else []) + extra
     out = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True).stdout
     result = json.loads(out)
     return {
         "seconds": result["seconds"],
+        "band_hz": result["band_hz"],
+        "rejected": result["rejected"],
         "frequency_hz": [m["frequency_hz"] for m in result["modes"]],
         "damping_ratio": [m["damping_ratio"] for m in result["modes"]],
         "shapes": [m["real_shape"] for m in result["modes"]],
@@ -161,6 +164,8 @@ def main():
             "sdypy-EMA 0.31 (LSCF+LSFD)": best([run_sdypy(f, h, truth) for _ in range(args.repeat)]),
             "jointid (LSCF+LSFD)": best([run_jointid(path, ["--no-refine"]) for _ in range(args.repeat)]),
             "jointid (refined)": best([run_jointid(path, []) for _ in range(args.repeat)]),
+            "jointid (no band, refined)": best([run_jointid(path, [], None)
+                                                for _ in range(args.repeat)]),
         }
     print(f"{h.shape[0]} mobility FRFs, {len(f)} lines (0.25 Hz), band 80-800 Hz, "
           f"2% + 1e-4 noise; wall time: best of {args.repeat}")
@@ -182,6 +187,10 @@ def main():
             print(f"{name:28s} {j + 1:4d} {ft:8.2f} {fe:+9.4f} {zt:9.4f} {ze:+10.3f} "
                   f"{mac(r['shapes'][i], st):8.6f}")
         print(f"{name:28s} wall time {r['seconds'] * 1000:.1f} ms")
+        if "band_hz" in r:
+            found = ", ".join(f"{x:.2f}" for x in r["frequency_hz"])
+            print(f"{name:28s} band {r['band_hz'][0]:.2f}-{r['band_hz'][1]:.2f} Hz, modes {found} Hz; "
+                  f"rejected: {r['rejected'] or 'none'}")
     return 0
 
 

@@ -147,9 +147,18 @@ fn main() -> Result<(), String> {
             })
         })
         .collect();
+    let rejected: Vec<String> = ex
+        .decisions
+        .iter()
+        .filter_map(|d| {
+            let why = d.rejected.as_ref()?;
+            Some(format!("{:.3} Hz: {why}", d.frequency_hz))
+        })
+        .collect();
     let out = serde_json::json!({
         "seconds": seconds,
         "band_hz": [ex.band_hz.0, ex.band_hz.1],
+        "rejected": rejected,
         "refined": ex.refined,
         "fit_error": ex.fit_error,
         "modes": modes,

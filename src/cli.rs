@@ -253,13 +253,24 @@ pub struct ExtractArgs {
     /// frequency_std, damping_std, value_std).
     #[arg(long)]
     pub out: PathBuf,
-    /// Analysis band LO:HI in Hz (default: where the mean coherence reaches 0.8, else every
-    /// line).
+    /// Analysis band LO:HI in Hz, used as given (refused when the files' coherence shows no
+    /// excitation in it). Default: where the coherence and the FRFs' level show excitation
+    /// (without coherence, where the level stands above its noise), moved out when a mode
+    /// lies within 5 half-power bandwidths of an edge.
     #[arg(long, value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
-    /// Number of modes (default: as many as the stabilisation chart shows).
+    /// Number of modes: the candidates stable at the most orders. Default: the automatic
+    /// choice (stable over a run of orders that starts in the lower two thirds, MPC >=
+    /// --mpc-min, not a duplicate).
     #[arg(long)]
     pub modes: Option<usize>,
+    /// Least MPC of a mode of the automatic choice (without --modes), in (0, 1].
+    #[arg(long, default_value_t = jointid::extract::MPC_MIN)]
+    pub mpc_min: f64,
+    /// Also write the choices as JSON: the band and where it came from, the rules, every
+    /// candidate mode with why it was kept or rejected.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
     /// Highest model order of the LSCF estimator.
     #[arg(long, default_value_t = jointid::extract::MAX_ORDER)]
     pub max_order: usize,

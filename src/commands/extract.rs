@@ -8,9 +8,12 @@ use anyhow::Context;
 
 use crate::cli::{ExtractArgs, FrfQuantity};
 use crate::commands::flagged;
+use jointid::extract::report::Report;
 use jointid::extract::{
-    ExtractError, Extraction, FrfSet, NoiseSource, Quantity, Settings, csv, extract, universal,
+    BandSource, EdgeNote, ExtractError, Extraction, FrfSet, NoiseSource, Quantity, Settings, csv,
+    extract, universal,
 };
+use jointid::input::Number;
 use jointid::output::stabilization::{ChartUnits, stabilization_svg};
 use jointid::output::{check_outputs, commit_all, stage};
 
@@ -19,12 +22,29 @@ use jointid::uff::{FunctionType, Record, read_path};
 /// Below this MPC a mode is named on stderr as complex.
 const MPC_WARN: f64 = 0.9;
 
-/// Says the band and every mode found, and notes the complex ones.
+/// Where an automatic band came from, for the band's line; empty for a band given.
+fn band_origin(ex: &Extraction) -> String {
+    let source = match ex.band_source {
+        BandSource::Given => return String::new(),
+        BandSource::Coherence => "where the coherence and the level show excitation",
+        BandSource::Level => "where the FRFs' level stands above their noise",
+    };
+    match ex.extended_from {
+        Some((lo, hi)) => format!(
+            " ({source}: {lo:.3}..{hi:.3} Hz, extended for the modes' margins to its edges)"
+        ),
+        None => format!(" ({source})"),
+    }
+}
+
+/// Says the band and every mode found, why each candidate was kept or rejected (when the band
+/// or the modes were chosen automatically), and notes the complex modes.
 fn describe(ex: &Extraction, say: &dyn Fn(String)) {
     say(format!(
-        "band {:.3}..{:.3} Hz, {} modes:",
+        "band {:.3}..{:.3} Hz{}, {} modes:",
         ex.band_hz.0,
         ex.band_hz.1,
+        band_origin(ex),
         ex.modes.len()
     ));
     say(format!(
@@ -52,6 +72,26 @@ fn describe(ex: &Extraction, say: &dyn Fn(String)) {
             m.mpd_deg,
             m.stable_orders.0,
             m.stable_orders.1
+        ));
+    }
+    // With both the band and the number of modes given, the lines of the earlier versions only.
+    let automatic = ex.band_source != BandSource::Given || ex.requested.is_none();
+    for d in ex.decisions.iter().filter(|_| automatic) {
+        let what = match (&d.rejected, d.mode) {
+            (Some(why), _) => format!("  rejected {:.4} Hz: {why}", d.frequency_hz),
+            (None, Some(r)) => format!("  kept mode {r}"),
+            (None, None) => continue,
+        };
+        let edge = match &d.edge {
+            Some(EdgeNote::BandGiven) => "; the band was given",
+            Some(EdgeNote::DataEnd { .. }) => "; the data end there",
+            Some(EdgeNote::ExtendedOnce) => "; the band was extended once already",
+            None => "",
+        };
+        say(format!(
+            "{what} (stable from order {}, a run of {} orders, MPC {:.3}, {:.1} and {:.1} \
+             half-power bandwidths from the band's edges{edge})",
+            d.run.0, d.run.1, d.mpc, d.margins.0, d.margins.1
         ));
     }
     for (r, m) in ex.modes.iter().enumerate() {
@@ -111,6 +151,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     inputs.push(&args.geometry);
     let mut outputs = vec![args.out.as_path()];
     outputs.extend(args.chart.as_deref());
+    outputs.extend(args.report.as_deref());
     check_outputs(&outputs, &inputs)?;
     let mut files: Vec<(PathBuf, Vec<Record>)> = Vec::new();
     for path in &args.frf {
@@ -168,12 +209,18 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         n_modes: args.modes,
         max_order: args.max_order,
         averages: args.averages,
+        mpc_min: args.mpc_min,
         ..Settings::default()
     };
     // --modes and --averages are refused as the flags they are; any other setting as the
     // extraction refuses it.
+    let flags = [
+        ("n_modes", "--modes"),
+        ("averages", "--averages"),
+        ("mpc_min", "--mpc-min"),
+    ];
     settings.check().map_err(|e| match e.setting {
-        "n_modes" | "averages" => flagged(e, &[("n_modes", "--modes"), ("averages", "--averages")]),
+        "n_modes" | "averages" | "mpc_min" => flagged(e, &flags),
         _ => anyhow::Error::new(ExtractError::Setting(e)).context(failed()),
     })?;
     let last = std::cell::Cell::new(0);
@@ -184,7 +231,16 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
             say(format!("extracting: {}%", 10 * tenth));
         }
     })
-    .with_context(failed)?;
+    .map_err(|e| match e {
+        ExtractError::NoExcitation { lo, hi, .. } => {
+            anyhow::anyhow!(
+                "{inputs}: --band {}:{} is refused: {e}",
+                Number(lo),
+                Number(hi)
+            )
+        }
+        e => anyhow::Error::new(e).context(failed()),
+    })?;
     describe(&ex, &say);
     let chart = match &args.chart {
         Some(_) => Some(draw_chart(args, &input.set, &ex, &units)?),
@@ -202,6 +258,13 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         })
         .with_context(|| format!("{}: cannot write", args.out.display()))?,
     ];
+    if let Some(path) = &args.report {
+        let report = Report::of(&ex);
+        staged.push(
+            stage(path, |w| report.write(w))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
     if let (Some(path), Some(svg)) = (&args.chart, chart) {
         staged.push(
             stage(path, |w| w.write_all(svg.as_bytes()))
@@ -210,7 +273,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     }
     commit_all(staged)?;
     say(format!("wrote {}", args.out.display()));
-    if let Some(path) = &args.chart {
+    for path in args.chart.iter().chain(&args.report) {
         say(format!("wrote {}", path.display()));
     }
     Ok(())

@@ -3,6 +3,7 @@
 
 use faer::c64;
 
+use super::excitation::{self, BandSource};
 use super::{ExtractError, Settings};
 
 /// The response quantity of the FRFs, per unit of the reference (force or voltage).
@@ -155,23 +156,20 @@ pub struct Band {
     pub lines: Vec<usize>,
     /// Weight per line of the band: the coherence averaged over the responses, or 1.
     pub weights: Vec<f64>,
+    /// Where the band came from.
+    pub source: BandSource,
 }
 
-/// The analysis band: `settings.band_hz` when given; else, with coherence, from the first to the
-/// last line whose coherence averaged over the responses reaches `settings.coherence_min`;
-/// else every line.
+/// The analysis band: `settings.band_hz` when given (refused with coherence when the
+/// coherence shows no excitation in it, [`excitation::check_given`]); else the widest run of
+/// excited lines ([`excitation`]: the coherence and the level, or the level alone).
 pub fn band(frf: &FrfSet, settings: &Settings) -> Result<Band, ExtractError> {
     let f = &frf.frequencies_hz;
     let (data_lo, data_hi) = (f[0], f[f.len() - 1]);
     let step = (data_hi - data_lo) / (f.len() - 1) as f64;
-    let mean_coherence: Option<Vec<f64>> = frf.coherence.as_ref().map(|c| {
-        (0..f.len())
-            .map(|k| c.iter().map(|r| r[k]).sum::<f64>() / c.len() as f64)
-            .collect()
-    });
-    let (lo, hi) = match (settings.band_hz, &mean_coherence) {
-        (Some((lo, hi)), _) => {
-            let slack = SPACING_TOLERANCE * step;
+    let slack = SPACING_TOLERANCE * step;
+    let (lo, hi, source) = match settings.band_hz {
+        Some((lo, hi)) => {
             if !(lo.is_finite() && hi.is_finite() && lo < hi)
                 || lo < data_lo - slack
                 || hi > data_hi + slack
@@ -183,36 +181,51 @@ pub fn band(frf: &FrfSet, settings: &Settings) -> Result<Band, ExtractError> {
                     data_hi,
                 });
             }
-            (lo, hi)
+            (lo, hi, BandSource::Given)
         }
-        (None, Some(mean)) => {
-            let good: Vec<usize> = (0..f.len())
-                .filter(|&k| mean[k] >= settings.coherence_min)
-                .collect();
-            match (good.first(), good.last()) {
-                (Some(&a), Some(&b)) if a < b => (f[a], f[b]),
-                _ => {
+        None => {
+            let e = excitation::excitation(frf, settings.coherence_min);
+            match excitation::widest_run(f, &e.excited) {
+                Some((a, b)) => (f[a], f[b], e.source),
+                None if e.source == BandSource::Level => (data_lo, data_hi, e.source),
+                None => {
                     return Err(ExtractError::NoCoherentBand {
                         threshold: settings.coherence_min,
-                        best: mean.iter().copied().fold(0.0, f64::max),
+                        best: e.coherence.iter().copied().fold(0.0, f64::max),
                     });
                 }
             }
         }
-        (None, None) => (data_lo, data_hi),
     };
+    let band = band_of(frf, (lo, hi), source);
+    if source == BandSource::Given {
+        excitation::check_given(frf, &band.lines, (lo, hi), settings.coherence_min)?;
+    }
+    Ok(band)
+}
+
+/// The band `lo`..`hi` (Hz, within the data, checked) of `frf`: its lines above 0 Hz and their
+/// weights (the mean coherence, or 1).
+pub fn band_of(frf: &FrfSet, (lo, hi): (f64, f64), source: BandSource) -> Band {
+    let f = &frf.frequencies_hz;
+    let step = (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64;
     let slack = SPACING_TOLERANCE * step;
     let lines: Vec<usize> = (0..f.len())
         .filter(|&k| f[k] > 0.0 && f[k] >= lo - slack && f[k] <= hi + slack)
         .collect();
     let weights = lines
         .iter()
-        .map(|&k| mean_coherence.as_ref().map_or(1.0, |m| m[k]))
+        .map(|&k| {
+            frf.coherence.as_ref().map_or(1.0, |c| {
+                c.iter().map(|r| r[k]).sum::<f64>() / c.len() as f64
+            })
+        })
         .collect();
-    Ok(Band {
+    Band {
         lo,
         hi,
         lines,
         weights,
-    })
+        source,
+    }
 }

@@ -3,7 +3,8 @@
 //!
 //! The steps, one file each:
 //! 1. [`frf`]: the input ([`FrfSet`]) checked; the analysis band and its line weights (the
-//!    coherence averaged over the responses when given, else 1);
+//!    coherence averaged over the responses when given, else 1); [`excitation`]: where the
+//!    FRFs were excited, the automatic band, and its extension for the modes' margins;
 //! 2. [`lscf`]: the common-denominator LSCF estimator in the z-domain with real coefficients
 //!    (Guillaume et al., IMAC 2003; Peeters et al., "The PolyMAX frequency-domain method",
 //!    Shock and Vibration 11, 2004), solved for every model order 1..=`max_order`; its poles
@@ -11,15 +12,16 @@
 //! 3. [`lsfd`]: residues of those poles per order by least squares in the frequency domain,
 //!    with lower and upper residual terms in the form of the FRF's quantity;
 //! 4. [`stabilization`]: each pole classified stable in frequency, damping and shape against
-//!    the previous order, chains of poles across orders, the automatic choice of the physical
-//!    poles and of their number;
+//!    the previous order, chains of poles across orders; [`choice`]: the modes chosen among
+//!    the chains by rules, each candidate with why it was kept or rejected;
 //! 5. [`refine`]: the chosen poles refined by nonlinear least squares of the modal model to the
 //!    FRFs (residues eliminated), then the final LSFD residues;
 //! 6. [`shapes`]: real normal modes, MPC and MPD from the complex residue vectors; the FRFs of
 //!    the model and a relative fit error per response.
 //!
 //! Around them: [`universal`] gathers the FRFs of universal files and the positions of their
-//! nodes, [`csv`] writes the modes as a measured-modes CSV (both for `jointid extract`).
+//! nodes, [`csv`] writes the modes as a measured-modes CSV, [`report`] the choices as JSON
+//! (all for `jointid extract`).
 //!
 //! Contract of [`Mode`]: frequency_hz is the undamped natural frequency |lambda| / 2 pi, the
 //! damping ratio -Re(lambda) / |lambda|; the residues are receptance residues (displacement per
@@ -29,22 +31,28 @@
 //! ([`crate::stats`], [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`],
 //! [`crate::modal`]) and, without a circle, [`crate::model`], [`crate::measured`].
 
+pub mod choice;
 pub mod csv;
+pub mod excitation;
 pub mod frf;
 pub mod lscf;
 pub mod lsfd;
 pub mod refine;
+pub mod report;
 pub mod shapes;
 pub mod stabilization;
 pub mod uncertainty;
 pub mod universal;
 
+mod final_fit;
 mod run;
 
 use faer::c64;
 
 use crate::input::{Number, SettingError};
 
+pub use choice::{Decision, LOW_ORDER_SHARE, MPC_MIN, Reason, Rules};
+pub use excitation::{BandSource, EDGE_MARGIN, EdgeNote};
 pub use frf::{FrfSet, Quantity};
 pub use run::extract;
 pub use stabilization::{
@@ -55,17 +63,20 @@ pub use uncertainty::{ModeStd, NoiseSource};
 
 /// Default highest model order (degree of the common denominator).
 pub const MAX_ORDER: usize = 60;
-/// Default least coherence (averaged over the responses) of the lines of the automatic band.
+/// Default least coherence (averaged over the responses) of the coherent lines of the
+/// automatic band ([`excitation`]).
 pub const COHERENCE_MIN: f64 = 0.8;
 
 /// Settings of the extraction; [`Settings::default`] gives the documented defaults.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
-    /// Analysis band (Hz); default: the whole FRF band, or the coherent band (see [`frf::band`]).
+    /// Analysis band (Hz), used as given; default: the widest run of excited lines, extended
+    /// for the modes' margins (see [`excitation`]).
     pub band_hz: Option<(f64, f64)>,
     /// Highest model order, >= 2; default [`MAX_ORDER`].
     pub max_order: usize,
-    /// Number of modes wanted; default: as many as the chart shows.
+    /// Number of modes wanted: the candidates with the most stable poles; default: the
+    /// automatic choice ([`choice`]).
     pub n_modes: Option<usize>,
     /// Least number of stable poles of a physical chain; default
     /// [`stabilization::min_stable_default`] of `max_order`.
@@ -78,8 +89,18 @@ pub struct Settings {
     pub mac_min: f64,
     /// Largest damping ratio of a physical pole, in (0, 1]; default [`MAX_DAMPING`].
     pub max_damping: f64,
-    /// Least mean coherence of the automatic band, in [0, 1]; default [`COHERENCE_MIN`].
+    /// Least mean coherence of the lines that set the input's plateau of the automatic band
+    /// (without coherence: of the level's equivalent; see [`excitation`]), in [0, 1]; default
+    /// [`COHERENCE_MIN`].
     pub coherence_min: f64,
+    /// Least MPC of a mode of the automatic choice, in (0, 1]; default [`MPC_MIN`].
+    pub mpc_min: f64,
+    /// A mode of the automatic choice must be stable from an order at or below this share of
+    /// `max_order`, in (0, 1]; default [`LOW_ORDER_SHARE`].
+    pub low_order_share: f64,
+    /// Least distance of a mode to the edges of the automatic band, in half-power bandwidths
+    /// (2 zeta f), finite and >= 0; default [`EDGE_MARGIN`].
+    pub edge_margin: f64,
     /// Terms of each residual expansion (see [`lsfd`]): 0 (every mode in the band), 1 (the
     /// classical mass-like lower and stiffness-like upper residual) or 2; default 2.
     pub residual_terms: usize,
@@ -103,6 +124,9 @@ impl Default for Settings {
             mac_min: MAC_MIN,
             max_damping: MAX_DAMPING,
             coherence_min: COHERENCE_MIN,
+            mpc_min: MPC_MIN,
+            low_order_share: LOW_ORDER_SHARE,
+            edge_margin: EDGE_MARGIN,
             residual_terms: 2,
             refine: true,
             averages: None,
@@ -161,6 +185,21 @@ impl Settings {
         if !(0.0..=1.0).contains(&self.coherence_min) {
             return invalid("coherence_min", &self.coherence_min, "it must be in [0, 1]");
         }
+        for (setting, value) in [
+            ("mpc_min", self.mpc_min),
+            ("low_order_share", self.low_order_share),
+        ] {
+            if !(value > 0.0 && value <= 1.0) {
+                return invalid(setting, &Number(value), "it must be in (0, 1]");
+            }
+        }
+        if !(self.edge_margin.is_finite() && self.edge_margin >= 0.0) {
+            return invalid(
+                "edge_margin",
+                &Number(self.edge_margin),
+                "it must be a finite number >= 0 (half-power bandwidths)",
+            );
+        }
         Ok(())
     }
 }
@@ -202,10 +241,25 @@ pub struct Extraction {
     pub chart: Vec<ChartPole>,
     /// The thresholds the chart and the choice used.
     pub criteria: Criteria,
+    /// The rules of the automatic choice.
+    pub rules: Rules,
+    /// The number of modes requested; None: the automatic choice.
+    pub requested: Option<usize>,
+    /// The least distance of a mode to the band's edges asked for (half-power bandwidths).
+    pub edge_margin: f64,
+    /// Every candidate (chain with `min_stable` or more stable poles): the kept ones first,
+    /// by mode number, then the rejected ones, each with why.
+    pub decisions: Vec<Decision>,
+    /// Number of chains with fewer than `min_stable` stable poles (not candidates).
+    pub weak_chains: usize,
     /// Highest model order computed.
     pub max_order: usize,
     /// The analysis band (Hz).
     pub band_hz: (f64, f64),
+    /// Where it came from.
+    pub band_source: BandSource,
+    /// The automatic band before it was extended for the modes' margins, when it was.
+    pub extended_from: Option<(f64, f64)>,
     /// The frequency lines of the band (Hz).
     pub frequencies_hz: Vec<f64>,
     /// Their indices on the axis of the [`FrfSet`].
@@ -309,12 +363,26 @@ pub enum ExtractError {
         frequency_hz: f64,
         value: f64,
     },
-    /// No line is coherent enough for the automatic band.
+    /// No line shows excitation for the automatic band.
     #[error(
-        "no frequency band has a mean coherence >= {threshold} (best line {best}); give the band \
-         explicitly or lower the coherence threshold"
+        "no frequency band shows excitation: the mean coherence, smoothed over 1% of the lines, \
+         reaches {} at best ({threshold} needed); give the band explicitly or lower the \
+         coherence threshold",
+        Number((best * 1000.0).round() / 1000.0)
     )]
     NoCoherentBand { threshold: f64, best: f64 },
+    /// A band given where the coherence shows no excitation.
+    #[error(
+        "band {}..{} Hz shows no excitation: its smoothed mean coherence reaches {} ({} \
+         needed) and the level does not explain it; give a band the input covered",
+        Number(*lo), Number(*hi), Number((best * 1000.0).round() / 1000.0), Number(*threshold)
+    )]
+    NoExcitation {
+        lo: f64,
+        hi: f64,
+        best: f64,
+        threshold: f64,
+    },
     /// The band asked for is empty or outside the data.
     #[error(
         "band {}..{} Hz is invalid: it needs {} <= lo < hi <= {} Hz (the FRF's lines)",
@@ -397,6 +465,27 @@ mod tests {
                 ..Settings::default()
             }),
             "mac_min = 1 is invalid: it must be in (0, 1)"
+        );
+        assert_eq!(
+            check(Settings {
+                mpc_min: 0.0,
+                ..Settings::default()
+            }),
+            "mpc_min = 0 is invalid: it must be in (0, 1]"
+        );
+        assert_eq!(
+            check(Settings {
+                low_order_share: 1.5,
+                ..Settings::default()
+            }),
+            "low_order_share = 1.5 is invalid: it must be in (0, 1]"
+        );
+        assert_eq!(
+            check(Settings {
+                edge_margin: f64::INFINITY,
+                ..Settings::default()
+            }),
+            "edge_margin = inf is invalid: it must be a finite number >= 0 (half-power bandwidths)"
         );
     }
 }

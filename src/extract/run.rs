@@ -4,34 +4,16 @@ use std::f64::consts::PI;
 
 use faer::c64;
 
+use super::choice::{self, Decision, Rules};
+use super::excitation::{self, BandSource, EdgeNote};
+use super::final_fit::{Problem, fit_kept};
 use super::lscf::{self, Lscf};
-use super::stabilization::{self, Chosen, Criteria, OrderPoles};
+use super::stabilization::{self, ChartPole, Criteria, OrderPoles};
 use super::uncertainty::{self, ModeStd, NoiseSource};
-use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, refine, shapes};
+use super::{ExtractError, Extraction, FrfSet, Mode, Settings, frf, lsfd, shapes};
 
 fn frequency(s: c64) -> f64 {
     s.norm() / (2.0 * PI)
-}
-
-/// Whether refined poles can replace the chart's: each stays stable, in the band, below the
-/// damping bound and within the frequency tolerance of its start (in |delta s| / |s|), and no
-/// two merge.
-fn acceptable(refined: &[c64], start: &[c64], band: (f64, f64), criteria: &Criteria) -> bool {
-    let each = refined.iter().zip(start).all(|(r, s)| {
-        let f = frequency(*r);
-        r.re < 0.0
-            && r.im > 0.0
-            && f >= band.0
-            && f <= band.1
-            && -r.re / r.norm() < criteria.max_damping
-            && (r - s).norm() < criteria.frequency_tolerance * s.norm()
-    });
-    let distinct = refined.iter().enumerate().all(|(i, a)| {
-        refined[i + 1..]
-            .iter()
-            .all(|b| (a - b).norm() > 1e-9 * a.norm())
-    });
-    each && distinct
 }
 
 /// The RMS of `h`; computed relative to its largest magnitude when the plain sum of squares
@@ -76,35 +58,6 @@ fn band_poles(lscf: &Lscf, order: usize, (lo, hi): (f64, f64)) -> Vec<c64> {
     poles
 }
 
-/// Whether `found` chains are enough: at least one, and the modes `settings` asks for.
-fn enough_modes(
-    found: usize,
-    settings: &Settings,
-    criteria: &Criteria,
-    (lo, hi): (f64, f64),
-) -> Result<(), ExtractError> {
-    if found == 0 {
-        return Err(ExtractError::NoModes {
-            lo,
-            hi,
-            min_stable: criteria.min_stable,
-            max_order: settings.max_order,
-        });
-    }
-    if let Some(requested) = settings.n_modes
-        && found < requested
-    {
-        return Err(ExtractError::TooFewModes {
-            requested,
-            found,
-            min_stable: criteria.min_stable,
-            lo,
-            hi,
-        });
-    }
-    Ok(())
-}
-
 /// ||H - H_model|| / ||H|| of every response over the band.
 fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64> {
     responses
@@ -118,20 +71,19 @@ fn relative_errors(responses: &[Vec<c64>], synthesized: &[Vec<c64>]) -> Vec<f64>
         .collect()
 }
 
-/// The modes of the chosen chains with their final poles, residues and standard errors,
-/// ascending in frequency.
+/// The modes of the kept decisions (the first `poles.len()` of `kept`, in the order of the
+/// poles) with their final poles, residues and standard errors.
 fn modes_of(
-    chosen: &[Chosen],
+    kept: &[Decision],
     poles: &[c64],
     residues: &[Vec<c64>],
     std: Vec<ModeStd>,
 ) -> Vec<Mode> {
-    let mut modes: Vec<Mode> = chosen
-        .iter()
+    kept.iter()
         .zip(poles)
         .zip(residues)
         .zip(std)
-        .map(|(((c, &pole), residues), std)| {
+        .map(|(((d, &pole), residues), std)| {
             let real = shapes::real_mode(residues);
             Mode {
                 frequency_hz: frequency(pole),
@@ -142,14 +94,12 @@ fn modes_of(
                 real_shape: real.shape,
                 mpc: real.mpc,
                 mpd_deg: real.mpd_deg,
-                stable_orders: c.orders,
-                stable_count: c.stable_count,
+                stable_orders: d.stable_orders,
+                stable_count: d.stable_count,
                 std,
             }
         })
-        .collect();
-    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
-    modes
+        .collect()
 }
 
 /// The settings and the FRFs checked, and the analysis band, which must hold enough lines for
@@ -173,6 +123,15 @@ fn checked_band(frf: &FrfSet, settings: &Settings) -> Result<frf::Band, ExtractE
     Ok(band)
 }
 
+/// The rules of the automatic choice.
+fn rules_of(settings: &Settings) -> Rules {
+    Rules {
+        mpc_min: settings.mpc_min,
+        low_order_share: settings.low_order_share,
+        max_order: settings.max_order,
+    }
+}
+
 /// The thresholds of the chart and of the choice.
 fn criteria_of(settings: &Settings) -> Criteria {
     Criteria {
@@ -187,13 +146,117 @@ fn criteria_of(settings: &Settings) -> Criteria {
 }
 
 /// Extracts the modes of `frf` (see the module docs of [`super`]). `progress(done, total)` is
-/// called after each response of the reduction, each model order and at the end.
+/// called after each response of the reduction, each model order and at the end (a band
+/// extended for the modes' margins starts the count again).
 pub fn extract(
     frf: &FrfSet,
     settings: &Settings,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Extraction, ExtractError> {
     let band = checked_band(frf, settings)?;
+    if band.source == BandSource::Given {
+        return extract_in(frf, settings, band, progress)
+            .map(|ex| with_edges(ex, settings, data_band(frf), None));
+    }
+    let first = extract_in(frf, settings, band.clone(), progress)?;
+    let kept: Vec<(f64, f64)> = first
+        .modes
+        .iter()
+        .map(|m| (m.frequency_hz, m.damping_ratio))
+        .collect();
+    let data = data_band(frf);
+    let Some((lo, hi)) = excitation::extended(first.band_hz, &kept, settings.edge_margin, data)
+    else {
+        return Ok(with_edges(first, settings, data, None));
+    };
+    let wider = frf::band_of(frf, (lo, hi), band.source);
+    let from = Some(first.band_hz);
+    match extract_in(frf, settings, wider, progress) {
+        Ok(ex) => Ok(with_edges(ex, settings, data, from)),
+        Err(_) => Ok(with_edges(first, settings, data, None)),
+    }
+}
+
+/// The first and last lines above 0 Hz of the data (Hz).
+fn data_band(frf: &FrfSet) -> (f64, f64) {
+    let f = &frf.frequencies_hz;
+    let first = f.iter().copied().find(|&x| x > 0.0).unwrap_or(f[0]);
+    (first, f[f.len() - 1])
+}
+
+/// The extraction with every decision's margins to the band's edges and, for a kept mode
+/// short of `settings.edge_margin`, why the band does not give it more; `data`: the first and
+/// last lines above 0 Hz; `extended_from`: the automatic band before its extension.
+fn with_edges(
+    mut ex: Extraction,
+    settings: &Settings,
+    data: (f64, f64),
+    extended_from: Option<(f64, f64)>,
+) -> Extraction {
+    let (lo, hi) = ex.band_hz;
+    for d in &mut ex.decisions {
+        let bandwidth = 2.0 * d.damping_ratio * d.frequency_hz;
+        d.margins = (
+            (d.frequency_hz - lo) / bandwidth,
+            (hi - d.frequency_hz) / bandwidth,
+        );
+        let short = d.margins.0.min(d.margins.1) < settings.edge_margin;
+        let note = match (ex.band_source, extended_from) {
+            (BandSource::Given, _) => EdgeNote::BandGiven,
+            (_, Some(_)) => EdgeNote::ExtendedOnce,
+            _ => EdgeNote::DataEnd {
+                edge_hz: if d.margins.0 < d.margins.1 {
+                    data.0
+                } else {
+                    data.1
+                },
+            },
+        };
+        d.edge = (short && d.mode.is_some()).then_some(note);
+    }
+    ex.extended_from = extended_from;
+    ex
+}
+
+/// The stabilisation chart of `orders` and the choice made on it.
+struct Charted {
+    chart: Vec<ChartPole>,
+    decisions: Vec<Decision>,
+    weak_chains: usize,
+}
+
+/// Classifies the poles of `orders`, gathers their chains and chooses the modes among them.
+fn charted(
+    orders: &[OrderPoles],
+    criteria: &Criteria,
+    rules: &Rules,
+    n_modes: Option<usize>,
+) -> Charted {
+    let mut chart = stabilization::classify(orders, criteria);
+    let residues: Vec<&[c64]> = orders
+        .iter()
+        .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
+        .collect();
+    let chains = stabilization::chains(&chart);
+    let weak_chains = chains
+        .iter()
+        .filter(|c| c.stable_count < criteria.min_stable)
+        .count();
+    let decisions = choice::choose(&mut chart, &chains, &residues, criteria, rules, n_modes);
+    Charted {
+        chart,
+        decisions,
+        weak_chains,
+    }
+}
+
+/// The extraction in `band` (see [`extract`]), without the edges' margins.
+fn extract_in(
+    frf: &FrfSet,
+    settings: &Settings,
+    band: frf::Band,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Extraction, ExtractError> {
     let max_order = settings.max_order;
     let f = &frf.frequencies_hz;
     let frequencies_hz: Vec<f64> = band.lines.iter().map(|&k| f[k]).collect();
@@ -235,76 +298,70 @@ pub fn extract(
     }
 
     let criteria = criteria_of(settings);
-    let mut chart = stabilization::classify(&orders, &criteria);
-    let residue_refs: Vec<&[c64]> = orders
-        .iter()
-        .flat_map(|o| o.residues.iter().map(|r| r.as_slice()))
-        .collect();
-    let chosen = stabilization::choose(&mut chart, &residue_refs, &criteria, settings.n_modes);
-    enough_modes(chosen.len(), settings, &criteria, (lo, hi))?;
-
-    let start: Vec<c64> = chosen.iter().map(|c| chart[c.pole].pole).collect();
-    let (poles, refined) =
-        final_poles(&omega, &band, start, basis, &responses, &criteria, settings);
-    let ls = lsfd::least_squares(&omega, &band.weights, &poles, basis, &responses);
-    let fit = lsfd::unpack(&ls.x, poles.len(), basis, ls.rank);
-    let synthesized = lsfd::synthesize(&omega, &poles, basis, &fit);
-    let fit_error = relative_errors(&responses, &synthesized);
-    let (noise, variances) = line_variances(
-        frf,
-        settings,
-        &band,
-        &responses,
-        &synthesized,
+    let rules = rules_of(settings);
+    let Charted {
+        mut chart,
+        decisions,
+        weak_chains,
+    } = charted(&orders, &criteria, &rules, settings.n_modes);
+    let problem = Problem {
+        omega: &omega,
+        band: &band,
         basis,
-        poles.len(),
-    );
-    let std = uncertainty::standard_errors(&omega, &band.weights, &poles, basis, &ls, &variances);
-    let modes = modes_of(&chosen, &poles, &fit.residues, std);
+        responses: &responses,
+        criteria: &criteria,
+        settings,
+    };
+    let fitted = fit_kept(&problem, &mut chart, decisions)?;
     let mean_coherence = frf.coherence.as_ref().map(|c| {
         c.iter()
             .map(|r| band.lines.iter().map(|&k| r[k]).sum::<f64>() / band.lines.len() as f64)
             .collect()
     });
+    let (noise, variances) = line_variances(
+        frf,
+        settings,
+        &band,
+        &responses,
+        &fitted.synthesized,
+        basis,
+        fitted.poles.len(),
+    );
+    let std = uncertainty::standard_errors(
+        &omega,
+        &band.weights,
+        &fitted.poles,
+        basis,
+        &fitted.ls,
+        &variances,
+    );
+    let mut modes = modes_of(&fitted.decisions, &fitted.poles, &fitted.fit.residues, std);
+    modes.sort_by(|a, b| a.frequency_hz.total_cmp(&b.frequency_hz));
+    let decisions = choice::number_kept(&mut chart, fitted.decisions);
     progress(total, total);
     Ok(Extraction {
         modes,
         chart,
         criteria,
+        rules,
+        requested: settings.n_modes,
+        edge_margin: settings.edge_margin,
+        decisions,
+        weak_chains,
         max_order,
         band_hz: (lo, hi),
+        band_source: band.source,
+        extended_from: None,
         frequencies_hz,
         lines: band.lines,
-        synthesized,
-        fit_error,
-        lower_residual: fit.lower,
-        upper_residual: fit.upper,
+        fit_error: relative_errors(&responses, &fitted.synthesized),
+        synthesized: fitted.synthesized,
+        lower_residual: fitted.fit.lower,
+        upper_residual: fitted.fit.upper,
         mean_coherence,
-        refined,
+        refined: fitted.refined,
         noise,
     })
-}
-
-/// The poles the modes are given with: the chart's `start` refined when the settings ask for
-/// it and the refined poles are [`acceptable`], else `start`; and whether they were refined.
-fn final_poles(
-    omega: &[f64],
-    band: &frf::Band,
-    start: Vec<c64>,
-    basis: lsfd::Basis,
-    responses: &[Vec<c64>],
-    criteria: &Criteria,
-    settings: &Settings,
-) -> (Vec<c64>, bool) {
-    if !settings.refine {
-        return (start, false);
-    }
-    let r = refine::refine(omega, &band.weights, &start, basis, responses);
-    if acceptable(&r.poles, &start, (band.lo, band.hi), criteria) {
-        (r.poles, true)
-    } else {
-        (start, false)
-    }
 }
 
 /// The noise of every line of the band (see [`uncertainty`]): from the coherence when the

@@ -1,4 +1,4 @@
-//! The stabilisation chart and the automatic choice of the physical poles.
+//! The stabilisation chart and its chains of poles.
 //!
 //! Classification: the poles of order n are matched one-to-one with those of order n - 1,
 //! nearest first in |s_n - s_(n-1)| / |s_(n-1)| (a pole keeps the previous pole nearest to it
@@ -10,16 +10,11 @@
 //! - stable in shape when the MAC of their LSFD residue vectors > `mac_min` ([`MAC_MIN`] = 0.98).
 //!
 //! Chains: a pole stable in frequency continues the chain of its match; any other pole starts
-//! a chain. A pole stable in all three is *stable*.
-//!
-//! Choice (the rule): a chain is physical when it holds at least `min_stable` stable poles
-//! ([`min_stable_default`]: 20% of the orders, at least 5) and the median damping of its
-//! stable poles is below `max_damping`. Its pole is the stable pole of median frequency.
-//! Two physical chains within the frequency tolerance are one mode when they never share an
-//! order (a chain broken and resumed) or when their shapes agree (MAC > `mac_min`: one pole
-//! split in two): the chain with more stable poles stays. Close modes (distinct shapes,
-//! present at the same orders) stay apart. With a requested number of modes, the chains with
-//! the most stable poles are kept; the modes are returned by ascending frequency.
+//! a chain. A pole stable in all three is *stable*. A chain's pole is its stable pole of
+//! median frequency; it carries its stable orders, their longest run of consecutive orders
+//! and the median damping of its stable poles ([`Chain`]). Which chains are modes:
+//! [`super::choice`] (candidates: at least `min_stable` stable poles, [`min_stable_default`]:
+//! 20% of the orders, at least 5).
 
 use faer::c64;
 
@@ -191,91 +186,79 @@ pub fn classify(orders: &[OrderPoles], criteria: &Criteria) -> Vec<ChartPole> {
     out
 }
 
-/// A chain chosen as a physical mode.
+/// A chain of poles with the stable poles it holds (see the module docs).
 #[derive(Debug, Clone)]
-pub struct Chosen {
-    /// Index of the chosen pole in the chart.
+pub struct Chain {
+    /// Index in the chart of its stable pole of median frequency.
     pub pole: usize,
     /// Number of stable poles of the chain.
     pub stable_count: usize,
     /// First and last order at which the chain is stable.
     pub orders: (usize, usize),
+    /// The orders at which it is stable, ascending.
+    pub stable_orders: Vec<usize>,
+    /// Its longest run of consecutive stable orders: (first order, number of orders).
+    pub run: (usize, usize),
+    /// Median damping ratio of its stable poles.
+    pub median_damping: f64,
 }
 
-/// Chooses the physical poles (see the module docs) and marks them in `chart`. `residues[i]` is
-/// the residue vector of chart pole i. `n_modes`: the number of modes wanted, if fixed.
-pub fn choose(
-    chart: &mut [ChartPole],
-    residues: &[&[c64]],
-    criteria: &Criteria,
-    n_modes: Option<usize>,
-) -> Vec<Chosen> {
-    let chains = chart.iter().map(|p| p.chain + 1).max().unwrap_or(0);
-    let mut members: Vec<Vec<usize>> = vec![Vec::new(); chains];
+/// The longest run of consecutive integers in the ascending `orders`: (first, length); the
+/// first such run on ties, (0, 0) when empty.
+pub fn longest_run(orders: &[usize]) -> (usize, usize) {
+    let mut best = (0, 0);
+    let mut start = 0;
+    for i in 0..orders.len() {
+        if i > 0 && orders[i] != orders[i - 1] + 1 {
+            start = i;
+        }
+        let length = i - start + 1;
+        if length > best.1 {
+            best = (orders[start], length);
+        }
+    }
+    best
+}
+
+/// Every chain of the chart holding at least one stable pole, in order of chain number.
+pub fn chains(chart: &[ChartPole]) -> Vec<Chain> {
+    let count = chart.iter().map(|p| p.chain + 1).max().unwrap_or(0);
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
     for (i, p) in chart.iter().enumerate() {
         if p.is_stable() {
             members[p.chain].push(i);
         }
     }
-    let mut candidates: Vec<(Chosen, Vec<usize>)> = Vec::new();
-    for stable in members {
-        if stable.len() < criteria.min_stable {
-            continue;
-        }
-        let mut by_damping: Vec<f64> = stable.iter().map(|&i| chart[i].damping_ratio).collect();
-        by_damping.sort_by(f64::total_cmp);
-        if by_damping[by_damping.len() / 2] >= criteria.max_damping {
-            continue;
-        }
-        let mut by_frequency = stable.clone();
-        by_frequency.sort_by(|&a, &b| chart[a].frequency_hz.total_cmp(&chart[b].frequency_hz));
-        let pole = by_frequency[by_frequency.len() / 2];
-        let orders = (
-            stable.iter().map(|&i| chart[i].order).min().unwrap_or(0),
-            stable.iter().map(|&i| chart[i].order).max().unwrap_or(0),
-        );
-        candidates.push((
-            Chosen {
-                pole,
+    members
+        .into_iter()
+        .filter(|stable| !stable.is_empty())
+        .map(|stable| {
+            let mut by_damping: Vec<f64> = stable.iter().map(|&i| chart[i].damping_ratio).collect();
+            by_damping.sort_by(f64::total_cmp);
+            let mut by_frequency = stable.clone();
+            by_frequency.sort_by(|&a, &b| chart[a].frequency_hz.total_cmp(&chart[b].frequency_hz));
+            let stable_orders: Vec<usize> = stable.iter().map(|&i| chart[i].order).collect();
+            Chain {
+                pole: by_frequency[by_frequency.len() / 2],
                 stable_count: stable.len(),
-                orders,
-            },
-            stable.iter().map(|&i| chart[i].order).collect(),
-        ));
+                orders: (stable_orders[0], stable_orders[stable_orders.len() - 1]),
+                run: longest_run(&stable_orders),
+                stable_orders,
+                median_damping: by_damping[by_damping.len() / 2],
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_longest_run_of_orders_is_the_first_of_the_longest() {
+        assert_eq!(longest_run(&[]), (0, 0));
+        assert_eq!(longest_run(&[7]), (7, 1));
+        assert_eq!(longest_run(&[3, 4, 5, 9, 10, 11, 12, 20]), (9, 4));
+        assert_eq!(longest_run(&[3, 4, 8, 9]), (3, 2));
     }
-    // Most stable poles first; ties to the lower frequency.
-    candidates.sort_by(|a, b| {
-        b.0.stable_count.cmp(&a.0.stable_count).then(
-            chart[a.0.pole]
-                .frequency_hz
-                .total_cmp(&chart[b.0.pole].frequency_hz),
-        )
-    });
-    let mut kept: Vec<(Chosen, Vec<usize>)> = Vec::new();
-    for (c, orders) in candidates {
-        let f = chart[c.pole].frequency_hz;
-        let duplicate = kept.iter().any(|(k, k_orders)| {
-            let fk = chart[k.pole].frequency_hz;
-            let near = (f - fk).abs() < criteria.frequency_tolerance * fk;
-            let disjoint = !orders.iter().any(|o| k_orders.contains(o));
-            let same_shape = mac(residues[c.pole], residues[k.pole]) > criteria.mac_min;
-            near && (disjoint || same_shape)
-        });
-        if !duplicate {
-            kept.push((c, orders));
-        }
-    }
-    if let Some(n) = n_modes {
-        kept.truncate(n);
-    }
-    let mut chosen: Vec<Chosen> = kept.into_iter().map(|(c, _)| c).collect();
-    chosen.sort_by(|a, b| {
-        chart[a.pole]
-            .frequency_hz
-            .total_cmp(&chart[b.pole].frequency_hz)
-    });
-    for c in &chosen {
-        chart[c.pole].selected = true;
-    }
-    chosen
 }

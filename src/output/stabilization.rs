@@ -1,6 +1,7 @@
 //! The stabilisation chart of an extraction as SVG: every pole of every model order at its
 //! frequency (x, Hz) and order (y), its marker by stability class, the chosen poles circled and
-//! the identified frequencies as vertical lines; on a secondary log axis, the sum over the
+//! the identified frequencies as vertical lines, the rejected candidates crossed out with the
+//! rule that rejected them; on a secondary log axis, the sum over the
 //! responses of |H| measured and of the identified model (the usual overlay that shows which
 //! peaks the chosen modes explain).
 
@@ -12,6 +13,8 @@ use crate::extract::{Extraction, FrfSet, Quantity, StabilityClass};
 use crate::uff::Function;
 
 const FONT: &str = "sans-serif";
+/// The colour of the rejected candidates' marks.
+const REJECTED: RGBColor = RGBColor(200, 30, 30);
 
 fn err<E: std::fmt::Debug>(e: E) -> PlotError {
     PlotError(format!("{e:?}"))
@@ -228,6 +231,23 @@ pub fn draw(
             )
         }))
         .map_err(err)?;
+    let rejected = ex.decisions.iter().filter_map(|d| {
+        let why = d.rejected.as_ref()?;
+        let p = &ex.chart[d.pole];
+        Some(((p.frequency_hz, p.order as f64), why.code()))
+    });
+    for (at, code) in rejected {
+        chart
+            .draw_series([Cross::new(at, 7, REJECTED.stroke_width(2))])
+            .map_err(err)?;
+        chart
+            .draw_series([Text::new(
+                code.to_string(),
+                (at.0, at.1 + 1.5),
+                (FONT, 11).into_font().color(&REJECTED),
+            )])
+            .map_err(err)?;
+    }
     legend(&legend_area, frf, ex)
 }
 
@@ -256,8 +276,20 @@ fn legend(
     }
     area.draw(&Circle::new((16, y), 7, PALETTE[1].stroke_width(2)))
         .map_err(err)?;
-    area.draw(&text(format!("chosen pole ({} modes)", ex.modes.len()), y))
+    area.draw(&text(
+        format!("chosen pole ({} modes kept)", ex.modes.len()),
+        y,
+    ))
+    .map_err(err)?;
+    y += 20;
+    area.draw(&Cross::new((16, y), 7, REJECTED.stroke_width(2)))
         .map_err(err)?;
+    let rejected = ex.decisions.iter().filter(|d| d.rejected.is_some()).count();
+    area.draw(&text(
+        format!("rejected candidate ({rejected}), its rule"),
+        y,
+    ))
+    .map_err(err)?;
     y += 20;
     area.draw(&PathElement::new(
         vec![(6, y), (26, y)],
@@ -286,6 +318,14 @@ fn legend(
             "MAC > {}; chosen: >= {} stable orders",
             c.mac_min, c.min_stable
         ),
+        match ex.requested {
+            Some(n) => format!("the {n} most stable (--modes)"),
+            None => format!(
+                "in a run from order <= {}, MPC >= {}",
+                ex.rules.last_start(),
+                ex.rules.mpc_min
+            ),
+        },
     ] {
         area.draw(&Text::new(line, (6, y), (FONT, 12).into_font()))
             .map_err(err)?;

@@ -375,3 +375,138 @@ fn a_huge_band_is_echoed_compactly() {
         );
     }
 }
+
+/// The FRFs of `write_case` in one file with their coherences: 0.99 below `cut` Hz, 0.05
+/// above (where the input stops); the geometry of nodes 1-3 and the shaker.
+fn write_coherent_case(dir: &Scratch, cut: f64) -> (PathBuf, PathBuf) {
+    let (files, geometry) = write_case(dir, false, &[1, 2, 3, 100]);
+    let mut bytes = std::fs::read(&files[0]).unwrap();
+    let freqs = lines(0.25, 300.0);
+    for node in 1..=3 {
+        let mut f = function(node, 0.25, Vec::new(), "NONE");
+        f.function_type = FunctionType::Coherence;
+        f.ordinate_axis = axis(0, "NONE", "NONE");
+        let values = freqs
+            .iter()
+            .map(|&x| if x < cut { 0.99 } else { 0.05 })
+            .collect();
+        f.ordinate = Values::Real(values);
+        write_function(&mut bytes, &f).unwrap();
+    }
+    let path = dir.path("coherent.uff");
+    std::fs::write(&path, bytes).unwrap();
+    (path, geometry)
+}
+
+/// Without --band the band follows the coherence (the input stops at 150 Hz: the 200 Hz
+/// mode is outside it) and the report says where the band came from and why each candidate
+/// was kept or rejected.
+#[test]
+fn the_automatic_band_follows_the_coherence_and_the_report_says_why() {
+    let dir = Scratch::new("report");
+    let (frf, geometry) = write_coherent_case(&dir, 150.0);
+    let (out, report, chart) = (
+        dir.path("modes.csv"),
+        dir.path("report.json"),
+        dir.path("chart.svg"),
+    );
+    let output = run(
+        std::slice::from_ref(&frf),
+        &geometry,
+        &out,
+        &[
+            "--report",
+            report.to_str().unwrap(),
+            "--chart",
+            chart.to_str().unwrap(),
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("(where the coherence and the level show excitation), 2 modes:"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("  kept mode 1 (stable from order"),
+        "{stderr}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["version"], 1);
+    assert_eq!(json["band"]["source"], "coherence");
+    let (lo, hi) = (
+        json["band"]["hz"][0].as_f64().unwrap(),
+        json["band"]["hz"][1].as_f64().unwrap(),
+    );
+    assert!(lo <= 1.0 && (140.0..150.0).contains(&hi), "{lo} {hi}");
+    assert_eq!(json["rules"]["automatic"], true);
+    assert_eq!(json["rules"]["mpc_min"], 0.95);
+    let candidates = json["candidates"].as_array().unwrap();
+    for (r, f) in [(1, TRUE_HZ[0]), (2, TRUE_HZ[1])] {
+        let c = &candidates[r - 1];
+        assert_eq!(c["mode"], r);
+        assert!(c["rejected"].is_null() && c["edge"].is_null(), "{c}");
+        assert!(
+            (c["frequency_hz"].as_f64().unwrap() - f).abs() < 1e-3 * f,
+            "{c}"
+        );
+        assert!(c["mpc"].as_f64().unwrap() > 0.999, "{c}");
+        assert!(c["margins"][0].as_f64().unwrap() >= 5.0, "{c}");
+    }
+    for c in &candidates[2..] {
+        assert!(
+            c["mode"].is_null() && c["rejected"]["kind"].is_string(),
+            "{c}"
+        );
+    }
+    let svg = std::fs::read_to_string(&chart).unwrap();
+    assert!(
+        svg.contains("rejected candidate ("),
+        "no rejected mark in the legend"
+    );
+    assert!(svg.contains("chosen pole (2 modes kept)"));
+}
+
+/// A band given where the coherence shows no excitation is refused, naming the flag and its
+/// value; an MPC threshold out of (0, 1] too.
+#[test]
+fn a_band_the_coherence_shows_unexcited_is_refused() {
+    let dir = Scratch::new("unexcited");
+    let (frf, geometry) = write_coherent_case(&dir, 150.0);
+    let out = dir.path("modes.csv");
+    let output = run(
+        std::slice::from_ref(&frf),
+        &geometry,
+        &out,
+        &["--band", "180:290"],
+    );
+    assert_refused(
+        &output,
+        &out,
+        &[
+            "coherent.uff: --band 180:290 is refused: band 180..290 Hz shows no excitation: \
+             its smoothed mean coherence reaches 0.05 (0.8 needed)",
+            "give a band the input covered",
+        ],
+    );
+    let output = run(
+        std::slice::from_ref(&frf),
+        &geometry,
+        &out,
+        &["--mpc-min", "1.5"],
+    );
+    assert_refused(
+        &output,
+        &out,
+        &["--mpc-min 1.5 is invalid: it must be in (0, 1]"],
+    );
+    // The excited part of the data passes, as given.
+    let output = run(&[frf], &geometry, &out, &["--band", "10:140"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("band 10.000..140.000 Hz, 2 modes:"),
+        "{stderr}"
+    );
+}

@@ -9,7 +9,7 @@
 use crate::common::frf;
 
 use frf::{add_noise, frf_set, lines, mac, prescribed, receptance, shape_at};
-use jointid::extract::{Extraction, Quantity, Settings, extract};
+use jointid::extract::{BandSource, Extraction, Quantity, Settings, extract};
 
 /// Frequencies within `f_tol` (relative), damping within `z_tol` (relative), MAC of the real
 /// shapes against the true ones at the responses >= `mac_min`; one mode per true mode.
@@ -32,7 +32,19 @@ fn assert_modes(
             )
         })
         .collect();
-    assert_eq!(ex.modes.len(), modes.len(), "found {table:#?}");
+    let rejected: Vec<String> = ex
+        .decisions
+        .iter()
+        .filter_map(|d| {
+            let why = d.rejected.as_ref()?;
+            Some(format!("{:.4} Hz: {why}", d.frequency_hz))
+        })
+        .collect();
+    assert_eq!(
+        ex.modes.len(),
+        modes.len(),
+        "found {table:#?}, rejected {rejected:#?}"
+    );
     for (m, &r) in ex.modes.iter().zip(modes) {
         let (f, z) = (sys.frequencies_hz[r], sys.damping[r]);
         let ef = (m.frequency_hz - f) / f;
@@ -73,7 +85,9 @@ fn five_modes_with_modes_outside_the_band_noisy_velocity() {
         ..Settings::default()
     };
     let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    // No number of modes: the automatic choice, which keeps the five and nothing else.
     assert_modes(&ex, &sys, &[1, 2, 3, 4, 5], &responses, 1e-3, 0.1, 0.999);
+    assert_kept_are_the_modes(&ex);
 }
 
 #[test]
@@ -185,4 +199,70 @@ fn frfs_scaled_far_from_one_give_the_same_modes() {
             );
         }
     }
+}
+
+/// The FRFs of bench/extract_vs_sdypy.py (the case of the first test above, drawn by the same
+/// generator: tests/common/frf.rs is its Rust twin, independent of the extractor) with neither
+/// a band nor a number of modes: the band is the data's (no coherence: the level stands above
+/// the noise on every line) and the automatic choice keeps the six true modes below the last
+/// line (1000 Hz) and nothing else; every rejected candidate says why. (With the bench's band
+/// 80-800 Hz, the first test above: the five true modes in it.)
+#[test]
+fn without_a_band_the_automatic_choice_keeps_the_six_true_modes_of_the_bench_case() {
+    let f = [40.0, 120.0, 210.0, 330.0, 480.0, 650.0, 1500.0];
+    let z = [0.01, 0.02, 0.005, 0.01, 0.03, 0.002, 0.01];
+    let sys = prescribed(&f, &z, 5);
+    let freqs = lines(0.25, 1000.0);
+    let responses: Vec<usize> = (0..7).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Velocity);
+    add_noise(&mut set, 0.02, 1e-4, 11);
+    let ex = extract(&set, &Settings::default(), &|_, _| {}).unwrap();
+    assert_eq!(ex.band_source, BandSource::Level);
+    assert_eq!(ex.band_hz, (0.25, 1000.0));
+    assert_modes(&ex, &sys, &[0, 1, 2, 3, 4, 5], &responses, 1e-3, 0.1, 0.999);
+    assert_kept_are_the_modes(&ex);
+}
+
+/// The decisions number the kept candidates 1..=modes, and every other one says why not.
+fn assert_kept_are_the_modes(ex: &Extraction) {
+    let kept: Vec<usize> = ex.decisions.iter().filter_map(|d| d.mode).collect();
+    assert_eq!(kept, (1..=ex.modes.len()).collect::<Vec<_>>());
+    for d in &ex.decisions {
+        assert_eq!(d.mode.is_some(), d.rejected.is_none(), "{d:?}");
+    }
+}
+
+/// A mode near where the excitation stops: the coherence is 0.99 below 150 Hz and 0.05 above,
+/// and the mode at 146 Hz (1% damping, half-power bandwidth 2.92 Hz) would sit 1.4 bandwidths
+/// from the edge of the excited band. The band is moved out to 10 bandwidths above it, and
+/// the mode keeps its margin of 5 there; the band before the move is reported.
+#[test]
+fn a_mode_at_the_edge_of_the_excited_band_moves_the_edge_out() {
+    let f = [60.0, 146.0, 260.0];
+    let z = [0.01, 0.01, 0.01];
+    let sys = prescribed(&f, &z, 3);
+    let freqs = lines(0.25, 300.0);
+    let responses: Vec<usize> = (0..3).collect();
+    let h = receptance(&sys, 0, &freqs);
+    let mut set = frf_set(&h, &freqs, &responses, Quantity::Displacement);
+    let coherence: Vec<f64> = freqs
+        .iter()
+        .map(|&x| if x < 150.0 { 0.99 } else { 0.05 })
+        .collect();
+    set.coherence = Some(vec![coherence; 3]);
+    let settings = Settings {
+        max_order: 24,
+        ..Settings::default()
+    };
+    let ex = extract(&set, &settings, &|_, _| {}).unwrap();
+    let (lo, hi) = ex.extended_from.expect("the band was extended");
+    assert!(lo <= 1.0 && (148.0..150.0).contains(&hi), "{lo} {hi}");
+    let top = 146.0 * (1.0 + 2.0 * 5.0 * 2.0 * 0.01);
+    assert!((ex.band_hz.1 - top).abs() < 0.1, "{:?}", ex.band_hz);
+    assert_eq!(ex.modes.len(), 2);
+    let d = &ex.decisions[1];
+    assert_eq!(d.mode, Some(2));
+    assert!((d.frequency_hz - 146.0).abs() < 0.01, "{d:?}");
+    assert!(d.margins.1 >= 5.0 && d.edge.is_none(), "{d:?}");
 }
