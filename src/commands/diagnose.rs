@@ -64,7 +64,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
     outputs.extend(index.as_deref());
     check_outputs(&outputs, &inputs)?;
-    let model = jointid::model::from_path(&args.model)?;
+    let model = super::read_model(&args.model)?;
     // A chain whose beams were calibrated on a reference test: the same chain as typed.
     let typed =
         calibrated_chain(&args.model)?.map(|chain| (chain.typed().build(), chain.calibration));

@@ -15,7 +15,7 @@ use crate::cli::ExportArgs;
 use jointid::model::matrices::{export, export::identical};
 
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
-    let model = jointid::model::from_path(&args.model)?;
+    let model = super::read_model(&args.model)?;
     let out = &args.out;
     ensure_new_folder(out, "export")?;
     let exported = export(&model, &args.model.display().to_string())

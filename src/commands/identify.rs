@@ -30,7 +30,7 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
             Number(v)
         );
     }
-    let model = jointid::model::from_path(&args.model)?;
+    let model = super::read_model(&args.model)?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let all = model.identified();
     if all.is_empty() {

@@ -23,7 +23,7 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     let inputs = model_inputs(&args.model);
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&[&args.out], &inputs)?;
-    let model = jointid::model::from_path(&args.model)?;
+    let model = super::read_model(&args.model)?;
     let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
     let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {
         flagged(SettingError::new("noise", &args.noise, allowed), FLAGS)

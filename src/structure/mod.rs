@@ -138,6 +138,10 @@ pub struct Structure {
     pub sensors: Vec<Observation>,
     /// Other models of the same test that the builder knows (a joint modelled otherwise).
     pub alternatives: Vec<Alternative>,
+    /// Pairs of coincident DOFs (same position and direction) that nothing ties: open faces
+    /// of an external model (a lap's notch, a crack), which change no entry of K or M; a
+    /// sensor position on one asks for the DOF's label.
+    pub open_faces: usize,
 }
 
 /// Another model of the same test, made by the builder that made a structure: every DOF of

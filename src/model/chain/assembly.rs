@@ -99,6 +99,7 @@ impl Chain {
                 held: held.finish(),
             },
             alternatives: self.alternatives(),
+            open_faces: 0,
         }
     }
 

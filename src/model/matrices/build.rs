@@ -62,7 +62,7 @@ impl MatricesFile {
         for (i, p) in self.parameters.iter().enumerate() {
             parameters.push(self.parameter(i, p, n, &read)?);
         }
-        self.tied(&infos, &k, &parameters)?;
+        let open_faces = Self::open_faces(&infos, &k, &parameters);
         let dofs =
             DofMap::new(infos, Vec::new(), Vec::new()).with_sensor_tolerance(self.sensor_tolerance);
         let base = Matrices {
@@ -77,6 +77,7 @@ impl MatricesFile {
             sites: Sites::default(),
             sensors: Vec::new(),
             alternatives: Vec::new(),
+            open_faces,
         };
         let assembled = structure.assemble();
         check_mass(&assembled, &structure.dofs)?;
@@ -85,30 +86,16 @@ impl MatricesFile {
         Ok(structure)
     }
 
-    /// Coincident DOFs are tied by K or a dK/dp ([`super::coincident`]).
-    fn tied(
-        &self,
+    /// The pairs of coincident DOFs that neither K nor a dK/dp ties: open faces
+    /// ([`super::coincident`]).
+    fn open_faces(
         infos: &[crate::structure::DofInfo],
         k: &LowerEntries,
         parameters: &[Parameter],
-    ) -> Result<(), MatricesError> {
+    ) -> usize {
         let lists = std::iter::once(k.entries.as_slice())
             .chain(parameters.iter().map(|p| p.stiffness.entries()));
-        match super::coincident::untied(infos, lists) {
-            None => Ok(()),
-            Some(pair) => {
-                let (a, b) = (&infos[pair.first], &infos[pair.second]);
-                Err(MatricesError::Coincident {
-                    file: self.dofs.display().to_string(),
-                    first: pair.first + 1,
-                    first_label: a.label.clone(),
-                    second: pair.second + 1,
-                    second_label: b.label.clone(),
-                    direction: a.direction,
-                    position: a.position,
-                })
-            }
-        }
+        super::coincident::untied(infos, lists).len()
     }
 
     fn same_size(&self, field: &str, matrix: &LowerEntries, n: usize) -> Result<(), MatricesError> {

@@ -26,7 +26,7 @@ use std::path::Path;
 pub use config::{MatricesFile, ParameterFile};
 pub use export::{Export, ExportError, export};
 
-use crate::input::{InputError, Number, parse_toml};
+use crate::input::{InputError, parse_toml};
 use crate::model::matrix_market::MatrixMarketError;
 use crate::structure::Structure;
 use dof_table::DofTableError;
@@ -52,27 +52,6 @@ pub enum MatricesError {
     Dofs {
         /// What is wrong in it.
         problem: DofTableError,
-    },
-    /// Two DOFs at the same position and direction that nothing couples.
-    #[error(
-        "dofs: {file}: dof {first} (`{first_label}`) and dof {second} (`{second_label}`), both {direction} at ({}, {}, {}) m, are coupled by no entry of K or dK/dp: unmerged nodes; merge or tie them",
-        Number(position[0]), Number(position[1]), Number(position[2])
-    )]
-    Coincident {
-        /// The DOF table.
-        file: String,
-        /// The first DOF, 1-based.
-        first: usize,
-        /// Its label.
-        first_label: String,
-        /// The second DOF, 1-based.
-        second: usize,
-        /// Its label.
-        second_label: String,
-        /// Their direction.
-        direction: crate::structure::Direction,
-        /// Their position.
-        position: [f64; 3],
     },
     /// A matrix of another size than K.
     #[error(
