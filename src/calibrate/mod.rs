@@ -302,16 +302,24 @@ pub fn calibrate(
             }
         })
         .collect();
-    Ok(outcome(chain, measured, request, &typed, &fitted, factors))
+    Ok(outcome(
+        chain,
+        measured,
+        request,
+        &calibration,
+        [&typed, &fitted],
+        factors,
+    ))
 }
 
-/// The calibration's outcome from its two fits.
+/// The calibration's outcome from its two fits, the typed specimen's and the calibrated one's,
+/// `calibration` the measurement error alone.
 fn outcome(
     chain: &Chain,
     measured: &MeasuredModes,
     request: &Request,
-    typed: &Fitted,
-    fitted: &Fitted,
+    calibration: &Calibration,
+    [typed, fitted]: [&Fitted; 2],
     factors: Vec<FactorEstimate>,
 ) -> Calibrated {
     let (before, after) = (residuals(typed, measured), residuals(fitted, measured));
@@ -327,13 +335,6 @@ fn outcome(
             calibrated_error: a,
         })
         .collect();
-    let alone = Calibration {
-        noise: request.noise,
-        discrepancy: Discrepancy::default(),
-        pairing: request.pairing.clone(),
-        shape_floor: SHAPE_FLOOR,
-        measured_std: request.measured_std,
-    };
     let hz: Vec<f64> = measured.modes().iter().map(|m| m.frequency_hz).collect();
     let trend = trend(
         &hz,
@@ -345,7 +346,7 @@ fn outcome(
         specimen: request.specimen.to_string(),
         trend,
         discrepancy: fitted.discrepancy.clone(),
-        chi2: fit::chi2_of(&after, measured, &alone),
+        chi2: fit::chi2_of(&after, measured, calibration),
         dof: fitted.dof,
         typed_rms_pct: rms(&before.frequency),
         calibrated_rms_pct: rms(&after.frequency),

@@ -19,6 +19,77 @@ use jointid::output::{check_outputs, commit_all, stage};
 
 use jointid::uff::{FunctionType, Record, read_path};
 
+/// The FRFs of `args.frf` with their chart's units, and the coordinates of their response
+/// points from `args.geometry`.
+fn read_inputs(
+    args: &ExtractArgs,
+    say: &dyn Fn(String),
+) -> anyhow::Result<(universal::UffFrfs, ChartUnits, Vec<[f64; 3]>)> {
+    let mut files: Vec<(PathBuf, Vec<Record>)> = Vec::new();
+    for path in &args.frf {
+        say(format!("reading {}", path.display()));
+        files.push((path.clone(), read_path(path)?));
+    }
+    let quantity = args.quantity.map(|q| match q {
+        FrfQuantity::Displacement => Quantity::Displacement,
+        FrfQuantity::Velocity => Quantity::Velocity,
+        FrfQuantity::Acceleration => Quantity::Acceleration,
+    });
+    let responses = if args.space {
+        universal::Responses::Space
+    } else {
+        universal::Responses::Bending
+    };
+    let input = universal::frfs_of(&files, quantity, responses)?;
+    let units = chart_units(&files, input.set.quantity);
+    drop(files);
+    let geometry: Vec<_> = read_path(&args.geometry)?
+        .into_iter()
+        .filter_map(|r| match r {
+            Record::Nodes(n) => Some(n),
+            _ => None,
+        })
+        .collect();
+    let xyz = universal::coordinates(&input.channels, &geometry, &args.geometry)?;
+    Ok((input, units, xyz))
+}
+
+/// The modes CSV, the report and the chart staged (written to temporaries, not committed).
+fn stage_outputs(
+    args: &ExtractArgs,
+    ex: &Extraction,
+    channels: &[universal::Channel],
+    xyz: &[[f64; 3]],
+    chart: Option<String>,
+) -> anyhow::Result<Vec<jointid::output::Staged>> {
+    let mut staged = vec![
+        stage(&args.out, |w| {
+            if args.space {
+                csv::write_modes_in_space(w, &ex.modes, channels, xyz)
+            } else {
+                let x: Vec<f64> = xyz.iter().map(|c| c[0]).collect();
+                csv::write_modes(w, &ex.modes, channels, &x)
+            }
+            .map_err(std::io::Error::other)
+        })
+        .with_context(|| format!("{}: cannot write", args.out.display()))?,
+    ];
+    if let Some(path) = &args.report {
+        let report = Report::of(ex);
+        staged.push(
+            stage(path, |w| report.write(w))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    if let (Some(path), Some(svg)) = (&args.chart, chart) {
+        staged.push(
+            stage(path, |w| w.write_all(svg.as_bytes()))
+                .with_context(|| format!("{}: cannot write", path.display()))?,
+        );
+    }
+    Ok(staged)
+}
+
 /// Below this MPC a mode is named on stderr as complex.
 const MPC_WARN: f64 = 0.9;
 
@@ -153,32 +224,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
     outputs.extend(args.chart.as_deref());
     outputs.extend(args.report.as_deref());
     check_outputs(&outputs, &inputs)?;
-    let mut files: Vec<(PathBuf, Vec<Record>)> = Vec::new();
-    for path in &args.frf {
-        say(format!("reading {}", path.display()));
-        files.push((path.clone(), read_path(path)?));
-    }
-    let quantity = args.quantity.map(|q| match q {
-        FrfQuantity::Displacement => Quantity::Displacement,
-        FrfQuantity::Velocity => Quantity::Velocity,
-        FrfQuantity::Acceleration => Quantity::Acceleration,
-    });
-    let responses = if args.space {
-        universal::Responses::Space
-    } else {
-        universal::Responses::Bending
-    };
-    let input = universal::frfs_of(&files, quantity, responses)?;
-    let units = chart_units(&files, input.set.quantity);
-    drop(files);
-    let geometry: Vec<_> = read_path(&args.geometry)?
-        .into_iter()
-        .filter_map(|r| match r {
-            Record::Nodes(n) => Some(n),
-            _ => None,
-        })
-        .collect();
-    let xyz = universal::coordinates(&input.channels, &geometry, &args.geometry)?;
+    let (input, units, xyz) = read_inputs(args, &say)?;
     let inputs = args
         .frf
         .iter()
@@ -246,31 +292,7 @@ pub fn run(args: &ExtractArgs) -> anyhow::Result<()> {
         Some(_) => Some(draw_chart(args, &input.set, &ex, &units)?),
         None => None,
     };
-    let mut staged = vec![
-        stage(&args.out, |w| {
-            if args.space {
-                csv::write_modes_in_space(w, &ex.modes, &input.channels, &xyz)
-            } else {
-                let x: Vec<f64> = xyz.iter().map(|c| c[0]).collect();
-                csv::write_modes(w, &ex.modes, &input.channels, &x)
-            }
-            .map_err(std::io::Error::other)
-        })
-        .with_context(|| format!("{}: cannot write", args.out.display()))?,
-    ];
-    if let Some(path) = &args.report {
-        let report = Report::of(&ex);
-        staged.push(
-            stage(path, |w| report.write(w))
-                .with_context(|| format!("{}: cannot write", path.display()))?,
-        );
-    }
-    if let (Some(path), Some(svg)) = (&args.chart, chart) {
-        staged.push(
-            stage(path, |w| w.write_all(svg.as_bytes()))
-                .with_context(|| format!("{}: cannot write", path.display()))?,
-        );
-    }
+    let staged = stage_outputs(args, &ex, &input.channels, &xyz, chart)?;
     commit_all(staged)?;
     say(format!("wrote {}", args.out.display()));
     for path in args.chart.iter().chain(&args.report) {

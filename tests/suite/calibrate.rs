@@ -71,6 +71,28 @@ fn write_data(dir: &std::path::Path, seed: u64) {
     .unwrap();
 }
 
+/// `jointid calibrate` of `dir`'s model.toml on its reference file `reference` into
+/// calibrated.toml, at the data's noise, with the flags `extra`.
+fn calibrate_in(dir: &std::path::Path, reference: &str, extra: &[&str]) -> std::process::Output {
+    let p = |name: &str| dir.join(name).display().to_string();
+    let (model, reference, out) = (p("model.toml"), p(reference), p("calibrated.toml"));
+    let mut args = vec![
+        "calibrate",
+        "--model",
+        &model,
+        "--reference",
+        &reference,
+        "--out",
+        &out,
+        "--frequency-noise",
+        "5e-4",
+        "--shape-noise",
+        "0.01",
+    ];
+    args.extend_from_slice(extra);
+    jointid_ok(&args)
+}
+
 fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
@@ -104,22 +126,8 @@ fn youngs_modulus_three_percent_off_is_recovered_within_two_standard_errors() {
     for seed in [11, 12, 13] {
         let dir = scratch("calibrate", &format!("e-{seed}"));
         write_data(&dir, seed);
-        let p = |name: &str| dir.join(name).display().to_string();
-        jointid_ok(&[
-            "calibrate",
-            "--model",
-            &p("model.toml"),
-            "--reference",
-            &p("reference.csv"),
-            "--out",
-            &p("calibrated.toml"),
-            "--json",
-            &p("calibration.json"),
-            "--frequency-noise",
-            "5e-4",
-            "--shape-noise",
-            "0.01",
-        ]);
+        let json_path = dir.join("calibration.json").display().to_string();
+        calibrate_in(&dir, "reference.csv", &["--json", &json_path]);
         let c = json(&dir.join("calibration.json"));
         let factor = &c["factors"][0]["factor"];
         let (value, se) = (
@@ -160,20 +168,8 @@ fn joint(report: &serde_json::Value) -> Vec<(String, f64, f64)> {
 fn the_joint_identified_after_the_reference_test_moves_by_what_the_diagnosis_said_it_absorbed() {
     let dir = scratch("calibrate", "absorbed");
     write_data(&dir, 21);
+    calibrate_in(&dir, "reference.csv", &[]);
     let p = |name: &str| dir.join(name).display().to_string();
-    jointid_ok(&[
-        "calibrate",
-        "--model",
-        &p("model.toml"),
-        "--reference",
-        &p("reference.csv"),
-        "--out",
-        &p("calibrated.toml"),
-        "--frequency-noise",
-        "5e-4",
-        "--shape-noise",
-        "0.01",
-    ]);
     let diagnose = |model: &str, json: &str| {
         jointid_ok(&[
             "diagnose",
@@ -417,24 +413,12 @@ fn one_beam_alone_calibrates_that_beam_and_only_it() {
         measured_csv(&alone, 3, &xs, NOISE, 51),
     )
     .unwrap();
-    let p = |name: &str| dir.join(name).display().to_string();
-    jointid_ok(&[
-        "calibrate",
-        "--model",
-        &p("model.toml"),
-        "--reference",
-        &p("beam2.csv"),
-        "--specimen",
-        "beam:2",
-        "--out",
-        &p("calibrated.toml"),
-        "--json",
-        &p("c.json"),
-        "--frequency-noise",
-        "5e-4",
-        "--shape-noise",
-        "0.01",
-    ]);
+    let json_path = dir.join("c.json").display().to_string();
+    calibrate_in(
+        &dir,
+        "beam2.csv",
+        &["--specimen", "beam:2", "--json", &json_path],
+    );
     let c = json(&dir.join("c.json"));
     let f = &c["factors"][0]["factor"];
     let (value, se) = (f["value"].as_f64().unwrap(), f["se"].as_f64().unwrap());

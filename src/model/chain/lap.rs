@@ -178,22 +178,7 @@ pub(crate) fn lap(
         ));
     }
     let sections = [left.section_at(left.length), right.section_at(0.0)];
-    // The layers are beams: a section higher than its beam is long (an area of 1e-308 m^2
-    // against its second moment) would put their centroids off the axis by more than any
-    // structure spans, and their matrices past double precision.
-    for (k, (beam, section)) in [left, right].iter().zip(&sections).enumerate() {
-        let h = notch::height(section);
-        if !(h.is_finite() && h <= beam.length) {
-            return Err(check.invalid(
-                format!("beam[{}]", j + k),
-                format!("height sqrt(12 I / A) = {} m", Number(h)),
-                format!(
-                    "a lapped beam is no higher than it is long ({} m): check area and second_moment",
-                    Number(beam.length)
-                ),
-            ));
-        }
-    }
+    lapped_heights(&[left, right], &sections, j, check)?;
     let layers = match (raw.layers.as_deref(), &raw.upper, &raw.lower) {
         (_, Some(u), Some(l)) if raw.layers.is_none() => [
             layer(u, sections[0], &p("upper"), check)?,
@@ -256,6 +241,32 @@ pub(crate) fn lap(
     lap.k_n = value(raw.k_n, "k_n", 1e4 * lap.normal_scale())?;
     lap.k_s = value(raw.k_s, "k_s", lap.shear_scale())?;
     Ok(lap)
+}
+
+/// The beams `beams` of joint `j` (left, right) at their overlap ends, `sections`, checked to be
+/// beams: a section higher (sqrt(12 I / A)) than its beam is long (an area of 1e-308 m^2
+/// against its second moment) would put the layers' centroids off the axis by more than any
+/// structure spans, and their matrices past double precision.
+fn lapped_heights(
+    beams: &[&Beam; 2],
+    sections: &[Section; 2],
+    j: usize,
+    check: &FieldCheck,
+) -> Result<(), InputError> {
+    for (k, (beam, section)) in beams.iter().zip(sections).enumerate() {
+        let h = notch::height(section);
+        if !(h.is_finite() && h <= beam.length) {
+            return Err(check.invalid(
+                format!("beam[{}]", j + k),
+                format!("height sqrt(12 I / A) = {} m", Number(h)),
+                format!(
+                    "a lapped beam is no higher than it is long ({} m): check area and second_moment",
+                    Number(beam.length)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Half of a rectangle-equivalent section (height sqrt(12 I / A)), its centroid `sign` h/4
