@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the 3D half-lap fixtures of tests/fixtures/lap3d/ (see its README.md) with
-# bench/lap3d/generate.py: ten cases, fixed seeds, 0.1% frequency and 1% shape noise.
+# bench/lap3d/generate.py: ten cases, fixed seeds, 0.1% frequency and 1% shape noise, and
+# three noise-free ones (exact-*: the model-form error alone).
 # About 25 s per case on two cores.   usage: bash bench/lap3d/generate_all.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -17,3 +18,6 @@ gen tipmass-3    --interface uniform --tip-mass 0.02 --sensors 3 --seed 7
 gen tipmass-9    --interface uniform --tip-mass 0.02 --sensors 9 --seed 8
 gen monolithic-3 --monolithic --sensors 3 --seed 9
 gen monolithic-9 --monolithic --sensors 9 --seed 10
+gen exact-uniform-9 --interface uniform --sensors 9 --frequency-noise 0 --shape-noise 0
+gen exact-bolts-9   --interface bolts   --sensors 9 --frequency-noise 0 --shape-noise 0
+gen exact-glued-9   --interface glued   --sensors 9 --frequency-noise 0 --shape-noise 0

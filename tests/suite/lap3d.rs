@@ -81,6 +81,12 @@ const LAPPED: [&str; 6] = [
 /// Asserts that report `r` of `case` names the lap as `effect` or `partial`, alone or with
 /// shear; its verdict and causes.
 fn lap_named(case: &str, r: &Value) -> (String, Vec<String>) {
+    lap_named_with(case, r, &["shear"])
+}
+
+/// Asserts that report `r` of `case` names the lap as `effect` or `partial`, alone or with
+/// causes among `others`; its verdict and causes.
+fn lap_named_with(case: &str, r: &Value, others: &[&str]) -> (String, Vec<String>) {
     let verdict = r["verdict"].as_str().unwrap().to_string();
     assert!(
         verdict == "effect" || verdict == "partial",
@@ -88,7 +94,10 @@ fn lap_named(case: &str, r: &Value) -> (String, Vec<String>) {
     );
     let named = causes(r);
     assert_eq!(named[0], "layered_lap", "{case}: {named:?}");
-    assert!(named[1..].iter().all(|c| c == "shear"), "{case}: {named:?}");
+    assert!(
+        named[1..].iter().all(|c| others.contains(&c.as_str())),
+        "{case}: {named:?}"
+    );
     (verdict, named)
 }
 
@@ -104,8 +113,9 @@ fn a_solid_lap_is_named_as_a_lap_by_the_users_beam_model() {
         let (verdict, named) = lap_named(case, &r);
         // It removes most of the point joint's frequency error: to 1% where shear comes with
         // it or three sensors leave the frequencies their weight; with nine sensors and the
-        // lap alone the 1D layers' shapes hold it at 1.5% (the 3D lap's mode 6 carries 15-42%
-        // axial motion the 1D layers do not have).
+        // lap alone, 1.5% (the bolted lap: its three patches and the beams' missing shear,
+        // 1.35% measured; lap and shear together reach 0.2% there, which against each model's
+        // own discrepancy on six frequencies is not a clearly better explanation).
         let (before, after) = (
             number(&r["before"]["frequency_rms_pct"]),
             number(&r["after"]["frequency_rms_pct"]),
@@ -172,10 +182,20 @@ fn with_timoshenko_beams_the_lap_alone_brings_the_frequencies_within_1_percent()
         let r = diagnose_with(case, "timoshenko", &dir);
         eprintln!("{} (Timoshenko)", line(case, &r));
         // The beams' own shear and rotary inertia declared, the lap is what the data name,
-        // alone or with a correction of the declared shear, and it leaves at most 1%.
-        lap_named(case, &r);
+        // alone or with a correction of the declared shear. On nine sensors of the bolted
+        // lap the uniform interface of the 1D lap leaves the first mode 1.2% low (the three
+        // patches: the noise-free test below), twelve times its noise: a suspension's
+        // springs stand in for that (the solid is free), as a second cause.
+        let others: &[&str] = if case == "bolts-9" {
+            &["shear", "suspension"]
+        } else {
+            &["shear"]
+        };
+        lap_named_with(case, &r, others);
         let after = number(&r["after"]["frequency_rms_pct"]);
-        assert!(after <= 1.0, "{case}: after {after}%");
+        // Within 0.5% (0.04-0.37% measured): the 3D lap's axial motion in its sixth mode is
+        // the beams' bars' (module `layered` of the chain).
+        assert!(after <= 0.5, "{case}: after {after}%");
     }
     for case in ["monolithic-3", "monolithic-9"] {
         let r = diagnose_with(case, "timoshenko", &dir);
@@ -187,6 +207,56 @@ fn with_timoshenko_beams_the_lap_alone_brings_the_frequencies_within_1_percent()
             causes(&r)
         );
         assert!(number(&r["after"]["frequency_rms_pct"]) < 0.2, "{case}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The parameter `name` of the report's after model.
+fn after_parameter(r: &Value, name: &str) -> f64 {
+    let p = r["after"]["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == name)
+        .unwrap_or_else(|| panic!("no {name} in {}", r["after"]["parameters"]));
+    number(&p["value"])
+}
+
+#[test]
+#[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
+fn on_noise_free_data_the_timoshenko_lap_is_the_solid_lap_but_for_the_bolts_distribution() {
+    // The exact-* fixtures: the solid's modes without noise, so what the fit leaves is the 1D
+    // model's form error alone.
+    let dir = scratch("lap3d", "exact");
+    for case in ["exact-uniform-9", "exact-glued-9", "exact-bolts-9"] {
+        let r = diagnose_with(case, "timoshenko", &dir);
+        eprintln!("{} (Timoshenko)", line(case, &r));
+        lap_named(case, &r);
+        let after = number(&r["after"]["frequency_rms_pct"]);
+        let errors: Vec<f64> = r["after"]["modes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| number(&m["frequency_error_pct"]))
+            .collect();
+        if case == "exact-bolts-9" {
+            // Three bolt patches, a uniform interface in the 1D lap: the first mode, whose
+            // curvature is largest over the overlap, is where that shows (-1.2%).
+            assert!(after <= 1.0, "{case}: after {after}%");
+            let worst = (0..errors.len())
+                .max_by(|&a, &b| errors[a].abs().total_cmp(&errors[b].abs()))
+                .unwrap();
+            assert_eq!(worst, 0, "{case}: {errors:?}");
+        } else {
+            // An interface over the whole overlap, or none (glued): the layered lap is the
+            // solid to a tenth of a percent.
+            assert!(after <= 0.1, "{case}: after {after}% {errors:?}");
+        }
+        if case == "exact-uniform-9" {
+            // The interface's slip stiffness is the solid's: k_t b = 2.54e9 N/m per m.
+            let k_s = after_parameter(&r, "k_s");
+            assert!((k_s / 2.54e9 - 1.0).abs() < 0.05, "{case}: k_s {k_s:e}");
+        }
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

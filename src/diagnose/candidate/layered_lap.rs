@@ -90,9 +90,16 @@ fn context_at(stage: &Stage, structure: &Structure, factors: [f64; 3]) -> Arc<Ef
     })
 }
 
+/// Share of a mode's translational motion (sum of squares of its mass-normalised axial and
+/// transverse components) beyond which it is an axial mode: the lap's offset layers couple
+/// bending to the bars' axial motion, and a bending mode near the first axial one carries a
+/// large axial part (four tenths in the 3D lap's sixth mode), while the slip of a soft
+/// interface is axial almost entirely.
+const AXIAL_SHARE: f64 = 0.8;
+
 /// The first measured mode (1-based) that `fitted` pairs with an axial mode of the layers
-/// (a model mode whose axial DOFs move more than its transverse ones: transverse sensors
-/// barely see it, and a MAC on a few of them may still resemble a bending mode).
+/// (a model mode whose translational motion is more than [`AXIAL_SHARE`] axial: transverse
+/// sensors barely see it, and a MAC on a few of them may still resemble a bending mode).
 pub(super) fn axial_pair(fitted: &Fitted) -> Option<usize> {
     let structure = &fitted.configured.structure;
     let y = fitted.modal.vectors();
@@ -106,7 +113,10 @@ pub(super) fn axial_pair(fitted: &Fitted) -> Option<usize> {
         .pairing
         .model_index
         .iter()
-        .position(|&s| share(s, Direction::X) > share(s, Direction::W))
+        .position(|&s| {
+            let (x, w) = (share(s, Direction::X), share(s, Direction::W));
+            x > AXIAL_SHARE * (x + w)
+        })
         .map(|r| r + 1)
 }
 

@@ -92,6 +92,18 @@ pub fn bar_mass(rho_a: f64, l: f64) -> [[f64; 3]; 3] {
     gram(l, |xi| quadratic(xi).map(|v| v * rho_a.sqrt()))
 }
 
+/// Stiffness of a two-node (linear) bar element, EA / l [[1, -1], [-1, 1]].
+pub fn linear_bar_stiffness(ea: f64, l: f64) -> [[f64; 2]; 2] {
+    let k = ea / l;
+    [[k, -k], [-k, k]]
+}
+
+/// Consistent mass of a two-node bar element, rho A l / 6 [[2, 1], [1, 2]].
+pub fn linear_bar_mass(rho_a: f64, l: f64) -> [[f64; 2]; 2] {
+    let m = rho_a * l / 6.0;
+    [[2.0 * m, m], [m, 2.0 * m]]
+}
+
 /// The gap's matrix per unit k_n, integral g^2: DOFs (w, theta of the upper layer's two
 /// nodes, then the lower layer's).
 pub fn normal(l: f64) -> [[f64; 8]; 8] {
