@@ -1,0 +1,124 @@
+//! The search for a layout: greedy placement, then exchange passes, both deterministic (the
+//! candidates are tried in order and a tie keeps the earlier one).
+//!
+//! 1. Greedy: from the fixed sensors, add the candidate whose layout scores best
+//!    ([`super::evaluate::Score`]), until the count is reached.
+//! 2. Exchange: for every free sensor in turn, try every unused candidate in its place and keep
+//!    the first strict improvement; repeat the passes until one improves nothing (each
+//!    accepted exchange lowers the score, so the passes end).
+//!
+//! [`complete`] answers the other question a plan asks of a layout that leaves modes
+//! undetermined: the fewest sensors to add, and where.
+
+use super::evaluate::{Evaluation, Evaluator};
+
+/// A layout: candidate indices, ascending, with its evaluation.
+#[derive(Debug, Clone)]
+pub struct Placed {
+    /// Candidate indices, ascending.
+    pub sites: Vec<usize>,
+    /// Its evaluation.
+    pub evaluation: Evaluation,
+}
+
+/// The most exchange passes (each accepted exchange lowers the score; the bound only guards
+/// against a cycle of rounding ties).
+pub const MAX_PASSES: usize = 20;
+
+/// Judges the layout of candidate indices `sites` (`dofs[i]` the DOF of candidate i).
+pub fn judge(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Placed {
+    let mut sorted = sites.to_vec();
+    sorted.sort_unstable();
+    let layout: Vec<usize> = sorted.iter().map(|&i| dofs[i]).collect();
+    Placed {
+        evaluation: eval.evaluate(&layout),
+        sites: sorted,
+    }
+}
+
+/// The best candidate to add to `sites`, if any is unused.
+fn best_addition(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Option<Placed> {
+    let mut best: Option<Placed> = None;
+    for c in (0..dofs.len()).filter(|c| !sites.contains(c)) {
+        let mut trial = sites.to_vec();
+        trial.push(c);
+        let placed = judge(eval, dofs, &trial);
+        if best
+            .as_ref()
+            .is_none_or(|b| placed.evaluation.score.better(&b.evaluation.score))
+        {
+            best = Some(placed);
+        }
+    }
+    best
+}
+
+/// `count` sensors over the candidates `dofs`, the `fixed` ones (candidate indices) kept.
+pub fn place(eval: &Evaluator, dofs: &[usize], count: usize, fixed: &[usize]) -> Placed {
+    let mut current = judge(eval, dofs, fixed);
+    while current.sites.len() < count {
+        current = best_addition(eval, dofs, &current.sites).expect("count <= candidates");
+    }
+    for _ in 0..MAX_PASSES {
+        let mut improved = false;
+        for slot in 0..current.sites.len() {
+            if fixed.contains(&current.sites[slot]) {
+                continue;
+            }
+            for c in 0..dofs.len() {
+                if current.sites.contains(&c) {
+                    continue;
+                }
+                let mut trial = current.sites.clone();
+                trial[slot] = c;
+                let placed = judge(eval, dofs, &trial);
+                if placed.evaluation.score.better(&current.evaluation.score) {
+                    current = placed;
+                    improved = true;
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    current
+}
+
+/// The sensors to add to a layout that leaves modes undetermined.
+#[derive(Debug, Clone)]
+pub struct Completion {
+    /// Candidate indices added, in the order added.
+    pub added: Vec<usize>,
+    /// The completed layout.
+    pub layout: Placed,
+    /// Whether `added` is provably the fewest: one sensor, or as many as the smallest basis
+    /// that holds every measured mode needs (n <= sensors), so no smaller addition exists.
+    pub fewest: bool,
+}
+
+/// Sensors added greedily to `layout` (kept) until every measured mode is determinate; `None`
+/// when even every candidate leaves one undetermined. When the count reached is the least
+/// any basis needs, the addition is the fewest; otherwise it is the fewest greedily found and
+/// every smaller addition was tried greedily only.
+pub fn complete(eval: &Evaluator, dofs: &[usize], layout: &Placed) -> Option<Completion> {
+    let mut current = layout.clone();
+    let mut added = Vec::new();
+    while current.evaluation.score.undetermined > 0 {
+        let next = best_addition(eval, dofs, &current.sites)?;
+        let new = next
+            .sites
+            .iter()
+            .copied()
+            .find(|s| !current.sites.contains(s))
+            .expect("one added");
+        added.push(new);
+        current = next;
+    }
+    let needed = eval.least_sensors.max(layout.sites.len() + 1);
+    Some(Completion {
+        fewest: current.sites.len() <= needed,
+        added,
+        layout: current,
+    })
+}
