@@ -174,9 +174,10 @@ pub fn plan(structure: &Structure, request: &Request) -> Result<Plan, PlanError>
         .counts
         .iter()
         .map(|&count| {
-            let chosen = search::place(&eval, &dofs, count, &fixed);
             let efi = reference::effective_independence(&eval, &dofs, count, &fixed);
             let evenly = reference::evenly_spaced(&candidates, count, &fixed);
+            let starts = [efi.clone(), evenly.clone()];
+            let chosen = search::place(&eval, &dofs, count, &fixed, &starts);
             CountPlan {
                 sensors: count,
                 layouts: vec![
@@ -260,8 +261,13 @@ fn check_counts(request: &Request, candidates: usize, fixed: usize) -> Result<()
             "sensors",
             count,
             format!(
-                "it must be from {} (the fixed sensors) to {candidates} (the candidate sites)",
-                fixed.max(1)
+                "it must be from {} to {candidates}, the candidate sites{}",
+                fixed.max(1),
+                if fixed > 0 {
+                    format!(" (at least the {fixed} fixed sensors)")
+                } else {
+                    String::new()
+                }
             ),
         ));
     }

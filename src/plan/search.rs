@@ -4,8 +4,11 @@
 //! 1. Greedy: from the fixed sensors, add the candidate whose layout scores best
 //!    ([`super::evaluate::Score`]), until the count is reached.
 //! 2. Exchange: for every free sensor in turn, try every unused candidate in its place and keep
-//!    the first strict improvement; repeat the passes until one improves nothing (each
-//!    accepted exchange lowers the score, so the passes end).
+//!    each strict improvement; repeat the passes until one improves nothing (each accepted
+//!    exchange lowers the score, so the passes end).
+//! 3. The same exchange passes from the other layouts the caller gives (the references), and
+//!    the best of all the ends: the chosen layout is never worse than a reference on the
+//!    objective.
 //!
 //! [`complete`] answers the other question a plan asks of a layout that leaves modes
 //! undetermined: the fewest sensors to add, and where.
@@ -53,12 +56,31 @@ fn best_addition(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Option<Pl
     best
 }
 
-/// `count` sensors over the candidates `dofs`, the `fixed` ones (candidate indices) kept.
-pub fn place(eval: &Evaluator, dofs: &[usize], count: usize, fixed: &[usize]) -> Placed {
-    let mut current = judge(eval, dofs, fixed);
-    while current.sites.len() < count {
-        current = best_addition(eval, dofs, &current.sites).expect("count <= candidates");
+/// `count` sensors over the candidates `dofs`, the `fixed` ones (candidate indices) kept;
+/// `starts` are other layouts of `count` sites (holding `fixed`) to exchange from as well.
+pub fn place(
+    eval: &Evaluator,
+    dofs: &[usize],
+    count: usize,
+    fixed: &[usize],
+    starts: &[Vec<usize>],
+) -> Placed {
+    let mut greedy = judge(eval, dofs, fixed);
+    while greedy.sites.len() < count {
+        greedy = best_addition(eval, dofs, &greedy.sites).expect("count <= candidates");
     }
+    let mut best = exchange(eval, dofs, fixed, greedy);
+    for start in starts {
+        let end = exchange(eval, dofs, fixed, judge(eval, dofs, start));
+        if end.evaluation.score.better(&best.evaluation.score) {
+            best = end;
+        }
+    }
+    best
+}
+
+/// Exchange passes from `current` (see the module docs).
+fn exchange(eval: &Evaluator, dofs: &[usize], fixed: &[usize], mut current: Placed) -> Placed {
     for _ in 0..MAX_PASSES {
         let mut improved = false;
         for slot in 0..current.sites.len() {

@@ -1,0 +1,288 @@
+//! `jointid plan`: bad input refused with the flag, the value and what is allowed (exit 2,
+//! nothing written); the plan's predicted spreads against the Monte-Carlo spreads of the study
+//! it writes; the free-free lap beam with three sensors said rank-deficient, with the sensor
+//! that completes it.
+//!
+//! Independence of the test data: the Monte-Carlo spreads come from the study engine
+//! (`jointid::study`: noisy shapes and frequencies drawn, the identification run trial by
+//! trial, the sample standard deviation), which shares with the plan only the per-mode
+//! estimator; the plan's spreads are its first-order propagation. The derivative itself is
+//! checked against central differences of the estimator in `src/plan/spread.rs`. The lap beam
+//! is the user's first model of `tests/fixtures/lap2d/uniform` (made outside jointid).
+
+use std::path::Path;
+use std::process::Command;
+
+use jointid::output::plan::{StudyFile, StudyGrid, study_toml};
+use jointid::plan::{
+    Kind, Objective, Plan, Request, SettingsChoice, Sites, Status, plan, request::parse_counts,
+};
+use jointid::random::NoiseKind;
+use jointid::study::{Study, StudyRun};
+
+const PAPER: &str = "models/paper-case-1.toml";
+const LAP: &str = "tests/fixtures/lap2d/uniform/model.toml";
+
+fn root(path: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+fn request(sensors: &str, modes: &[usize], shape: f64, frequency: f64) -> Request {
+    Request {
+        sites: Sites::Nodes,
+        counts: parse_counts(sensors).unwrap(),
+        modes: modes.to_vec(),
+        frequency_noise: frequency,
+        shape_noise: shape,
+        noise: NoiseKind::Gaussian,
+        fixed: Vec::new(),
+        objective: Objective::Worst,
+        settings: SettingsChoice::Chosen,
+    }
+}
+
+#[test]
+fn bad_input_names_the_flag_the_value_and_what_is_allowed_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plan.json");
+    let study = dir.path().join("plan-study.toml");
+    let base = |extra: &[&str]| {
+        let mut args: Vec<String> = [
+            "plan",
+            "--model",
+            root(PAPER).to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--study",
+            study.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let mut defaults = vec![
+            ("--sites", "0,0.2,0.5"),
+            ("--sensors", "3"),
+            ("--modes", "1,2"),
+            ("--frequency-noise", "0.001"),
+            ("--shape-noise", "0.01"),
+        ];
+        for pair in extra.chunks(2) {
+            defaults.retain(|(k, _)| *k != pair[0]);
+            args.extend([pair[0].to_string(), pair[1].to_string()]);
+        }
+        for (k, v) in defaults {
+            args.extend([k.to_string(), v.to_string()]);
+        }
+        args
+    };
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["--sensors", "4"],
+            "--sensors 4 is invalid: it must be from 1 to 3, the candidate sites",
+        ),
+        (
+            &["--fixed", "3:w"],
+            "--fixed 3:w is invalid: a fixed sensor must be one of the 3 candidate sites (DOF 3:w is not)",
+        ),
+        (
+            &["--modes", "1,40"],
+            "--modes 40 is invalid: the model has 36 elastic modes: a mode must be from 1 to 36",
+        ),
+        (
+            &["--shape-noise", "0"],
+            "--shape-noise 0 is invalid: it must be > 0 (a relative standard deviation; the plan weighs the noise of the frequency against that of the shape)",
+        ),
+        (
+            &["--frequency-noise", "-0.001"],
+            "--frequency-noise -0.001 is invalid: it must be > 0 (a relative standard deviation; the plan weighs the noise of the frequency against that of the shape)",
+        ),
+        (
+            &["--objective", "best"],
+            "--objective best is invalid: it must be worst, mean or det",
+        ),
+    ];
+    for (extra, message) in cases {
+        let args = base(extra);
+        let run = Command::new(env!("CARGO_BIN_EXE_jointid"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(stderr.trim(), format!("error: {message}"), "{args:?}");
+        assert!(!out.exists() && !study.exists(), "{args:?} wrote a file");
+    }
+}
+
+#[test]
+fn three_sensors_on_the_free_free_lap_are_rank_deficient_and_one_more_completes_them() {
+    let model = jointid::model::from_path(&root(LAP)).unwrap();
+    let p = plan(&model, &request("3", &[1, 2], 0.01, 0.001)).unwrap();
+    // The model's own three sensors (x = 0, 0.235, 0.7): no basis of a free-free beam with
+    // q = 2 fits three readings (n >= 2 rigid + 2), so every mode is undetermined.
+    let own = p.model_layout.as_ref().unwrap();
+    assert_eq!(own.sites.len(), 3);
+    assert_eq!(own.evaluation.score.undetermined, 2);
+    assert!(
+        own.evaluation
+            .modes
+            .iter()
+            .all(|m| m.status == Status::TooFewSensors
+                && m.fallback.as_ref().is_some_and(|f| f.relative_std > 0.0))
+    );
+    let addition = own.addition.as_ref().unwrap();
+    assert_eq!(addition.added.len(), 1);
+    assert!(addition.fewest);
+    assert_eq!(addition.evaluation.score.undetermined, 0);
+    // The same of every three-sensor layout the plan makes.
+    for l in &p.counts[0].layouts {
+        assert_eq!(l.evaluation.score.undetermined, 2, "{:?}", l.kind);
+        assert_eq!(l.addition.as_ref().unwrap().added.len(), 1);
+    }
+}
+
+#[test]
+fn the_chosen_layout_is_never_worse_than_the_references_on_the_objective() {
+    let model = jointid::model::from_path(&root(PAPER)).unwrap();
+    let p = plan(&model, &request("4-5", &[1, 2], 0.01, 0.001)).unwrap();
+    for c in &p.counts {
+        let chosen = &c.layouts[0];
+        assert_eq!(chosen.kind, Kind::Chosen);
+        for other in &c.layouts[1..] {
+            assert!(
+                !other.evaluation.score.better(&chosen.evaluation.score),
+                "{} sensors: {:?} {:?} beats the chosen {:?}",
+                c.sensors,
+                other.kind,
+                other.evaluation.score,
+                chosen.evaluation.score
+            );
+        }
+        assert_eq!(
+            chosen.evaluation.score.undetermined, 0,
+            "{} sensors",
+            c.sensors
+        );
+    }
+}
+
+/// The plan's study run by the study engine: per grid, (mode, parameter) -> Monte-Carlo std.
+fn monte_carlo(
+    p: &Plan,
+    model: &str,
+    trials: usize,
+) -> (Vec<StudyGrid>, Vec<Vec<(usize, Option<f64>)>>) {
+    let dir = tempfile::tempdir().unwrap();
+    let model_path = root(model);
+    let model_struct = jointid::model::from_path(&model_path).unwrap();
+    let labels: Vec<String> = model_struct
+        .dofs
+        .dofs()
+        .iter()
+        .map(|d| d.label.clone())
+        .collect();
+    let (text, grids) = study_toml(
+        p,
+        &StudyFile {
+            name: "confirm",
+            model: &model_path,
+            labels: &labels,
+            noise: "gaussian",
+            shape_noise: SHAPE,
+            frequency_noise: FREQUENCY,
+            trials,
+            seed: 7,
+            csv: "confirm.csv",
+        },
+    );
+    let file = dir.path().join("confirm.toml");
+    std::fs::write(&file, text).unwrap();
+    let run = StudyRun::new(Study::from_path(&file).unwrap()).unwrap();
+    let per_cell = run
+        .cells
+        .iter()
+        .map(|cell| {
+            let (result, _) = run.run_cell(cell, &|_| {});
+            result
+                .rows
+                .iter()
+                .map(|r| (r.mode, r.summary.as_ref().map(|s| s.std)))
+                .collect()
+        })
+        .collect();
+    (grids, per_cell)
+}
+
+const SHAPE: f64 = 0.002;
+const FREQUENCY: f64 = 0.0005;
+
+/// Predicted against Monte-Carlo, within 15%, for every determinate mode and parameter of every
+/// layout the study holds; returns the number compared.
+fn confirm(model: &str, sensors: &str, modes: &[usize]) -> usize {
+    let structure = jointid::model::from_path(&root(model)).unwrap();
+    let p = plan(&structure, &request(sensors, modes, SHAPE, FREQUENCY)).unwrap();
+    let (grids, mc) = monte_carlo(&p, model, 20_000);
+    let mut compared = 0;
+    for (grid, rows) in grids.iter().zip(&mc) {
+        let layout = match grid.sensors {
+            Some(n) => p
+                .counts
+                .iter()
+                .find(|c| c.sensors == n)
+                .unwrap()
+                .layouts
+                .iter()
+                .find(|l| l.kind.name() == grid.kind)
+                .unwrap(),
+            None => p.model_layout.as_ref().unwrap(),
+        };
+        let q = p.parameters.len();
+        for (k, m) in layout.evaluation.modes.iter().enumerate() {
+            let Some(rel) = &m.relative_std else { continue };
+            for i in 0..q {
+                let predicted = rel[i] * p.values[i];
+                let (mode, got) = rows[k * q + i];
+                assert_eq!(mode, m.mode);
+                let ratio = got.unwrap() / predicted;
+                assert!(
+                    (ratio - 1.0).abs() < 0.15,
+                    "{model}, {} {}, mode {mode} {}: Monte-Carlo {:e} vs predicted {predicted:e}",
+                    layout.sites.len(),
+                    grid.kind,
+                    p.parameters[i],
+                    got.unwrap()
+                );
+                compared += 1;
+            }
+        }
+    }
+    compared
+}
+
+#[test]
+#[ignore = "Monte-Carlo of every layout: seconds in release (.ci/run)"]
+fn predicted_spread_matches_monte_carlo_on_the_paper_beam() {
+    // 3 sensors: no basis fits (nothing to compare, the plan says so); 4, 6 and 9: compared.
+    let structure = jointid::model::from_path(&root(PAPER)).unwrap();
+    let p = plan(&structure, &request("3", &[1, 2], SHAPE, FREQUENCY)).unwrap();
+    assert!(
+        p.counts[0]
+            .layouts
+            .iter()
+            .all(|l| l.evaluation.score.undetermined == 2)
+    );
+    let compared: usize = ["4", "6", "9"]
+        .iter()
+        .map(|n| confirm(PAPER, n, if *n == "4" { &[1, 2] } else { &[1, 2, 3, 4] }))
+        .sum();
+    assert!(compared >= 30, "{compared}");
+}
+
+#[test]
+#[ignore = "Monte-Carlo of every layout: seconds in release (.ci/run)"]
+fn predicted_spread_matches_monte_carlo_on_the_free_free_lap() {
+    // 3 sensors leave every mode undetermined (the test above): the study holds the 4-sensor
+    // layouts.
+    let compared = confirm(LAP, "3-4", &[1, 2]);
+    assert!(compared >= 12, "{compared}");
+}
