@@ -84,6 +84,9 @@ pub struct Evaluation {
     pub modes: Vec<ModeSpread>,
     /// The score.
     pub score: Score,
+    /// The index of the settings among the evaluator's (`None`: none fits).
+    #[serde(skip)]
+    pub entry: Option<usize>,
 }
 
 /// n, m and W as data.
@@ -221,17 +224,29 @@ impl Evaluator {
 
     /// The layout of DOFs `dofs` judged under the best of the settings it allows.
     pub fn evaluate(&self, dofs: &[usize]) -> Evaluation {
+        self.evaluate_in(dofs, None)
+    }
+
+    /// As [`Evaluator::evaluate`], under the settings of index `entry` alone when given and the
+    /// layout has the sensors its basis needs (a search holds the settings while it moves
+    /// sensors, and chooses them again after).
+    pub fn evaluate_in(&self, dofs: &[usize], entry: Option<usize>) -> Evaluation {
         let shapes = self.shapes_measure(dofs);
+        let fits = |e: &usize| self.entries[*e].settings.n <= dofs.len();
+        let chosen: Vec<usize> = match entry.filter(fits) {
+            Some(e) => vec![e],
+            None => (0..self.entries.len()).filter(fits).collect(),
+        };
         let mut best: Option<Evaluation> = None;
         let mut projector: Option<(usize, Result<Projector, ()>)> = None;
-        for entry in self.entries.iter().filter(|e| e.settings.n <= dofs.len()) {
-            let n = entry.settings.n;
+        for e in chosen {
+            let n = self.entries[e].settings.n;
             if projector.as_ref().is_none_or(|(pn, _)| *pn != n) {
                 let yt = Mat::from_fn(dofs.len(), n, |i, j| self.vectors[(dofs[i], j)]);
                 projector = Some((n, Projector::new(&yt).map_err(|_| ())));
             }
             let proj = &projector.as_ref().expect("set above").1;
-            let candidate = self.under(entry, proj.as_ref().ok(), dofs, shapes);
+            let candidate = self.under(e, proj.as_ref().ok(), dofs, shapes);
             if best
                 .as_ref()
                 .is_none_or(|b| candidate.score.better(&b.score))
@@ -242,14 +257,15 @@ impl Evaluator {
         best.unwrap_or_else(|| self.too_few(shapes))
     }
 
-    /// The layout under one entry.
+    /// The layout under the entry of index `index`.
     fn under(
         &self,
-        entry: &Entry,
+        index: usize,
         projector: Option<&Projector>,
         dofs: &[usize],
         shapes: f64,
     ) -> Evaluation {
+        let entry = &self.entries[index];
         let modes: Vec<ModeSpread> = self
             .modes
             .iter()
@@ -272,6 +288,7 @@ impl Evaluator {
             settings: Some(SettingsRecord::of(entry.settings)),
             modes,
             score,
+            entry: Some(index),
         }
     }
 
@@ -306,6 +323,7 @@ impl Evaluator {
             settings: None,
             score: self.score(&modes, shapes),
             modes,
+            entry: None,
         }
     }
 

@@ -28,24 +28,32 @@ pub struct Placed {
 /// against a cycle of rounding ties).
 pub const MAX_PASSES: usize = 20;
 
-/// Judges the layout of candidate indices `sites` (`dofs[i]` the DOF of candidate i).
+/// Judges the layout of candidate indices `sites` (`dofs[i]` the DOF of candidate i) under
+/// the best settings it allows.
 pub fn judge(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Placed {
+    judge_in(eval, dofs, sites, None)
+}
+
+/// [`judge`] under the settings of index `entry` when given (and the layout fits them).
+fn judge_in(eval: &Evaluator, dofs: &[usize], sites: &[usize], entry: Option<usize>) -> Placed {
     let mut sorted = sites.to_vec();
     sorted.sort_unstable();
     let layout: Vec<usize> = sorted.iter().map(|&i| dofs[i]).collect();
     Placed {
-        evaluation: eval.evaluate(&layout),
+        evaluation: eval.evaluate_in(&layout, entry),
         sites: sorted,
     }
 }
 
-/// The best candidate to add to `sites`, if any is unused.
-fn best_addition(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Option<Placed> {
+/// The best candidate to add to `current` (under its settings, chosen again after), if any
+/// is unused.
+fn best_addition(eval: &Evaluator, dofs: &[usize], current: &Placed) -> Option<Placed> {
+    let (sites, entry) = (&current.sites, current.evaluation.entry);
     let mut best: Option<Placed> = None;
     for c in (0..dofs.len()).filter(|c| !sites.contains(c)) {
         let mut trial = sites.to_vec();
         trial.push(c);
-        let placed = judge(eval, dofs, &trial);
+        let placed = judge_in(eval, dofs, &trial, entry);
         if best
             .as_ref()
             .is_none_or(|b| placed.evaluation.score.better(&b.evaluation.score))
@@ -53,7 +61,7 @@ fn best_addition(eval: &Evaluator, dofs: &[usize], sites: &[usize]) -> Option<Pl
             best = Some(placed);
         }
     }
-    best
+    best.map(|b| judge(eval, dofs, &b.sites))
 }
 
 /// `count` sensors over the candidates `dofs`, the `fixed` ones (candidate indices) kept;
@@ -67,7 +75,7 @@ pub fn place(
 ) -> Placed {
     let mut greedy = judge(eval, dofs, fixed);
     while greedy.sites.len() < count {
-        greedy = best_addition(eval, dofs, &greedy.sites).expect("count <= candidates");
+        greedy = best_addition(eval, dofs, &greedy).expect("count <= candidates");
     }
     let mut best = exchange(eval, dofs, fixed, greedy);
     for start in starts {
@@ -79,9 +87,11 @@ pub fn place(
     best
 }
 
-/// Exchange passes from `current` (see the module docs).
+/// Exchange passes from `current` (see the module docs), each under the settings the layout
+/// had at its start, which are chosen again after it.
 fn exchange(eval: &Evaluator, dofs: &[usize], fixed: &[usize], mut current: Placed) -> Placed {
     for _ in 0..MAX_PASSES {
+        let entry = current.evaluation.entry;
         let mut improved = false;
         for slot in 0..current.sites.len() {
             if fixed.contains(&current.sites[slot]) {
@@ -93,13 +103,14 @@ fn exchange(eval: &Evaluator, dofs: &[usize], fixed: &[usize], mut current: Plac
                 }
                 let mut trial = current.sites.clone();
                 trial[slot] = c;
-                let placed = judge(eval, dofs, &trial);
+                let placed = judge_in(eval, dofs, &trial, entry);
                 if placed.evaluation.score.better(&current.evaluation.score) {
                     current = placed;
                     improved = true;
                 }
             }
         }
+        current = judge(eval, dofs, &current.sites);
         if !improved {
             break;
         }
@@ -127,7 +138,7 @@ pub fn complete(eval: &Evaluator, dofs: &[usize], layout: &Placed) -> Option<Com
     let mut current = layout.clone();
     let mut added = Vec::new();
     while current.evaluation.score.undetermined > 0 {
-        let next = best_addition(eval, dofs, &current.sites)?;
+        let next = best_addition(eval, dofs, &current)?;
         let new = next
             .sites
             .iter()
