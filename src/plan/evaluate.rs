@@ -140,7 +140,6 @@ pub struct Evaluator {
 impl Evaluator {
     /// Forms what every layout shares. `modal` holds the nominal pairs up to the largest basis
     /// of `choice`; `candidate_dofs` are the DOFs any layout draws from.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
         structure: &Structure,
         modal: &ModalSolution,
@@ -149,7 +148,6 @@ impl Evaluator {
         noise: Noise,
         objective: Objective,
         candidate_dofs: &[usize],
-        largest_layout: usize,
     ) -> Self {
         let rigid = structure.rigid;
         let params = structure.identified();
@@ -159,7 +157,7 @@ impl Evaluator {
             SettingsChoice::Given(s) => vec![s],
             SettingsChoice::Chosen => {
                 let highest = columns.iter().max().copied().unwrap_or(rigid) + 1;
-                chosen_settings(rigid, q, highest, modal.len().min(largest_layout))
+                chosen_settings(rigid, q, highest, modal.len())
             }
         };
         let entries = settings

@@ -147,10 +147,8 @@ pub fn plan(structure: &Structure, request: &Request) -> Result<Plan, PlanError>
         .map(|f| candidates::find(structure, &candidates, f, "fixed"))
         .collect::<Result<Vec<usize>, _>>()?;
     check_counts(request, candidates.len(), fixed.len())?;
-    let largest = *request.counts.last().expect("counts are not empty");
     let (model_sites, missed) = candidates::model_sensors(structure, &candidates);
-    let largest_layout = largest.max(model_sites.len());
-    let modal = eigensolution(structure, request, largest_layout)?;
+    let modal = eigensolution(structure, request)?;
     let dofs: Vec<usize> = candidates.iter().map(|c| c.dof).collect();
     let noise = Noise {
         shape_variance: request.noise.shape_variance(request.shape_noise),
@@ -164,7 +162,6 @@ pub fn plan(structure: &Structure, request: &Request) -> Result<Plan, PlanError>
         noise,
         request.objective,
         &dofs,
-        largest_layout,
     );
     let layout = |kind: Kind, sites: &[usize]| {
         let placed = search::judge(&eval, &dofs, sites);
@@ -275,15 +272,11 @@ fn check_counts(request: &Request, candidates: usize, fixed: usize) -> Result<()
 }
 
 /// The nominal pairs every setting and mode needs.
-fn eigensolution(
-    structure: &Structure,
-    request: &Request,
-    largest_layout: usize,
-) -> Result<ModalSolution, PlanError> {
+fn eigensolution(structure: &Structure, request: &Request) -> Result<ModalSolution, PlanError> {
     let highest = request.modes.iter().max().copied().unwrap_or(1) + structure.rigid;
     let basis = match request.settings {
         SettingsChoice::Given(s) => s.n,
-        SettingsChoice::Chosen => (highest + evaluate::EXTRA_BASIS).min(largest_layout),
+        SettingsChoice::Chosen => highest + evaluate::EXTRA_BASIS,
     };
     let count = basis.max(highest).min(structure.dof_count());
     Ok(ModalSolution::lowest_of(&structure.assemble(), count)?)

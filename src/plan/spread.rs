@@ -14,15 +14,22 @@
 //! ```
 //!
 //! whose diagonal is the square of what a study's `predicted_std` column divides by p_i.
-//! A mode is determinate when the projection exists, its basis vector is in the sub-basis and
+//! A mode is determinate when the projection exists, its basis vector is in the sub-basis,
 //! every parameter's resolution in W S_r reaches [`MIN_RESOLUTION`] (the level below which
-//! `identify --select auto` holds a parameter).
+//! `identify --select auto` holds a parameter) and every column of W S_r is at least
+//! [`UNSEEN`] of the largest. The columns are in relative units (p_i dK/dp_i), so a column
+//! that much smaller is a parameter the mode does not see: a symmetric bending mode of a
+//! joint at the middle of a symmetric beam does not move it transversally, and its k1 column
+//! is round-off (1e-13 of k2's), which the resolution, a measure of angle, does not reveal.
 
 use faer::{Mat, Side};
 use serde::Serialize;
 
 use crate::identify::propagation::jacobian;
 use crate::identify::{MIN_RESOLUTION, ModeSystem, Projector, condition_number, identifiability};
+
+/// A column of W S_r below this fraction of the largest is a parameter the mode does not see.
+pub const UNSEEN: f64 = 1e-6;
 
 /// Why a mode's corrections are not determined by a layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -78,7 +85,18 @@ pub fn propagate(
     system.assemble(&g, lambda, &mut ws, &mut wb);
     let all: Vec<usize> = (0..q).collect();
     let resolution = identifiability::resolution(&ws, m, &all);
-    if resolution.iter().any(|&r| r < MIN_RESOLUTION) {
+    let norms: Vec<f64> = (0..q)
+        .map(|i| {
+            ws[i * m..(i + 1) * m]
+                .iter()
+                .map(|x| x * x)
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let largest = norms.iter().copied().fold(0.0, f64::max);
+    if resolution.iter().any(|&r| r < MIN_RESOLUTION) || norms.iter().any(|&n| n < UNSEEN * largest)
+    {
         return Err(Status::RankDeficient);
     }
     let jac = jacobian(projector, system, shape, lambda).ok_or(Status::RankDeficient)?;

@@ -8,7 +8,12 @@
 //! trial, the sample standard deviation), which shares with the plan only the per-mode
 //! estimator; the plan's spreads are its first-order propagation. The derivative itself is
 //! checked against central differences of the estimator in `src/plan/spread.rs`. The lap beam
-//! is the user's first model of `tests/fixtures/lap2d/uniform` (made outside jointid).
+//! is `tests/fixtures/plan/lap-free.toml` (a half-lap bar as `tests/fixtures/lap2d`, its
+//! overlap off the middle).
+//!
+//! The first order holds while the spread is small beside the correction's own scale: the
+//! comparison covers every determinate (mode, parameter) whose predicted relative std is below
+//! [`LINEAR`]; beyond, the Monte-Carlo spread is heavier-tailed (docs/planning.md).
 
 use std::path::Path;
 use std::process::Command;
@@ -21,7 +26,7 @@ use jointid::random::NoiseKind;
 use jointid::study::{Study, StudyRun};
 
 const PAPER: &str = "models/paper-case-1.toml";
-const LAP: &str = "tests/fixtures/lap2d/uniform/model.toml";
+const LAP: &str = "tests/fixtures/plan/lap-free.toml";
 
 fn root(path: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -119,7 +124,8 @@ fn three_sensors_on_the_free_free_lap_are_rank_deficient_and_one_more_completes_
     let model = jointid::model::from_path(&root(LAP)).unwrap();
     let p = plan(&model, &request("3", &[1, 2], 0.01, 0.001)).unwrap();
     // The model's own three sensors (x = 0, 0.235, 0.7): no basis of a free-free beam with
-    // q = 2 fits three readings (n >= 2 rigid + 2), so every mode is undetermined.
+    // q = 2 fits three readings (n >= 2 rigid + 2 = 4), so every mode is undetermined; one
+    // more sensor is the fewest that can complete it.
     let own = p.model_layout.as_ref().unwrap();
     assert_eq!(own.sites.len(), 3);
     assert_eq!(own.evaluation.score.undetermined, 2);
@@ -214,6 +220,8 @@ fn monte_carlo(
 }
 
 const SHAPE: f64 = 0.002;
+/// The predicted relative std below which the first order is held to the Monte-Carlo.
+const LINEAR: f64 = 1.0;
 const FREQUENCY: f64 = 0.0005;
 
 /// Predicted against Monte-Carlo, within 15%, for every determinate mode and parameter of every
@@ -239,7 +247,7 @@ fn confirm(model: &str, sensors: &str, modes: &[usize]) -> usize {
         let q = p.parameters.len();
         for (k, m) in layout.evaluation.modes.iter().enumerate() {
             let Some(rel) = &m.relative_std else { continue };
-            for i in 0..q {
+            for i in (0..q).filter(|&i| rel[i] < LINEAR) {
                 let predicted = rel[i] * p.values[i];
                 let (mode, got) = rows[k * q + i];
                 assert_eq!(mode, m.mode);
@@ -284,5 +292,5 @@ fn predicted_spread_matches_monte_carlo_on_the_free_free_lap() {
     // 3 sensors leave every mode undetermined (the test above): the study holds the 4-sensor
     // layouts.
     let compared = confirm(LAP, "3-4", &[1, 2]);
-    assert!(compared >= 12, "{compared}");
+    assert!(compared >= 8, "{compared}");
 }
