@@ -138,7 +138,7 @@ fn positions(plan: &Plan, sites: &[usize]) -> String {
         .iter()
         .map(|&i| {
             let c = &plan.candidates[i];
-            format!("{} ({} m)", c.label, c.x)
+            format!("{} ({} m)", c.label, (c.x * 1e6).round() / 1e6)
         })
         .collect::<Vec<_>>()
         .join(", ")
