@@ -158,11 +158,11 @@ pub struct PlanArgs {
     #[arg(long, value_delimiter = ',', required = true)]
     pub modes: Vec<usize>,
     /// Relative standard deviation of the measured frequencies (> 0).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub frequency_noise: f64,
     /// Relative error of every shape component (> 0): the standard deviation (gaussian) or
     /// the half-width (uniform), as a study reads it.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub shape_noise: f64,
     /// Noise distribution: gaussian or uniform.
     #[arg(long, default_value = "gaussian")]

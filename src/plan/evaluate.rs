@@ -7,7 +7,7 @@
 //! from its frequency alone ([`crate::identify::frequency_only`]). A layout then costs one
 //! pseudo-inverse per basis size and one Jacobian per mode and setting.
 
-use faer::{Mat, Side};
+use faer::Mat;
 use serde::Serialize;
 
 use super::request::{Objective, SettingsChoice};
@@ -364,19 +364,11 @@ impl Evaluator {
     fn shapes_measure(&self, dofs: &[usize]) -> f64 {
         let t = self.columns.len();
         let phi = self.target_shapes(dofs);
-        let mut gram = phi.transpose() * &phi;
-        for j in 0..t {
-            gram[(j, j)] += 1e-9;
-        }
-        match gram.llt(Side::Lower) {
-            Ok(llt) => -(0..t).map(|i| 2.0 * llt.L()[(i, i)].ln()).sum::<f64>(),
-            Err(_) => f64::INFINITY,
-        }
-    }
-
-    /// The measured modes.
-    pub fn modes(&self) -> &[usize] {
-        &self.modes
+        let gram = phi.transpose() * &phi;
+        let ridged: Vec<f64> = (0..t * t)
+            .map(|k| gram[(k / t, k % t)] + if k / t == k % t { 1e-9 } else { 0.0 })
+            .collect();
+        -log_det(&ridged, t)
     }
 
     /// The target shapes (measured modes) at `dofs`, each column of unit norm over the

@@ -245,6 +245,19 @@ fn confirm(model: &str, sensors: &str, modes: &[usize]) -> usize {
             None => p.model_layout.as_ref().unwrap(),
         };
         let q = p.parameters.len();
+        let mc_worst = rows
+            .iter()
+            .enumerate()
+            .map(|(r, (_, std))| std.unwrap_or(f64::INFINITY) / p.values[r % q])
+            .fold(0.0, f64::max);
+        // The figures of docs/planning.md (`-- --include-ignored --nocapture`).
+        println!(
+            "{model}: {} sensors, {:>6}: worst relative std predicted {:.4}, Monte-Carlo {:.4}",
+            layout.sites.len(),
+            grid.kind,
+            layout.evaluation.score.value,
+            mc_worst
+        );
         for (k, m) in layout.evaluation.modes.iter().enumerate() {
             let Some(rel) = &m.relative_std else { continue };
             for i in (0..q).filter(|&i| rel[i] < LINEAR) {
@@ -261,6 +274,11 @@ fn confirm(model: &str, sensors: &str, modes: &[usize]) -> usize {
                     got.unwrap()
                 );
                 compared += 1;
+                println!(
+                    "  mode {mode} {:>4}: predicted {predicted:.4e}, Monte-Carlo {:.4e}, ratio {ratio:.3}",
+                    p.parameters[i],
+                    got.unwrap()
+                );
             }
         }
     }
