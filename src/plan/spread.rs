@@ -188,23 +188,23 @@ mod tests {
                 );
                 id.identify(&measured).unwrap().relative.unwrap()
             };
-            let mut var = vec![0.0; 2];
+            // Variance of Z_i: the squared difference quotients times each variance.
+            let mut var = [0.0; 2];
+            let mut add = |a: &[f64], b: &[f64], step: f64, variance: f64| {
+                for (v, (x, y)) in var.iter_mut().zip(a.iter().zip(b)) {
+                    *v += ((x - y) / (2.0 * step)).powi(2) * variance;
+                }
+            };
             for j in 0..shape.len() {
                 let h = 1e-6 * shape[j].abs().max(1e-12);
                 let (mut up, mut down) = (shape.clone(), shape.clone());
                 up[j] += h;
                 down[j] -= h;
-                let (a, b) = (z(&up, 1.0), z(&down, 1.0));
-                for i in 0..2 {
-                    var[i] += ((a[i] - b[i]) / (2.0 * h) * shape[j]).powi(2) * 1e-4;
-                }
+                add(&z(&up, 1.0), &z(&down, 1.0), h, 1e-4 * shape[j] * shape[j]);
             }
-            let (a, b) = (z(&shape, 1.0 + 1e-7), z(&shape, 1.0 - 1e-7));
-            for i in 0..2 {
-                var[i] += ((a[i] - b[i]) / 2e-7).powi(2) * 4e-6;
-            }
-            for i in 0..2 {
-                let want = var[i].sqrt();
+            add(&z(&shape, 1.0 + 1e-7), &z(&shape, 1.0 - 1e-7), 1e-7, 4e-6);
+            for (i, v) in var.iter().enumerate() {
+                let want = v.sqrt();
                 let rel = (got.relative_std[i] - want).abs() / want;
                 assert!(
                     rel < 1e-4,

@@ -172,12 +172,11 @@ fn the_chosen_layout_is_never_worse_than_the_references_on_the_objective() {
     }
 }
 
+/// Per grid of a study, per (mode, parameter) row: the mode and the Monte-Carlo std.
+type GridRows = Vec<Vec<(usize, Option<f64>)>>;
+
 /// The plan's study run by the study engine: per grid, (mode, parameter) -> Monte-Carlo std.
-fn monte_carlo(
-    p: &Plan,
-    model: &str,
-    trials: usize,
-) -> (Vec<StudyGrid>, Vec<Vec<(usize, Option<f64>)>>) {
+fn monte_carlo(p: &Plan, model: &str, trials: usize) -> (Vec<StudyGrid>, GridRows) {
     let dir = tempfile::tempdir().unwrap();
     let model_path = root(model);
     let model_struct = jointid::model::from_path(&model_path).unwrap();
