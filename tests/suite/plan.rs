@@ -311,3 +311,102 @@ fn predicted_spread_matches_monte_carlo_on_the_free_free_lap() {
     let compared = confirm(LAP, "3-4", &[1, 2]);
     assert!(compared >= 8, "{compared}");
 }
+
+/// Every subset of `k` of `0..n`, in lexicographic order.
+fn subsets(n: usize, k: usize) -> Vec<Vec<usize>> {
+    if k == 0 {
+        return vec![Vec::new()];
+    }
+    (k - 1..n)
+        .flat_map(|last| {
+            subsets(last, k - 1).into_iter().map(move |mut s| {
+                s.push(last);
+                s
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn the_search_finds_the_best_of_every_layout_on_a_small_set_of_sites() {
+    // Ten sites of the paper's beam, four sensors: all 210 layouts judged one by one (each a
+    // plan with exactly its four sites) against the search's choice. Single exchanges end in a
+    // local optimum: here 1.0% above the best layout (docs/planning.md); held within 2%.
+    let model = jointid::model::from_path(&root(PAPER)).unwrap();
+    let xs = [
+        0.0,
+        0.0571428571428571,
+        0.1142857142857143,
+        0.2,
+        0.26,
+        0.29,
+        0.35,
+        0.41,
+        0.44,
+        0.5,
+    ];
+    let with_sites = |sites: Vec<f64>| Request {
+        sites: Sites::Positions(sites),
+        ..request("4", &[1, 2], 0.01, 0.001)
+    };
+    let chosen = plan(&model, &with_sites(xs.to_vec())).unwrap();
+    let chosen = &chosen.counts[0].layouts[0].evaluation.score;
+    let best = subsets(xs.len(), 4)
+        .into_iter()
+        .map(|s| {
+            let p = plan(&model, &with_sites(s.iter().map(|&i| xs[i]).collect())).unwrap();
+            p.counts[0].layouts[0].evaluation.score.value
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(chosen.undetermined, 0);
+    assert!(
+        chosen.value <= best * 1.02,
+        "search {} vs exhaustive {best}",
+        chosen.value
+    );
+}
+
+#[test]
+fn a_fixed_sensor_stays_in_every_layout_and_the_files_are_written_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, study, figure) = (
+        dir.path().join("plan.json"),
+        dir.path().join("confirm.toml"),
+        dir.path().join("plan.svg"),
+    );
+    let run = Command::new(env!("CARGO_BIN_EXE_jointid"))
+        .args(["plan", "--model", root(PAPER).to_str().unwrap()])
+        .args(["--sensors", "4-5", "--modes", "1,2", "--fixed", "0.5"])
+        .args(["--frequency-noise", "0.001", "--shape-noise", "0.01"])
+        .args([
+            "--out",
+            out.to_str().unwrap(),
+            "--study",
+            study.to_str().unwrap(),
+        ])
+        .args(["--figure", figure.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(stdout.matches("[[sensor]]").count(), 9, "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let fixed = json["plan"]["fixed"][0].as_u64().unwrap();
+    assert_eq!(json["plan"]["candidates"][fixed as usize]["x"], 0.5);
+    for count in json["plan"]["counts"].as_array().unwrap() {
+        for layout in count["layouts"].as_array().unwrap() {
+            let sites = layout["sites"].as_array().unwrap();
+            assert!(sites.iter().any(|s| s.as_u64() == Some(fixed)), "{layout}");
+        }
+    }
+    // The study reads back, one grid per layout of the plan (all determinate here).
+    let s = Study::from_path(&study).unwrap();
+    assert_eq!(s.grids.len(), json["study_grids"].as_array().unwrap().len());
+    assert_eq!(s.grids.len(), 6);
+    assert!(std::fs::read_to_string(&figure).unwrap().contains("<svg"));
+}
