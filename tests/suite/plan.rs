@@ -410,3 +410,52 @@ fn a_fixed_sensor_stays_in_every_layout_and_the_files_are_written_together() {
     assert_eq!(s.grids.len(), 6);
     assert!(std::fs::read_to_string(&figure).unwrap().contains("<svg"));
 }
+
+#[test]
+fn each_objective_is_the_summary_it_names_of_the_modes_spreads() {
+    // Recomputed here from the per-mode covariances the plan returns: the largest std, the
+    // mean std, and the geometric mean of det(C_r)^(1/2q) (2 x 2 determinants by hand).
+    let model = jointid::model::from_path(&root(PAPER)).unwrap();
+    for objective in [Objective::Worst, Objective::Mean, Objective::Det] {
+        let p = plan(
+            &model,
+            &Request {
+                objective,
+                ..request("5", &[1, 2, 3], 0.01, 0.001)
+            },
+        )
+        .unwrap();
+        let e = &p.counts[0].layouts[0].evaluation;
+        assert_eq!(e.score.undetermined, 0);
+        let stds: Vec<f64> = e
+            .modes
+            .iter()
+            .flat_map(|m| m.relative_std.clone().unwrap())
+            .collect();
+        let want = match objective {
+            Objective::Worst => stds.iter().copied().fold(0.0, f64::max),
+            Objective::Mean => stds.iter().sum::<f64>() / stds.len() as f64,
+            Objective::Det => {
+                let logs: f64 = e
+                    .modes
+                    .iter()
+                    .map(|m| {
+                        let c = m.covariance.as_ref().unwrap();
+                        (c[0] * c[3] - c[1] * c[2]).ln() / 4.0
+                    })
+                    .sum();
+                (logs / e.modes.len() as f64).exp()
+            }
+        };
+        let got = e.score.value;
+        assert!(
+            (got - want).abs() <= 1e-9 * want,
+            "{objective}: {got} vs {want}"
+        );
+        for m in &e.modes {
+            let c = m.covariance.as_ref().unwrap();
+            let s = m.relative_std.as_ref().unwrap();
+            assert!((c[0].sqrt() - s[0]).abs() <= 1e-12 * s[0] && c[1] == c[2]);
+        }
+    }
+}
