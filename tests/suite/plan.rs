@@ -16,7 +16,6 @@
 //! [`LINEAR`]; beyond, the Monte-Carlo spread is heavier-tailed (docs/planning.md).
 
 use std::path::Path;
-use std::process::Command;
 
 use jointid::output::plan::{StudyFile, StudyGrid, study_toml};
 use jointid::plan::{
@@ -108,10 +107,8 @@ fn bad_input_names_the_flag_the_value_and_what_is_allowed_and_writes_nothing() {
     ];
     for (extra, message) in cases {
         let args = base(extra);
-        let run = Command::new(env!("CARGO_BIN_EXE_jointid"))
-            .args(&args)
-            .output()
-            .unwrap();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let run = crate::common::jointid(&args);
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert_eq!(run.status.code(), Some(2), "{args:?}: {stderr}");
         assert_eq!(stderr.trim(), format!("error: {message}"), "{args:?}");
@@ -374,24 +371,28 @@ fn a_fixed_sensor_stays_in_every_layout_and_the_files_are_written_together() {
         dir.path().join("confirm.toml"),
         dir.path().join("plan.svg"),
     );
-    let run = Command::new(env!("CARGO_BIN_EXE_jointid"))
-        .args(["plan", "--model", root(PAPER).to_str().unwrap()])
-        .args(["--sensors", "4-5", "--modes", "1,2", "--fixed", "0.5"])
-        .args(["--frequency-noise", "0.001", "--shape-noise", "0.01"])
-        .args([
-            "--out",
-            out.to_str().unwrap(),
-            "--study",
-            study.to_str().unwrap(),
-        ])
-        .args(["--figure", figure.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let model = root(PAPER);
+    let run = crate::common::jointid_ok(&[
+        "plan",
+        "--model",
+        model.to_str().unwrap(),
+        "--sensors",
+        "4-5",
+        "--modes",
+        "1,2",
+        "--fixed",
+        "0.5",
+        "--frequency-noise",
+        "0.001",
+        "--shape-noise",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+        "--study",
+        study.to_str().unwrap(),
+        "--figure",
+        figure.to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert_eq!(stdout.matches("[[sensor]]").count(), 9, "{stdout}");
     let json: serde_json::Value =
