@@ -147,6 +147,19 @@ pub fn plan(structure: &Structure, request: &Request) -> Result<Plan, PlanError>
         .map(|f| candidates::find(structure, &candidates, f, "fixed"))
         .collect::<Result<Vec<usize>, _>>()?;
     check_counts(request, candidates.len(), fixed.len())?;
+    if let (SettingsChoice::Given(s), Some(&least)) = (request.settings, request.counts.first()) {
+        if least < s.n {
+            return Err(SettingError::new(
+                "sensors",
+                least,
+                format!(
+                    "the held n = {} needs at least {} sensors (eq. (15) projects on n basis vectors): place more, or hold a smaller n",
+                    s.n, s.n
+                ),
+            )
+            .into());
+        }
+    }
     let (model_sites, missed) = candidates::model_sensors(structure, &candidates);
     let modal = eigensolution(structure, request)?;
     let dofs: Vec<usize> = candidates.iter().map(|c| c.dof).collect();
@@ -225,7 +238,14 @@ fn check_modes(structure: &Structure, request: &Request) -> Result<(), SettingEr
             "at least one mode is required",
         ));
     }
-    for &r in &request.modes {
+    for (k, &r) in request.modes.iter().enumerate() {
+        if request.modes[..k].contains(&r) {
+            return Err(SettingError::new(
+                "modes",
+                r,
+                "each mode may be listed once",
+            ));
+        }
         if r == 0 || r > elastic {
             return Err(SettingError::new(
                 "modes",
