@@ -79,7 +79,7 @@ fn bad_input_names_the_flag_the_value_and_what_is_allowed_and_writes_nothing() {
         }
         args
     };
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 8] = [
         (
             &["--sensors", "4"],
             "--sensors 4 is invalid: it must be from 1 to 3, the candidate sites",
@@ -99,6 +99,14 @@ fn bad_input_names_the_flag_the_value_and_what_is_allowed_and_writes_nothing() {
         (
             &["--frequency-noise", "-0.001"],
             "--frequency-noise -0.001 is invalid: it must be > 0 (a relative standard deviation; the plan weighs the noise of the frequency against that of the shape)",
+        ),
+        (
+            &["--modes", "1,1"],
+            "--modes 1 is invalid: each mode may be listed once",
+        ),
+        (
+            &["--n", "7", "--m", "3", "--weighting", "inverse"],
+            "--sensors 3 is invalid: the held n = 7 needs at least 7 sensors (eq. (15) projects on n basis vectors): place more, or hold a smaller n",
         ),
         (
             &["--objective", "best"],
