@@ -24,6 +24,10 @@ pub enum Command {
     /// Monte-Carlo robustness study from a TOML file: bias and spread of every per-mode
     /// correction over the grid.
     Study(StudyArgs),
+    /// Before the test: where to put the sensors (and which n, m, weighting) so that the
+    /// per-mode joint corrections spread least; beside Effective Independence, evenly spaced
+    /// sensors and the model's own; with the study that confirms it by Monte-Carlo.
+    Plan(PlanArgs),
     /// Run a study (or read its result CSV with `--results`) and exit 1 when the estimator
     /// bias in the cells of `[check]` exceeds its threshold (a CI gate).
     Check(CheckArgs),
@@ -135,6 +139,67 @@ pub struct ExportArgs {
     /// A new folder for the files (it must not exist, or be empty).
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// `jointid plan`.
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    /// Model file (TOML): a beam chain or an external model.
+    #[arg(long)]
+    pub model: PathBuf,
+    /// Candidate sites: `nodes` (the w DOF of every node), positions in m (`0,0.1,0.35`: nodes
+    /// there) or DOF labels (`3:w,7:w`, an external model's labels).
+    #[arg(long, default_value = "nodes")]
+    pub sites: String,
+    /// Sensors to place: a count (`6`) or a range (`3-6`).
+    #[arg(long)]
+    pub sensors: String,
+    /// The deformable modes to be measured, comma-separated (from 1).
+    #[arg(long, value_delimiter = ',', required = true)]
+    pub modes: Vec<usize>,
+    /// Relative standard deviation of the measured frequencies (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub frequency_noise: f64,
+    /// Relative error of every shape component (> 0): the standard deviation (gaussian) or
+    /// the half-width (uniform), as a study reads it.
+    #[arg(long, allow_hyphen_values = true)]
+    pub shape_noise: f64,
+    /// Noise distribution: gaussian or uniform.
+    #[arg(long, default_value = "gaussian")]
+    pub noise: String,
+    /// Sensors that stay (the shaker's reference...): positions (m) or DOF labels, each one
+    /// of the candidate sites.
+    #[arg(long, value_delimiter = ',')]
+    pub fixed: Vec<String>,
+    /// What the search minimises: `worst` (the largest relative std of any mode and
+    /// parameter), `mean`, or `det` (per mode det of the covariance, geometric mean).
+    #[arg(long, default_value = "worst")]
+    pub objective: String,
+    /// Basis size n, held (with --m and --weighting); by default n, m and W are chosen with
+    /// each layout.
+    #[arg(long, requires_all = ["m", "weighting"])]
+    pub n: Option<usize>,
+    /// Retained equations m, held.
+    #[arg(long, requires_all = ["n", "weighting"])]
+    pub m: Option<usize>,
+    /// Weighting, held: equal, inverse or inverse-sqrt.
+    #[arg(long, value_parser = parse_weighting, requires_all = ["n", "m"])]
+    pub weighting: Option<Weighting>,
+    /// Seed of the confirming study's random streams.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Trials per layout of the confirming study.
+    #[arg(long, default_value_t = 20000)]
+    pub trials: usize,
+    /// The plan as JSON.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Also write the confirming study (TOML; its results CSV beside it, same stem).
+    #[arg(long)]
+    pub study: Option<PathBuf>,
+    /// Also write the figure (SVG).
+    #[arg(long)]
+    pub figure: Option<PathBuf>,
 }
 
 /// `jointid study`.

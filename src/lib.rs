@@ -10,6 +10,8 @@
 //! 4. [`identify`]: the per-mode method, eq. (5)-(16), and the first-order propagation of
 //!    measurement errors through it;
 //! 5. [`study`]: Monte-Carlo robustness studies of the method, summarised by [`stats`];
+//!    [`plan`]: before the test, where to put the sensors so that the per-mode corrections
+//!    spread least (first-order propagation of the study's noise model);
 //! 6. [`diagnose`]: calibration of the invariant joint on all modes, the candidate effects of
 //!    [`model::effects`], selection and the before/after report;
 //! 7. [`output`]: CSV, terminal tables, figures; [`report`] reads study results back for them.
@@ -39,7 +41,7 @@
 //! 2. eigensolution: [`modal`]
 //! 3. models and measurements: [`model`], [`measured`], [`extract`]
 //! 4. identification: [`identify`]
-//! 5. simulation and studies: [`simulate`], [`study`]
+//! 5. simulation and studies: [`simulate`], [`study`], [`plan`]
 //! 6. diagnosis and results: [`diagnose`], [`calibrate`], [`report`], [`cluster`], [`amplitude`]
 //! 7. outputs: [`output`]
 //!
@@ -57,6 +59,7 @@ pub mod modal;
 pub mod model;
 pub mod optim;
 pub mod output;
+pub mod plan;
 pub mod random;
 pub mod report;
 pub mod simulate;

@@ -11,6 +11,7 @@ mod export;
 mod extract;
 mod identify;
 mod merge;
+mod plan;
 mod report;
 mod resources;
 mod run_study;
@@ -66,6 +67,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Identify(args) => identify::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Study(args) => study::run(&args).map(|()| ExitCode::SUCCESS),
+        Command::Plan(args) => plan::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Check(args) => check::run(&args),
         Command::Merge(args) => merge::run(&args).map(|()| ExitCode::SUCCESS),
         Command::Cluster(command) => cluster::run(&command).map(|()| ExitCode::SUCCESS),

@@ -17,6 +17,8 @@ pub mod diagnose_page;
 pub mod diagnose_plots;
 pub mod guard;
 pub mod identify;
+pub mod plan;
+pub mod plan_figure;
 pub mod plot;
 pub mod stabilization;
 pub mod study;

@@ -45,6 +45,7 @@ mod merge_integrity;
 mod messages;
 mod numerics_refused;
 mod outputs_guarded;
+mod plan;
 mod registry;
 mod reliability;
 mod report;
