@@ -82,6 +82,17 @@ fn analytic_hz(ei: f64, i: usize) -> f64 {
 /// the layers' slip on a vanishing k_s is a near-rigid motion, which mixes with the rigid
 /// ones as round-off has it), Hz.
 fn bending_hz(model: &Structure, count: usize) -> Vec<f64> {
+    elastic_modes(model)
+        .into_iter()
+        .filter(|&(hz, w, x)| hz > 1.0 && w > x)
+        .take(count)
+        .map(|(hz, ..)| hz)
+        .collect()
+}
+
+/// The elastic modes of `model`: their frequency, Hz, and the sums of squares of their
+/// transverse and axial components.
+fn elastic_modes(model: &Structure) -> Vec<(f64, f64, f64)> {
     let sol = ModalSolution::solve(&model.assemble()).unwrap();
     let y = sol.vectors();
     let share = |s: usize, d: Direction| -> f64 {
@@ -91,10 +102,13 @@ fn bending_hz(model: &Structure, count: usize) -> Vec<f64> {
             .sum()
     };
     (model.rigid..sol.len())
-        .filter(|&s| sol.frequency_hz(s) > 1.0)
-        .filter(|&s| share(s, Direction::W) > share(s, Direction::X))
-        .take(count)
-        .map(|s| sol.frequency_hz(s))
+        .map(|s| {
+            (
+                sol.frequency_hz(s),
+                share(s, Direction::W),
+                share(s, Direction::X),
+            )
+        })
         .collect()
 }
 
@@ -284,18 +298,11 @@ fn a_bonded_lap_with_notched_roots_is_the_beam_with_two_springs() {
 /// The frequencies of the lowest `count` axial modes of `model` (those whose axial DOFs move
 /// more than its transverse ones), Hz.
 fn axial_hz(model: &Structure, count: usize) -> Vec<f64> {
-    let sol = ModalSolution::solve(&model.assemble()).unwrap();
-    let y = sol.vectors();
-    let share = |s: usize, d: Direction| -> f64 {
-        (0..model.dof_count())
-            .filter(|&i| model.dofs.get(i).direction == d)
-            .map(|i| y[(i, s)].powi(2))
-            .sum()
-    };
-    (model.rigid..sol.len())
-        .filter(|&s| share(s, Direction::X) > share(s, Direction::W))
+    elastic_modes(model)
+        .into_iter()
+        .filter(|&(_, w, x)| x > w)
         .take(count)
-        .map(|s| sol.frequency_hz(s))
+        .map(|(hz, ..)| hz)
         .collect()
 }
 
