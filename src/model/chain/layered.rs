@@ -213,8 +213,7 @@ impl Laps {
     }
 
     /// The layers' elements the chain's elements do not cover (the upper layer right of the
-    /// joint, the lower left of it), the layers' axial elements and the outer parts' axial
-    /// masses.
+    /// joint, the lower left of it), the layers' axial elements and the outer parts' bars.
     pub(super) fn base(&self, k: &mut SparseSym, m: &mut SparseSym) {
         for bar in self.outer.iter().filter_map(|o| match o {
             Outer::Free(bar) => Some(bar),
@@ -324,7 +323,8 @@ fn outer_bar(
 ) -> OuterBar {
     let mut dofs: Vec<(usize, usize)> = Vec::new();
     let mut dof_of = |node: usize, infos: &mut Vec<DofInfo>| {
-        if let Some(&(_, d)) = dofs.iter().find(|(n, _)| *n == node) {
+        // The part's elements are in chain order: a node is its predecessor's last.
+        if let Some(&(_, d)) = dofs.last().filter(|(n, _)| *n == node) {
             return d;
         }
         let label = format!("beam{beam}.{}:x", dofs.len());
