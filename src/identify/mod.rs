@@ -19,6 +19,7 @@ pub mod frequency_only;
 pub mod identifiability;
 pub mod projection;
 pub mod propagation;
+pub mod run;
 pub mod system;
 pub mod weighting;
 pub mod wls;
