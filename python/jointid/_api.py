@@ -392,7 +392,9 @@ _QUANTITIES = {8: "displacement", 11: "velocity", 12: "acceleration"}
 def extract_uff(datasets, **settings):
     """:func:`extract` on the FRFs (dataset 58, function type 4) of a pyuff dataset list
     (``pyuff.UFF(path).read_sets()``), with their coherences (function type 6) when every
-    response has one; the quantity from the FRFs' ordinate. The result has also ``nodes``
+    response has one; the quantity from the FRFs' ordinate; the frequency lines those of the
+    first FRF's abscissa read as the CLI reads a file's (an even axis stored with 6 digits
+    becomes start + i step). The result has also ``nodes``
     and ``directions``, the response of each row of the shapes."""
     sets = [datasets] if isinstance(datasets, dict) else list(datasets)
     frfs = [d for d in sets if d.get("type") == 58 and d.get("func_type") == 4]
@@ -409,7 +411,14 @@ def extract_uff(datasets, **settings):
         settings["quantity"] = _QUANTITIES.get(code, "acceleration")
     if "coherence" not in settings and all(k in coherences for k in keys):
         settings["coherence"] = np.vstack([np.real(coherences[k]["data"]) for k in keys])
-    result = extract(frfs[0]["x"], np.vstack([d["data"] for d in frfs]), **settings)
+    x = array("datasets[0]['x']", frfs[0]["x"], 1)
+    lines = _j.even_lines(x)
+    if lines is None:
+        raise ArgumentError("datasets[0]['x'] is invalid: the FRFs' frequencies must be evenly spaced")
+    # a response in a negative direction is the opposite of the positive one, as the CLI reads it
+    signs = np.array([-1.0 if (d.get("rsp_dir") or 0) < 0 else 1.0 for d in frfs])
+    frf = np.vstack([d["data"] for d in frfs]) * signs[:, None]
+    result = extract(lines, frf, **settings)
     result["nodes"] = np.array([k[0] for k in keys])
     result["directions"] = np.array([k[1] for k in keys])
     return result

@@ -112,3 +112,13 @@ fn arrays<'py>(py: Python<'py>, ex: &Extraction) -> PyResult<Bound<'py, PyDict>>
     d.set_item("band_hz", ex.band_hz)?;
     Ok(d)
 }
+
+/// The frequency lines of abscissa values evenly spaced within the universal files'
+/// tolerance (as the library reads a file's uneven 6-digit axis); None when they are not.
+#[pyfunction]
+pub fn even_lines<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+    Ok(jointid::extract::universal::even_lines(x.as_slice()?).map(|v| PyArray1::from_vec(py, v)))
+}

@@ -26,6 +26,7 @@ fn _jointid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::study, m)?)?;
     m.add_function(wrap_pyfunction!(study::json_to_toml, m)?)?;
     m.add_function(wrap_pyfunction!(extract::extract, m)?)?;
+    m.add_function(wrap_pyfunction!(extract::even_lines, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::amplitude, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
