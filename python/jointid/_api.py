@@ -307,14 +307,17 @@ def diagnose(
     causes=(),
     threads=None,
     text=False,
+    figures=False,
 ):
     """The diagnosis (``jointid diagnose``): the model calibrated on every mode, what it
     still misses traced to a candidate effect. Returns the report as the CLI's ``--json``
-    (a dict); with ``text``, a pair (report, the CLI's terminal text)."""
+    (a dict); with ``text``, a pair (report, the CLI's terminal text); with ``figures``, the
+    report has also ``"figures"``: the CLI's ``--plots`` SVGs as a dict file name ->
+    (caption, SVG text)."""
     non_negative("frequency_noise", frequency_noise)
     non_negative("shape_noise", shape_noise)
     kw = {} if pairing_window is None else {"pairing_window": float(pairing_window)}
-    report, words = _j.diagnose(
+    report, words, drawn = _j.diagnose(
         model._inner,
         measured._inner,
         frequency_noise=float(frequency_noise),
@@ -326,17 +329,22 @@ def diagnose(
         pair=[(int(a), int(b)) for a, b in pair],
         extended=bool(extended),
         causes=[str(c) for c in causes],
+        figures=bool(figures),
         threads=threads,
         **kw,
     )
     report = json.loads(report)
+    if figures:
+        report["figures"] = {name: (caption, svg) for name, caption, svg in drawn}
     return (report, words) if text else report
 
 
-def study(study, *, base_dir=None, threads=None, as_csv=False):
+def study(study, *, base_dir=None, threads=None, progress=None, as_csv=False):
     """Runs a Monte-Carlo study (``jointid study``): ``study`` a study file's path, or its
     content as a dict (its ``model`` relative to ``base_dir``, default the working
-    directory). Returns the result table, the CLI's CSV (its text with ``as_csv``)."""
+    directory). Returns the result table, the CLI's CSV (its text with ``as_csv``).
+    ``progress(done, total)`` is called with the trials done as they advance (at most every
+    50 ms, on the calling thread); an exception it raises stops the study."""
     if isinstance(study, dict):
         text = _j.json_to_toml(json.dumps(study))
         file = Path(base_dir or os.getcwd()) / "study.toml"
@@ -346,7 +354,7 @@ def study(study, *, base_dir=None, threads=None, as_csv=False):
             text = file.read_text()
         except OSError as e:
             raise InputError(f"{file}: cannot read the file: {e}") from None
-    csv = _j.study(text, os.fspath(file), threads=threads)
+    csv = _j.study(text, os.fspath(file), threads=threads, progress=progress)
     return csv if as_csv else table(csv)
 
 

@@ -1,7 +1,7 @@
 """Type stubs of the package's functions (see the docstrings in _api.py and docs/python.md)."""
 
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -102,12 +102,14 @@ def diagnose(
     causes: Sequence[str] = ...,
     threads: Optional[int] = ...,
     text: bool = ...,
+    figures: bool = ...,
 ) -> Any: ...
 def study(
     study: Union[PathLike, Dict[str, Any]],
     *,
     base_dir: Optional[PathLike] = ...,
     threads: Optional[int] = ...,
+    progress: Optional[Callable[[int, int], None]] = ...,
     as_csv: bool = ...,
 ) -> TableLike: ...
 def extract(

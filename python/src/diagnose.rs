@@ -11,15 +11,20 @@ use jointid::diagnose::{
 };
 use jointid::identify::Settings;
 use jointid::output::diagnose as out;
+use jointid::output::diagnose_plots::diagnose_figures;
 
 use crate::errors;
 use crate::measured::Measured;
 use crate::model::Model;
 use crate::work;
 
-/// Diagnoses `measured` on `model` (see `jointid.diagnose`): the report's JSON and its text.
+/// The report's JSON, its text and, on request, its figures: (file name, caption, SVG).
+type Diagnosed = (String, String, Vec<(String, String, String)>);
+
+/// Diagnoses `measured` on `model` (see `jointid.diagnose`): the report's JSON, its text and
+/// (with `figures`) the figures of the CLI's `--plots`.
 #[pyfunction]
-#[pyo3(signature = (model, measured, *, frequency_noise=0.001, shape_noise=0.02, stated_noise=false, n=None, m=None, weighting="inverse".to_string(), pairing_window=jointid::diagnose::pairing::DEFAULT_WINDOW, pair=Vec::new(), extended=false, causes=Vec::new(), threads=None))]
+#[pyo3(signature = (model, measured, *, frequency_noise=0.001, shape_noise=0.02, stated_noise=false, n=None, m=None, weighting="inverse".to_string(), pairing_window=jointid::diagnose::pairing::DEFAULT_WINDOW, pair=Vec::new(), extended=false, causes=Vec::new(), figures=false, threads=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn diagnose(
     py: Python<'_>,
@@ -35,8 +40,9 @@ pub fn diagnose(
     pair: Vec<(usize, usize)>,
     extended: bool,
     causes: Vec<String>,
+    figures: bool,
     threads: Option<usize>,
-) -> PyResult<(String, String)> {
+) -> PyResult<Diagnosed> {
     let weighting = weighting.parse().map_err(|allowed: String| {
         errors::setting(format!("weighting = {weighting:?} is invalid: {allowed}"))
     })?;
@@ -91,6 +97,15 @@ pub fn diagnose(
         let json = serde_json::to_string_pretty(&report).map_err(errors::computation)?;
         let mut text = Vec::new();
         out::write_text(&mut text, &report).map_err(errors::computation)?;
-        Ok((json, String::from_utf8_lossy(&text).into_owned()))
+        let drawn = if figures {
+            diagnose_figures(&report, &data)
+                .map_err(errors::computation)?
+                .into_iter()
+                .map(|f| (f.name, f.caption, f.svg))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Ok((json, String::from_utf8_lossy(&text).into_owned(), drawn))
     })
 }

@@ -28,6 +28,9 @@ pub struct Model {
     pub typed: Option<Arc<(Structure, Vec<BeamCalibration>)>>,
 }
 
+/// Frequencies (Hz) and shapes (DOFs x modes).
+type Modes<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
+
 /// A matrix given by coordinates: (row, column, value) arrays, 0-based, both triangles.
 type Coordinates<'py> = (
     PyReadonlyArray1<'py, i64>,
@@ -154,7 +157,7 @@ impl Model {
         py: Python<'py>,
         n: usize,
         threads: Option<usize>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Modes<'py>> {
         let structure = Arc::clone(&self.inner);
         let (rigid, elastic) = (structure.rigid, structure.elastic_count());
         if !(1..=elastic).contains(&n) {

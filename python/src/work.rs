@@ -42,6 +42,21 @@ where
     T: Send + 'static,
     F: FnOnce(&AtomicBool) -> PyResult<T> + Send + 'static,
 {
+    run_watched(py, threads, work, |_| Ok(()))
+}
+
+/// [`run`], with `tick` called with the GIL at every tick (to report progress; an error it
+/// returns stops the work as a signal does).
+pub fn run_watched<T, F>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    work: F,
+    mut tick: impl FnMut(Python<'_>) -> PyResult<()>,
+) -> PyResult<T>
+where
+    T: Send + 'static,
+    F: FnOnce(&AtomicBool) -> PyResult<T> + Send + 'static,
+{
     let pool = pool(threads)?;
     let stop = Arc::new(AtomicBool::new(false));
     let (tx, rx) = mpsc::channel();
@@ -61,7 +76,7 @@ where
         match received {
             Ok(result) => return result,
             Err(mpsc::RecvTimeoutError::Timeout) => {
-                if let Err(e) = py.check_signals() {
+                if let Err(e) = py.check_signals().and_then(|()| tick(py)) {
                     stop.store(true, Ordering::Relaxed);
                     return Err(e);
                 }

@@ -101,13 +101,16 @@ def test_study_equals_cli(root, cli, tmp_path):
 def test_diagnose_equals_cli(paper, cli):
     model_path, measured_path, tmp = paper
     out = tmp / "diagnose.json"
+    plots = tmp / "plots"
     done = cli("diagnose", "--model", model_path, "--measured", measured_path,
-               "--json", out, "--quiet")
+               "--json", out, "--plots", plots, "--quiet")
     model = jointid.Model.from_toml(model_path)
     measured = jointid.Measured.from_csv(measured_path, model)
-    report, text = jointid.diagnose(model, measured, text=True)
+    report, text = jointid.diagnose(model, measured, text=True, figures=True)
+    figures = report.pop("figures")
     assert report == json.loads(out.read_text())
     assert text == done.stdout
+    assert figures and all((plots / name).read_text() == svg for name, (_, svg) in figures.items())
 
 
 def _cli_modes(path):

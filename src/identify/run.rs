@@ -187,6 +187,9 @@ pub fn identify_modes(
     Ok(Identified { params, all, modes })
 }
 
+/// A mode and its paper's outcome, or why it falls back to its frequency alone.
+type Planned<'a> = (&'a MeasuredMode, Result<ModeOutcome, Fallback>);
+
 /// The paper's system on each mode's shape (`identifier`: None to use frequencies alone), or
 /// why the mode falls back to its frequency alone; an error where the projection cannot be
 /// made.
@@ -194,7 +197,7 @@ fn planned<'a>(
     identifier: Option<&Identifier>,
     modes: Vec<&'a MeasuredMode>,
     selection: Selection,
-) -> Result<Vec<(&'a MeasuredMode, Result<ModeOutcome, Fallback>)>, RunError> {
+) -> Result<Vec<Planned<'a>>, RunError> {
     let mut planned = Vec::new();
     for mode in modes {
         let shape = identifier
