@@ -125,6 +125,16 @@ class Model:
         return self._inner.labels
 
     @property
+    def positions(self):
+        """The DOFs' positions, m (shape (DOFs, 3)), in index order."""
+        return self._inner.positions
+
+    @property
+    def directions(self):
+        """The DOFs' directions (w, theta, x, y, z, rx, ry, rz), in index order."""
+        return self._inner.directions
+
+    @property
     def parameters(self):
         """The parameters: a list of (name, value, unit, identified)."""
         return self._inner.parameters
@@ -231,6 +241,44 @@ class Measured:
                 ) from None
             raise
         return cls(inner, model)
+
+    @classmethod
+    def from_uff(cls, model, datasets, geometry, *, components, space=False, modes=None):
+        """Measured modes from universal files read by pyuff: the real normal modes of
+        ``datasets`` (dataset 55, analysis type 2: ``freq``, ``node_nums``, ``r1``..``r6``),
+        located by ``geometry`` (a dataset 15 or 2411: ``node_nums``, ``x``, ``y``, ``z``).
+        ``components`` maps a component of the dataset (1-6) to the model's direction it
+        measures (on a chain ``"w"`` or ``"theta"``, e.g. ``{2: "w"}``; in space with ``space``
+        ``"x"``..``"rz"``); a chain's points are at the nodes' ``x``, space's at their
+        ``x, y, z``. ``modes`` the mode numbers (default the datasets' ``mode_n``)."""
+        sets = [datasets] if isinstance(datasets, dict) else list(datasets)
+        shapes = [d for d in sets if d.get("type") == 55 and d.get("analysis_type") == 2]
+        if not shapes:
+            raise ArgumentError("datasets holds no real normal mode (dataset 55, analysis type 2)")
+        nodes = [int(n) for n in shapes[0]["node_nums"]]
+        for k, d in enumerate(shapes):
+            if [int(n) for n in d["node_nums"]] != nodes:
+                raise ArgumentError(
+                    f"datasets: mode shape {k} has other nodes than the first: every shape must list the same nodes"
+                )
+        where = {int(n): i for i, n in enumerate(geometry["node_nums"])}
+        missing = [n for n in nodes if n not in where]
+        if missing:
+            raise ArgumentError(f"geometry has no node {missing[0]}: the shapes' nodes must all be in it")
+        comps = sorted((int(c), str(d)) for c, d in dict(components).items())
+        if not comps or any(c not in range(1, 7) for c, _ in comps):
+            raise ArgumentError(f"components = {components!r} is invalid: it maps components 1 to 6 to directions")
+        rows = [where[n] for n in nodes for _ in comps]
+        xyz = np.column_stack([np.asarray(geometry[a], dtype=float)[rows] for a in ("x", "y", "z")])
+        values = np.column_stack(
+            [np.concatenate([[np.real(d[f"r{c}"][i]) for c, _ in comps] for i in range(len(nodes))])
+             for d in shapes]
+        )
+        directions = [name for _ in nodes for _, name in comps]
+        numbers = [int(d["mode_n"]) for d in shapes] if modes is None else modes
+        where_points = {"xyz": xyz} if space else {"x": xyz[:, 0]}
+        return cls.from_arrays(model, [float(d["freq"]) for d in shapes], values,
+                               directions=directions, modes=numbers, **where_points)
 
     @property
     def modes(self):

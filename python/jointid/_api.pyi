@@ -45,6 +45,10 @@ class Model:
     @property
     def labels(self) -> List[str]: ...
     @property
+    def positions(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def directions(self) -> List[str]: ...
+    @property
     def parameters(self) -> List[Tuple[str, float, str, bool]]: ...
 
 class Measured:
@@ -65,6 +69,17 @@ class Measured:
         modes: Optional[Sequence[int]] = ...,
         frequency_std: Optional[ArrayLike] = ...,
         shape_std: Optional[ArrayLike] = ...,
+    ) -> "Measured": ...
+    @classmethod
+    def from_uff(
+        cls,
+        model: Model,
+        datasets: Any,
+        geometry: Mapping[str, Any],
+        *,
+        components: Mapping[int, str],
+        space: bool = ...,
+        modes: Optional[Sequence[int]] = ...,
     ) -> "Measured": ...
     @property
     def modes(self) -> List[int]: ...

@@ -34,6 +34,8 @@ class Model:
     rigid_body_modes: int
     labels: List[str]
     parameters: List[Tuple[str, float, str, bool]]
+    positions: npt.NDArray[np.float64]
+    directions: List[str]
 
 class Measured:
     @staticmethod

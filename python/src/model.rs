@@ -204,6 +204,26 @@ impl Model {
             .collect()
     }
 
+    /// The DOFs' positions (DOFs x 3), m, in index order.
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let dofs = self.inner.dofs.dofs();
+        let a =
+            numpy::ndarray::Array2::from_shape_fn((dofs.len(), 3), |(i, k)| dofs[i].position[k]);
+        PyArray2::from_owned_array(py, a)
+    }
+
+    /// The DOFs' directions (w, theta, x, y, z, rx, ry, rz), in index order.
+    #[getter]
+    fn directions(&self) -> Vec<&'static str> {
+        self.inner
+            .dofs
+            .dofs()
+            .iter()
+            .map(|d| d.direction.name())
+            .collect()
+    }
+
     /// The parameters: (name, value, unit, identified).
     #[getter]
     fn parameters(&self) -> Vec<(String, f64, String, bool)> {

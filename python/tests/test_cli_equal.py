@@ -141,3 +141,51 @@ def test_extract_on_pyuff_equals_cli(unesp, cli, tmp_path):
         assert got["damping_ratio"][r - 1] == mode["zeta"]
         np.testing.assert_array_equal(got["shapes"][:, r - 1], mode["v"])
     assert all(math.isfinite(s) and s > 0 for s in got["frequency_std"])
+
+
+def test_uff_55_written_by_pyuff_reads_as_the_csv(paper, tmp_path):
+    """The CLI's measured modes written by pyuff as dataset 55 (and the nodes as dataset 15),
+    read back by pyuff and given to Measured.from_uff: the modes of the CSV to pyuff's six
+    digits, and the identification of the CLI on those rounded values."""
+    pyuff = pytest.importorskip("pyuff")
+    model_path, measured_path, _ = paper
+    model = jointid.Model.from_toml(model_path)
+    rows = [line.split(",") for line in measured_path.read_text().splitlines()]
+    head, body = rows[0], rows[1:]
+    assert head[:5] == ["mode", "frequency_hz", "node", "dof", "value"]
+    # each node's abscissa from the model's DOF table (label `node:w`)
+    labels, positions = model.labels, model.positions
+    at = {n: float(positions[labels.index(f"{n}:w"), 0]) for n in sorted({int(r[2]) for r in body})}
+    # a position names one point: the joint's second node (at its first's x) is left out
+    nodes = [n for n in at if list(at.values()).index(at[n]) == list(at).index(n)]
+    xs = [at[n] for n in nodes]
+    body = [r for r in body if int(r[2]) in nodes]
+    frequency = {int(r[0]): float(r[1]) for r in body}
+    value = {(int(r[0]), int(r[2])): float(r[4]) for r in body}
+    numbers = [n + 1 for n in nodes]  # universal files number nodes from 1
+    path = tmp_path / "modes.uff"
+    uff = pyuff.UFF(str(path))
+    uff.write_sets(pyuff.prepare_15(node_nums=numbers, def_cs=[0] * len(nodes),
+                                    disp_cs=[0] * len(nodes), color=[1] * len(nodes), x=xs,
+                                    y=[0.0] * len(xs), z=[0.0] * len(xs)), mode="overwrite")
+    for mode, f in frequency.items():
+        w = np.array([value[(mode, n)] for n in nodes])
+        zero = np.zeros_like(w)
+        uff.write_sets(pyuff.prepare_55(
+            id1=f"mode {mode}", id2="NONE", id3="NONE", id4="NONE", id5="NONE", model_type=1,
+            analysis_type=2, data_ch=2, spec_data_type=8, data_type=2, load_case=1, mode_n=mode,
+            freq=f, modal_m=1.0, modal_damp_vis=0.0, modal_damp_his=0.0, node_nums=numbers,
+            r1=zero, r2=w, r3=zero), mode="add")
+    sets = pyuff.UFF(str(path)).read_sets()
+    geometry = next(d for d in sets if d["type"] == 15)
+    measured = jointid.Measured.from_uff(model, sets, geometry, components={2: "w"})
+    assert measured.modes == sorted(frequency)
+    np.testing.assert_allclose(measured.frequencies, [frequency[r] for r in sorted(frequency)],
+                               rtol=1e-5)
+    lines = measured.to_csv().splitlines()
+    column = lines[0].split(",").index("value")
+    peak = max(abs(v) for v in value.values())
+    for mode in frequency:
+        got = sorted(float(r.split(",")[column]) for r in lines[1:] if r.startswith(f"{mode},"))
+        want = sorted(v for (m, _), v in value.items() if m == mode)
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-5 * peak)
