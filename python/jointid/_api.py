@@ -1,4 +1,4 @@
-"""The package's functions: thin wrappers that check array arguments (naming them), hand
+"""The commands as functions: thin wrappers that check array arguments (naming them), hand
 them to the extension module once, and turn its texts into tables and dicts."""
 
 import json
@@ -9,7 +9,9 @@ from pathlib import Path
 import numpy as np
 
 from . import _jointid as _j
-from ._checks import ArgumentError, array, coordinates, non_negative
+from ._checks import ArgumentError, array, non_negative
+from ._measured import Measured
+from ._model import Model
 from ._tables import table
 
 JointidError = _j.JointidError
@@ -19,286 +21,22 @@ ComputationError = _j.ComputationError
 
 _log = logging.getLogger("jointid")
 
-_DOF_COLUMNS = ("label", "x", "y", "z", "direction")
-
-
-class Model:
-    """A model: stiffness and mass with the derivatives of the identified parameters (a beam
-    chain, a solid, or external matrices), its DOF table and its rigid-body modes."""
-
-    def __init__(self, inner):
-        self._inner = inner
-
-    @classmethod
-    def from_toml(cls, path):
-        """Reads and validates a model file (TOML: ``kind`` chain, matrices or solid), as
-        ``jointid identify --model PATH`` does. Raises InputError naming the file and field."""
-        return cls(_j.Model.from_toml(os.fspath(path)))
-
-    @classmethod
-    def from_matrices(
-        cls,
-        K,
-        M,
-        dK=None,
-        *,
-        values=None,
-        dM=None,
-        units=None,
-        fixed=(),
-        dofs=None,
-        rigid_body_modes=None,
-        sensor_tolerance=None,
-    ):
-        """A model from matrices: ``K`` and ``M`` without the parameters' terms (scipy.sparse
-        of any format, or dense; symmetric), ``dK`` a dict name -> dK/dp (same forms),
-        ``values`` a dict name -> nominal value p (required for each), optional ``dM`` (name
-        -> dM/dp), ``units`` (name -> unit, default N/m), ``fixed`` (names held fixed),
-        ``dofs`` a DOF table (dict of arrays or DataFrame with columns label, x, y, z,
-        direction; default labels "1".."N" at the origin, direction x), ``rigid_body_modes``
-        (counted when None). The model is K + sum p dK/dp, M + sum p dM/dp, with every check
-        of an external model's files (symmetry, positive definite M, rigid-body count)."""
-        k = coordinates("K", K)
-        size = int(max(k[0].max(initial=-1), k[1].max(initial=-1)) + 1)
-        size = K.shape[0] if hasattr(K, "shape") else size
-        m = coordinates("M", M, size)
-        dK = dict(dK or {})
-        dM = dict(dM or {})
-        values = dict(values or {})
-        units = dict(units or {})
-        for name in list(dM) + list(values) + list(units) + list(fixed):
-            if name not in dK:
-                raise ArgumentError(
-                    f"{name!r} is named in values, dM, units or fixed but not in dK: "
-                    f"the parameters are {sorted(dK)}"
-                )
-        parameters = []
-        for name, derivative in dK.items():
-            if name not in values:
-                raise ArgumentError(f"values[{name!r}] is missing: every parameter of dK needs its nominal value")
-            value = float(values[name])
-            if not np.isfinite(value):
-                raise ArgumentError(f"values[{name!r}] = {value} is invalid: it must be finite")
-            parameters.append(
-                (
-                    str(name),
-                    value,
-                    str(units.get(name, "N/m")),
-                    name not in fixed,
-                    coordinates(f"dK[{name!r}]", derivative, size),
-                    coordinates(f"dM[{name!r}]", dM[name], size) if name in dM else None,
-                )
-            )
-        labels, positions, directions = _dof_table(dofs, size)
-        return cls(
-            _j.Model._from_coordinates(
-                size,
-                k,
-                m,
-                parameters,
-                labels,
-                positions,
-                directions,
-                rigid_body_modes=rigid_body_modes,
-                sensor_tolerance=sensor_tolerance,
-            )
-        )
-
-    def modes(self, n, *, threads=None):
-        """The ``n`` lowest elastic modes (after the rigid-body ones): frequencies (Hz,
-        ascending, shape (n,)) and M-normalised shapes (shape (DOFs, n))."""
-        return self._inner.modes(int(n), threads=threads)
-
-    @property
-    def dof_count(self):
-        """Number of DOFs."""
-        return self._inner.dof_count
-
-    @property
-    def rigid_body_modes(self):
-        """Number of rigid-body modes."""
-        return self._inner.rigid_body_modes
-
-    @property
-    def labels(self):
-        """The DOF labels, in index order."""
-        return self._inner.labels
-
-    @property
-    def positions(self):
-        """The DOFs' positions, m (shape (DOFs, 3)), in index order."""
-        return self._inner.positions
-
-    @property
-    def directions(self):
-        """The DOFs' directions (w, theta, x, y, z, rx, ry, rz), in index order."""
-        return self._inner.directions
-
-    @property
-    def parameters(self):
-        """The parameters: a list of (name, value, unit, identified)."""
-        return self._inner.parameters
-
-    def __repr__(self):
-        return repr(self._inner)
-
-
-def _dof_table(dofs, size):
-    if dofs is None:
-        return [str(i + 1) for i in range(size)], np.zeros((size, 3)), ["x"] * size
-    missing = [c for c in _DOF_COLUMNS if c not in dofs]
-    if missing:
-        raise ArgumentError(
-            f"dofs has no column {missing[0]!r}: it must have the columns {', '.join(_DOF_COLUMNS)}"
-        )
-    labels = [str(v) for v in np.asarray(dofs["label"]).tolist()]
-    directions = [str(v) for v in np.asarray(dofs["direction"]).tolist()]
-    if len(labels) != size or len(directions) != size:
-        raise ArgumentError(
-            f"dofs has {len(labels)} rows: it must have one per DOF, {size} (the size of K)"
-        )
-    xyz = np.column_stack([array(f"dofs[{c!r}]", dofs[c], 1, (size,)) for c in ("x", "y", "z")])
-    return labels, np.ascontiguousarray(xyz), directions
-
-
-class Measured:
-    """Measured modes (frequencies and partial shapes), checked against a model."""
-
-    def __init__(self, inner, model):
-        self._inner = inner
-        self.model = model
-
-    @classmethod
-    def from_csv(cls, path, model):
-        """Reads a measured-modes CSV (the CLI's ``--measured`` file) against ``model``."""
-        return cls(_j.Measured.from_csv(os.fspath(path), model._inner), model)
-
-    @classmethod
-    def from_arrays(
-        cls,
-        model,
-        frequencies,
-        shapes,
-        *,
-        labels=None,
-        x=None,
-        xyz=None,
-        directions=None,
-        modes=None,
-        frequency_std=None,
-        shape_std=None,
-    ):
-        """Measured modes from arrays: ``frequencies`` (Hz, shape (modes,)), ``shapes``
-        (shape (points, modes)), the points as DOF or sensor ``labels`` (points,), or as
-        positions along a chain ``x`` (points,) or in space ``xyz`` (points, 3) with
-        ``directions`` (points,; w/theta, or x/y/z); ``modes`` the mode numbers (default 1, 2,
-        ...); optional standard errors ``frequency_std`` (Hz, (modes,)) and ``shape_std``
-        ((points, modes))."""
-        f = array("frequencies", frequencies, 1)
-        count = f.shape[0]
-        v = array("shapes", shapes, 2, (None, count))
-        points = v.shape[0]
-        given = [k for k, a in (("labels", labels), ("x", x), ("xyz", xyz)) if a is not None]
-        if len(given) != 1:
-            raise ArgumentError(
-                f"points: give exactly one of labels, x or xyz (given: {', '.join(given) or 'none'})"
-            )
-        kw = {}
-        if labels is not None:
-            kw["labels"] = [str(s) for s in labels]
-            if len(kw["labels"]) != points:
-                raise ArgumentError(
-                    f"labels has {len(kw['labels'])} entries: it must have one per row of shapes, {points}"
-                )
-            known = set(model.labels)
-            unknown = [i for i, s in enumerate(kw["labels"]) if s not in known]
-        else:
-            unknown = []
-            if x is not None:
-                kw["x"] = array("x", x, 1, (points,))
-            else:
-                kw["xyz"] = array("xyz", xyz, 2, (points, 3))
-            if directions is None or len(directions) != points:
-                raise ArgumentError(
-                    f"directions is invalid: it must give one direction per point, {points}"
-                )
-            kw["directions"] = [str(d) for d in directions]
-        numbers = list(range(1, count + 1)) if modes is None else [int(r) for r in modes]
-        if len(numbers) != count:
-            raise ArgumentError(f"modes has {len(numbers)} entries: it must have one per frequency, {count}")
-        if frequency_std is not None:
-            kw["frequency_std"] = array("frequency_std", frequency_std, 1, (count,))
-        if shape_std is not None:
-            kw["shape_std"] = array("shape_std", shape_std, 2, v.shape)
-        try:
-            inner = _j.Measured._from_columns(model._inner, numbers, f, v, **kw)
-        except InputError as e:
-            if unknown:
-                i = unknown[0]
-                raise ArgumentError(
-                    f"labels[{i}] = {kw['labels'][i]!r} is invalid: it is not a DOF label of the model "
-                    f"(nor a sensor it declares): {e}"
-                ) from None
-            raise
-        return cls(inner, model)
-
-    @classmethod
-    def from_uff(cls, model, datasets, geometry, *, components, space=False, modes=None):
-        """Measured modes from universal files read by pyuff: the real normal modes of
-        ``datasets`` (dataset 55, analysis type 2: ``freq``, ``node_nums``, ``r1``..``r6``),
-        located by ``geometry`` (a dataset 15 or 2411: ``node_nums``, ``x``, ``y``, ``z``).
-        ``components`` maps a component of the dataset (1-6) to the model's direction it
-        measures (on a chain ``"w"`` or ``"theta"``, e.g. ``{2: "w"}``; in space with ``space``
-        ``"x"``..``"rz"``); a chain's points are at the nodes' ``x``, space's at their
-        ``x, y, z``. ``modes`` the mode numbers (default the datasets' ``mode_n``)."""
-        sets = [datasets] if isinstance(datasets, dict) else list(datasets)
-        shapes = [d for d in sets if d.get("type") == 55 and d.get("analysis_type") == 2]
-        if not shapes:
-            raise ArgumentError("datasets holds no real normal mode (dataset 55, analysis type 2)")
-        nodes = [int(n) for n in shapes[0]["node_nums"]]
-        for k, d in enumerate(shapes):
-            if [int(n) for n in d["node_nums"]] != nodes:
-                raise ArgumentError(
-                    f"datasets: mode shape {k} has other nodes than the first: every shape must list the same nodes"
-                )
-        where = {int(n): i for i, n in enumerate(geometry["node_nums"])}
-        missing = [n for n in nodes if n not in where]
-        if missing:
-            raise ArgumentError(f"geometry has no node {missing[0]}: the shapes' nodes must all be in it")
-        comps = sorted((int(c), str(d)) for c, d in dict(components).items())
-        if not comps or any(c not in range(1, 7) for c, _ in comps):
-            raise ArgumentError(f"components = {components!r} is invalid: it maps components 1 to 6 to directions")
-        rows = [where[n] for n in nodes for _ in comps]
-        xyz = np.column_stack([np.asarray(geometry[a], dtype=float)[rows] for a in ("x", "y", "z")])
-        values = np.column_stack(
-            [np.concatenate([[np.real(d[f"r{c}"][i]) for c, _ in comps] for i in range(len(nodes))])
-             for d in shapes]
-        )
-        directions = [name for _ in nodes for _, name in comps]
-        numbers = [int(d["mode_n"]) for d in shapes] if modes is None else modes
-        where_points = {"xyz": xyz} if space else {"x": xyz[:, 0]}
-        return cls.from_arrays(model, [float(d["freq"]) for d in shapes], values,
-                               directions=directions, modes=numbers, **where_points)
-
-    @property
-    def modes(self):
-        """The mode numbers (1 = the first elastic mode)."""
-        return self._inner.modes
-
-    @property
-    def frequencies(self):
-        """The measured frequencies, Hz."""
-        return self._inner.frequencies
-
-    def to_csv(self):
-        """The measured-modes CSV text."""
-        return self._inner.to_csv()
-
-    def __len__(self):
-        return len(self._inner)
-
-    def __repr__(self):
-        return repr(self._inner)
+__all__ = [
+    "ArgumentError",
+    "ComputationError",
+    "InputError",
+    "JointidError",
+    "Measured",
+    "Model",
+    "SettingError",
+    "amplitude",
+    "diagnose",
+    "extract",
+    "extract_uff",
+    "identify",
+    "simulate",
+    "study",
+]
 
 
 def identify(

@@ -13,7 +13,7 @@ use jointid::model::chain::BeamCalibration;
 use jointid::model::matrices::build::{MatricesData, ParameterData};
 use jointid::model::matrices::config::UNITS;
 use jointid::model::matrices::dof_table;
-use jointid::model::matrix_market::{self, LowerEntries};
+use jointid::model::matrix_market::{self, LowerEntries, MatrixMarketError};
 use jointid::structure::{Role, Structure};
 
 use crate::{errors, work};
@@ -59,8 +59,24 @@ fn lower(size: usize, (rows, cols, vals): &Coordinates<'_>, name: &str) -> PyRes
         .zip(vals)
         .map(|((&r, &c), &v)| (index(r), index(c), v))
         .collect();
-    matrix_market::from_coordinates(size, &entries, std::path::Path::new(name))
-        .map_err(errors::input)
+    matrix_market::from_coordinates(size, &entries, std::path::Path::new(name)).map_err(|e| match e {
+        // said with the 0-based indices of the array handed over
+        MatrixMarketError::NotSymmetric {
+            row,
+            col,
+            value,
+            mirror,
+            ..
+        } => errors::input(format!(
+            "{name} is not symmetric: {name}[{}, {}] = {value:e} but {name}[{}, {}] = {mirror:e} (duplicates summed; |a_ij - a_ji| must be <= {:e} max |a|)",
+            row - 1,
+            col - 1,
+            col - 1,
+            row - 1,
+            matrix_market::SYMMETRY_TOLERANCE
+        )),
+        e => errors::input(e),
+    })
 }
 
 #[pymethods]
