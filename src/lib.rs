@@ -45,7 +45,8 @@
 //! 6. diagnosis and results: [`diagnose`], [`calibrate`], [`report`], [`cluster`], [`amplitude`]
 //! 7. outputs: [`output`]
 //!
-//! Above them all, the binary (`main.rs`, `cli.rs`, `commands/`) may import any of them.
+//! Above them all, the binary (`main.rs`, `cli.rs`, `commands/`) may import any of them, and
+//! so may the Python package (`python/`, a crate of its own: bindings, no algorithm).
 
 pub mod amplitude;
 pub mod calibrate;

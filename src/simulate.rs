@@ -206,6 +206,39 @@ pub fn effect_catalogue() -> Vec<(String, String)> {
         .collect()
 }
 
+/// Which DOFs a simulated test measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    /// Translations only (the usual accelerometer test).
+    W,
+    /// Rotations only.
+    Theta,
+    /// Every DOF.
+    All,
+    /// The sensors the model declares (`[[sensor]]`).
+    Sensors,
+}
+
+/// The points a test measuring `measure` reads on `structure`; None for `Sensors` on a model
+/// that declares none.
+pub fn measured_points(structure: &Structure, measure: Measure) -> Option<Vec<Observation>> {
+    if measure == Measure::Sensors {
+        return (!structure.sensors.is_empty()).then(|| structure.sensors.clone());
+    }
+    let points = (0..structure.dof_count())
+        .filter(|&d| {
+            let rotation = structure.dofs.get(d).direction.is_rotation();
+            match measure {
+                Measure::W => !rotation,
+                Measure::Theta => rotation,
+                Measure::All | Measure::Sensors => true,
+            }
+        })
+        .map(|d| Observation::dof(&structure.dofs, d))
+        .collect();
+    Some(points)
+}
+
 /// Measured modes of `structure` with `effects` (name, size) added, measured at `points`.
 /// Sensor masses sit at the measured translations.
 pub fn simulate(

@@ -7,8 +7,7 @@ use crate::commands::flagged;
 use jointid::input::SettingError;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, write_atomically};
-use jointid::simulate::{Errors, first_modes, simulate};
-use jointid::structure::Observation;
+use jointid::simulate::{Errors, first_modes, measured_points, simulate};
 use jointid::study::NoiseKind;
 
 /// The library's settings by their flags.
@@ -30,23 +29,17 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     })?;
     let errors = Errors::new(args.shape_noise, args.frequency_noise, kind, args.seed)
         .map_err(|e| flagged(e, FLAGS))?;
-    let points: Vec<Observation> = match args.measure {
-        Measure::Sensors if model.sensors.is_empty() => bail!(
+    let measure = match args.measure {
+        Measure::W => jointid::simulate::Measure::W,
+        Measure::Theta => jointid::simulate::Measure::Theta,
+        Measure::All => jointid::simulate::Measure::All,
+        Measure::Sensors => jointid::simulate::Measure::Sensors,
+    };
+    let Some(points) = measured_points(&model, measure) else {
+        bail!(
             "--measure sensors: {} declares no [[sensor]]",
             args.model.display()
-        ),
-        Measure::Sensors => model.sensors.clone(),
-        _ => (0..model.dof_count())
-            .filter(|&d| {
-                let rotation = model.dofs.get(d).direction.is_rotation();
-                match args.measure {
-                    Measure::W => !rotation,
-                    Measure::Theta => rotation,
-                    _ => true,
-                }
-            })
-            .map(|d| Observation::dof(&model.dofs, d))
-            .collect(),
+        );
     };
     let measured = simulate(&model, &args.effects, &modes, &points, errors)?;
     write_atomically(&args.out, |w| {

@@ -192,6 +192,18 @@ pub enum UffInputError {
     },
 }
 
+/// The frequency lines of an axis (start, step, points): start + i step.
+fn lines((start, step, points): (f64, f64, usize)) -> Vec<f64> {
+    (0..points).map(|i| start + i as f64 * step).collect()
+}
+
+/// The frequency lines of an axis given by its values (as a universal file's uneven
+/// abscissa, or a reader that computed them), evenly spaced within [`AXIS_TOLERANCE`]: the
+/// lines a file with these values gives; None when they are not evenly spaced.
+pub fn even_lines(x: &[f64]) -> Option<Vec<f64>> {
+    crate::uff::function::even_values(x, AXIS_TOLERANCE).map(|(a, b)| lines((a, b, x.len())))
+}
+
 fn axis_of(f: &Function) -> Option<(f64, f64, usize)> {
     f.even_abscissa(AXIS_TOLERANCE)
         .map(|(a, b)| (a, b, f.len()))
@@ -468,7 +480,7 @@ pub fn frfs_of(
         channels.push(channel);
     }
     let coherence = frame.coherence(&coherence, &channels)?;
-    let frequencies_hz = (0..axis.2).map(|i| axis.0 + i as f64 * axis.1).collect();
+    let frequencies_hz = lines(axis);
     Ok(UffFrfs {
         set: FrfSet {
             frequencies_hz,

@@ -11,6 +11,10 @@
 //! 4. Z_r: weighted least squares (13) by QR ([`wls`]); the correction of parameter i is
 //!    Delta p_i = p_i Z_r(i) (eq. (8)).
 //!
+//! [`run`] identifies a set of measured modes, each its own way (this system, else its
+//! parameter from its frequency alone, [`frequency_only`]), as `jointid identify` and the
+//! Python package run it.
+//!
 //! Layer 4 (identification; see the crate docs): may import the layers below: [`crate::stats`],
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
 //! [`crate::model`], [`crate::measured`], [`crate::extract`].
@@ -19,6 +23,7 @@ pub mod frequency_only;
 pub mod identifiability;
 pub mod projection;
 pub mod propagation;
+pub mod run;
 pub mod system;
 pub mod weighting;
 pub mod wls;

@@ -400,3 +400,52 @@ mod tests {
         }
     }
 }
+
+/// The rows of every mode of an identification, with the outcomes its notes are about.
+#[derive(Debug, Clone)]
+pub struct Gathered {
+    /// The rows, mode by mode.
+    pub rows: Vec<IdentifyRow>,
+    /// The paper's outcomes (a rank-deficient one whose frequency failed too included).
+    pub outcomes: Vec<ModeOutcome>,
+    /// The modes identified from their frequency alone, and why.
+    pub fallbacks: Vec<(FrequencyOutcome, Fallback)>,
+    /// One warning per mode left unsolved, saying why.
+    pub warnings: Vec<String>,
+}
+
+/// Each mode's rows in mode order: its paper's outcome, else its frequency-only outcome, else
+/// empty corrections with a warning.
+pub fn gathered(identified: &crate::identify::run::Identified) -> Gathered {
+    use crate::identify::run::Way;
+    let (params, all) = (&identified.params, &identified.all);
+    let mut g = Gathered {
+        rows: Vec::new(),
+        outcomes: Vec::new(),
+        fallbacks: Vec::new(),
+        warnings: Vec::new(),
+    };
+    for mode in &identified.modes {
+        match &mode.way {
+            Way::Paper(o) | Way::Unsolved(Fallback::RankDeficient(o), _) => {
+                g.rows.extend(rows(std::slice::from_ref(o), params));
+                g.outcomes.push(o.clone());
+            }
+            Way::Frequency(f, why) => {
+                g.rows.extend(frequency_rows(f, mode.frequency_hz, all));
+                g.fallbacks.push((f.clone(), why.clone()));
+            }
+            Way::Unsolved(Fallback::Asked, _) => g.rows.extend(unsolved_rows(
+                mode.mode,
+                mode.frequency_hz,
+                mode.model_frequency_hz,
+                all,
+            )),
+        }
+        if let Way::Unsolved(_, e) = &mode.way {
+            g.warnings
+                .push(format!("{e}; its corrections are left empty"));
+        }
+    }
+    g
+}

@@ -15,6 +15,8 @@
 //! draws uniform shape errors with the explicit AVX2 generator
 //! ([`crate::random::LaneRng::uniform_shape_errors_avx2`], bitwise the portable one).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use rayon::prelude::*;
 
 use super::config::Study;
@@ -99,6 +101,20 @@ pub fn simulate_cell(
     plan: &CellPlan,
     progress: &(dyn Fn(u64) + Sync),
 ) -> CellSamples {
+    simulate_cell_until(study, cell, plan, progress, &AtomicBool::new(false))
+        .expect("a flag that nothing sets never stops the trials")
+}
+
+/// [`simulate_cell`], stopped when `stop` is set: no block of trials starts after it is seen
+/// (a block of [`BLOCK`] trials takes milliseconds), and None is returned. The trials that
+/// run are those of [`simulate_cell`], so a run that is not stopped gives the same bits.
+pub fn simulate_cell_until(
+    study: &Study,
+    cell: &Cell,
+    plan: &CellPlan,
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &AtomicBool,
+) -> Option<CellSamples> {
     let (modes, q) = (plan.modes.len(), plan.q());
     let trials = study.trials;
     let mut values = vec![0.0; trials * modes * q];
@@ -107,9 +123,12 @@ pub fn simulate_cell(
         .par_chunks_mut(BLOCK * modes * q)
         .zip(failed.par_chunks_mut(BLOCK * modes))
         .enumerate()
-        .for_each_init(
+        .try_for_each_init(
             || Scratch::new(plan, cell.n.0),
             |scratch, (block, (values, failed))| {
+                if stop.load(Ordering::Relaxed) {
+                    return Err(Stopped);
+                }
                 let job = Block {
                     plan,
                     cell,
@@ -119,15 +138,20 @@ pub fn simulate_cell(
                 };
                 job.run(scratch, values, failed);
                 progress((failed.len() / modes) as u64);
+                Ok(())
             },
-        );
-    CellSamples {
+        )
+        .ok()?;
+    Some(CellSamples {
         modes,
         q,
         values,
         failed,
-    }
+    })
 }
+
+/// The trials were stopped before their end.
+struct Stopped;
 
 /// A run of consecutive trials of one cell.
 struct Block<'a> {

@@ -31,7 +31,7 @@ pub mod unidentified;
 
 pub use crate::random::NoiseKind;
 pub use config::{CheckSpec, GateStatistic, Grid, NfSpec, Study};
-pub use engine::{CellSamples, RowStats, simulate_cell, summarize_cell};
+pub use engine::{CellSamples, RowStats, simulate_cell, simulate_cell_until, summarize_cell};
 pub use plan::{Cell, CellPlan, StudyContext};
 
 /// The statistics of one cell.
@@ -120,17 +120,29 @@ impl StudyRun {
         cell: &Cell,
         progress: &(dyn Fn(u64) + Sync),
     ) -> (CellResult, CellSamples) {
+        self.run_cell_until(cell, progress, &std::sync::atomic::AtomicBool::new(false))
+            .expect("a flag that nothing sets never stops the cell")
+    }
+
+    /// [`StudyRun::run_cell`], stopped within a block of trials once `stop` is set (an
+    /// interrupted call): None then.
+    pub fn run_cell_until(
+        &self,
+        cell: &Cell,
+        progress: &(dyn Fn(u64) + Sync),
+        stop: &std::sync::atomic::AtomicBool,
+    ) -> Option<(CellResult, CellSamples)> {
         let plan = CellPlan::new(&self.study, &self.context, cell)
             .expect("cells are validated in StudyRun::new");
-        let raw = simulate_cell(&self.study, cell, &plan, progress);
+        let raw = simulate_cell_until(&self.study, cell, &plan, progress, stop)?;
         let rows = summarize_cell(&self.study, &plan, &raw);
-        (
+        Some((
             CellResult {
                 cell: cell.clone(),
                 rows,
             },
             raw,
-        )
+        ))
     }
 
     /// Total trials of the study, cells times trials per cell (for progress).

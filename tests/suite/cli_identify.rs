@@ -259,7 +259,7 @@ fn every_bad_input_is_explained_and_leaves_no_file() {
             "--modes",
             "1,7",
         ],
-        "--modes asks for mode 7",
+        "--modes 1,7 is invalid: it asks for mode 7, which the measured modes do not hold",
     );
     assert_fails(
         "weighting",
@@ -431,7 +431,13 @@ fn a_mode_listed_twice_is_refused_as_a_parameter_listed_twice_is() {
     for extra in [&["--modes", "1,1"][..], &["--modes", "1,3,1"]] {
         for settings in [&paper[..], &["--from-frequency"]] {
             let args: Vec<&str> = settings.iter().chain(extra).copied().collect();
-            refused_into(&s, &model, &data, &args, &["--modes lists mode 1 twice"]);
+            refused_into(
+                &s,
+                &model,
+                &data,
+                &args,
+                &["--modes", "is invalid: it lists mode 1 twice"],
+            );
         }
     }
     refused_into(
@@ -439,7 +445,7 @@ fn a_mode_listed_twice_is_refused_as_a_parameter_listed_twice_is() {
         &model,
         &data,
         &["--from-frequency", "--params", "k2,k2"],
-        &["--params lists k2 twice"],
+        &["--params k2,k2 is invalid: it lists k2 twice"],
     );
     // `auto` chooses the parameters itself: it is not one more name to recommend
     for value in ["auto,k1", "k2,auto"] {

@@ -40,6 +40,41 @@ pub const MAX_DOFS: usize = 1_000_000;
 /// space has six).
 const RIGID_SEARCH: usize = 12;
 
+/// An external model's matrices and DOFs in memory (read from its files, or handed over by a
+/// caller that holds them, such as the Python package), before the checks of the module docs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MatricesData {
+    /// K without the parameters' terms.
+    pub k: LowerEntries,
+    /// M without the parameters' terms.
+    pub m: LowerEntries,
+    /// The DOFs, in index order.
+    pub dofs: Vec<crate::structure::DofInfo>,
+    /// The parameters, in order.
+    pub parameters: Vec<ParameterData>,
+    /// The declared number of rigid-body modes, if any.
+    pub rigid_body_modes: Option<usize>,
+    /// How far a sensor given by coordinates may lie from its nearest DOF, m.
+    pub sensor_tolerance: Option<f64>,
+}
+
+/// One parameter with its derivative matrices.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParameterData {
+    /// Name in output files.
+    pub name: String,
+    /// Unit, one of [`super::config::UNITS`].
+    pub unit: &'static str,
+    /// Nominal value p_i.
+    pub value: f64,
+    /// Identified or fixed.
+    pub role: crate::structure::Role,
+    /// dK/dp_i.
+    pub dk: LowerEntries,
+    /// dM/dp_i, if the parameter changes the mass.
+    pub dm: Option<LowerEntries>,
+}
+
 impl MatricesFile {
     /// Reads the files and builds the structure, with every check of the module docs.
     pub fn build(&self) -> Result<Structure, MatricesError> {
@@ -55,19 +90,69 @@ impl MatricesFile {
             return Err(MatricesError::TooLarge { size: n });
         }
         let m = read("mass", &self.mass)?;
-        self.same_size("mass", &m, n)?;
-        let infos = dof_table::from_path(&self.dofs, n)
+        let dofs = dof_table::from_path(&self.dofs, n)
             .map_err(|problem| MatricesError::Dofs { problem })?;
         let mut parameters = Vec::with_capacity(self.parameters.len());
         for (i, p) in self.parameters.iter().enumerate() {
-            parameters.push(self.parameter(i, p, n, &read)?);
+            parameters.push(Self::parameter(i, p, &read)?);
         }
-        let open_faces = Self::open_faces(&infos, &k, &parameters);
-        let dofs =
-            DofMap::new(infos, Vec::new(), Vec::new()).with_sensor_tolerance(self.sensor_tolerance);
+        MatricesData {
+            k,
+            m,
+            dofs,
+            parameters,
+            rigid_body_modes: self.rigid_body_modes,
+            sensor_tolerance: self.sensor_tolerance,
+        }
+        .build()
+    }
+
+    fn parameter(
+        i: usize,
+        p: &ParameterFile,
+        read: &dyn Fn(&str, &std::path::Path) -> Result<LowerEntries, MatricesError>,
+    ) -> Result<ParameterData, MatricesError> {
+        let dk = read(&format!("parameter[{i}].dk"), &p.dk)?;
+        let dm = match &p.dm {
+            Some(path) => Some(read(&format!("parameter[{i}].dm"), path)?),
+            None => None,
+        };
+        Ok(ParameterData {
+            name: p.name.clone(),
+            unit: p.unit,
+            value: p.value,
+            role: p.role,
+            dk,
+            dm,
+        })
+    }
+}
+
+impl MatricesData {
+    /// Builds the structure, with every check of the module docs (the sizes against K's first).
+    pub fn build(self) -> Result<Structure, MatricesError> {
+        let n = self.k.size;
+        if n > MAX_DOFS {
+            return Err(MatricesError::TooLarge { size: n });
+        }
+        same_size("mass", &self.m, n)?;
+        if self.dofs.len() != n {
+            return Err(MatricesError::Size {
+                field: "dofs".into(),
+                size: self.dofs.len(),
+                stiffness: n,
+            });
+        }
+        let mut parameters = Vec::with_capacity(self.parameters.len());
+        for (i, p) in self.parameters.iter().enumerate() {
+            parameters.push(parameter(i, p, n)?);
+        }
+        let open_faces = open_faces(&self.dofs, &self.k, &parameters);
+        let dofs = DofMap::new(self.dofs, Vec::new(), Vec::new())
+            .with_sensor_tolerance(self.sensor_tolerance);
         let base = Matrices {
-            k: SymMatrix::from_entries(n, &k.both_triangles()),
-            m: SymMatrix::from_entries(n, &m.both_triangles()),
+            k: SymMatrix::from_entries(n, &self.k.both_triangles()),
+            m: SymMatrix::from_entries(n, &self.m.both_triangles()),
         };
         let mut structure = Structure {
             base: base.into(),
@@ -81,113 +166,96 @@ impl MatricesFile {
         };
         let assembled = structure.assemble();
         check_mass(&assembled, &structure.dofs)?;
-        structure.rigid = self.rigid_body_modes(&assembled)?;
+        structure.rigid = rigid_body_modes(self.rigid_body_modes, &assembled)?;
         structure.sites.beam_mass = translational_mass(&assembled.m, &structure.dofs);
         Ok(structure)
     }
+}
 
-    /// The pairs of coincident DOFs that neither K nor a dK/dp ties: open faces
-    /// ([`super::coincident`]).
-    fn open_faces(
-        infos: &[crate::structure::DofInfo],
-        k: &LowerEntries,
-        parameters: &[Parameter],
-    ) -> usize {
-        let lists = std::iter::once(k.entries.as_slice())
-            .chain(parameters.iter().map(|p| p.stiffness.entries()));
-        super::coincident::untied(infos, lists).len()
-    }
+/// The pairs of coincident DOFs that neither K nor a dK/dp ties: open faces
+/// ([`super::coincident`]).
+fn open_faces(
+    infos: &[crate::structure::DofInfo],
+    k: &LowerEntries,
+    parameters: &[Parameter],
+) -> usize {
+    let lists = std::iter::once(k.entries.as_slice())
+        .chain(parameters.iter().map(|p| p.stiffness.entries()));
+    super::coincident::untied(infos, lists).len()
+}
 
-    fn same_size(&self, field: &str, matrix: &LowerEntries, n: usize) -> Result<(), MatricesError> {
-        if matrix.size == n {
-            Ok(())
-        } else {
-            Err(MatricesError::Size {
-                field: field.to_string(),
-                size: matrix.size,
-                stiffness: n,
-            })
-        }
-    }
-
-    fn parameter(
-        &self,
-        i: usize,
-        p: &ParameterFile,
-        n: usize,
-        read: &dyn Fn(&str, &std::path::Path) -> Result<LowerEntries, MatricesError>,
-    ) -> Result<Parameter, MatricesError> {
-        let field = format!("parameter[{i}].dk");
-        let dk = read(&field, &p.dk)?;
-        self.same_size(&field, &dk, n)?;
-        let dm = match &p.dm {
-            Some(path) => {
-                let field = format!("parameter[{i}].dm");
-                let dm = read(&field, path)?;
-                self.same_size(&field, &dm, n)?;
-                Some(dm)
-            }
-            None => None,
-        };
-        let nonzero = |m: &LowerEntries| m.entries.iter().any(|e| e.2 != 0.0);
-        if !nonzero(&dk) && !dm.as_ref().is_some_and(nonzero) {
-            return Err(MatricesError::ZeroDerivative {
-                name: p.name.clone(),
-                index: i,
-            });
-        }
-        let sparse = |m: &LowerEntries| {
-            let mut s = SparseSym::zero();
-            for (r, c, v) in m.both_triangles() {
-                s.push(r, c, v);
-            }
-            s
-        };
-        Ok(Parameter {
-            name: p.name.clone(),
-            unit: p.unit,
-            value: p.value,
-            stiffness: sparse(&dk),
-            mass: dm.as_ref().map_or_else(SparseSym::zero, sparse),
-            role: p.role,
+fn same_size(field: &str, matrix: &LowerEntries, n: usize) -> Result<(), MatricesError> {
+    if matrix.size == n {
+        Ok(())
+    } else {
+        Err(MatricesError::Size {
+            field: field.to_string(),
+            size: matrix.size,
+            stiffness: n,
         })
     }
+}
 
-    /// The number of rigid-body modes: counted, and checked against the declared one.
-    fn rigid_body_modes(&self, mats: &Matrices) -> Result<usize, MatricesError> {
-        let n = mats.size();
-        let modal = ModalSolution::lowest_of(mats, RIGID_SEARCH.min(n)).map_err(|e| {
-            MatricesError::Modal {
-                message: e.to_string(),
-            }
+fn parameter(i: usize, p: &ParameterData, n: usize) -> Result<Parameter, MatricesError> {
+    same_size(&format!("parameter[{i}].dk"), &p.dk, n)?;
+    if let Some(dm) = &p.dm {
+        same_size(&format!("parameter[{i}].dm"), dm, n)?;
+    }
+    let nonzero = |m: &LowerEntries| m.entries.iter().any(|e| e.2 != 0.0);
+    if !nonzero(&p.dk) && !p.dm.as_ref().is_some_and(nonzero) {
+        return Err(MatricesError::ZeroDerivative {
+            name: p.name.clone(),
+            index: i,
+        });
+    }
+    let sparse = |m: &LowerEntries| {
+        let mut s = SparseSym::zero();
+        for (r, c, v) in m.both_triangles() {
+            s.push(r, c, v);
+        }
+        s
+    };
+    Ok(Parameter {
+        name: p.name.clone(),
+        unit: p.unit,
+        value: p.value,
+        stiffness: sparse(&p.dk),
+        mass: p.dm.as_ref().map_or_else(SparseSym::zero, sparse),
+        role: p.role,
+    })
+}
+
+/// The number of rigid-body modes: counted, and checked against the declared one.
+fn rigid_body_modes(declared: Option<usize>, mats: &Matrices) -> Result<usize, MatricesError> {
+    let n = mats.size();
+    let modal =
+        ModalSolution::lowest_of(mats, RIGID_SEARCH.min(n)).map_err(|e| MatricesError::Modal {
+            message: e.to_string(),
         })?;
-        let (kd, md) = (mats.k.diagonal(), mats.m.diagonal());
-        let scale = kd.iter().zip(&md).map(|(k, m)| k / m).fold(0.0, f64::max);
-        let tolerance = RIGID_TOLERANCE * scale;
-        let values = modal.values();
-        let lowest: Vec<f64> = values.iter().take(RIGID_SEARCH).copied().collect();
-        if values[0] < -tolerance {
-            return Err(MatricesError::StiffnessIndefinite {
-                lambda: values[0],
-                tolerance,
-            });
-        }
-        let counted = values.iter().take_while(|&&l| l <= tolerance).count();
-        let gap = |r: usize| {
-            r > 0
-                && r < values.len()
-                && values[..r].iter().all(|l| l.abs() <= RIGID_GAP * values[r])
-        };
-        match self.rigid_body_modes {
-            Some(declared) if declared == counted || gap(declared) => Ok(declared),
-            Some(declared) => Err(MatricesError::Rigid {
-                declared,
-                counted,
-                tolerance_hz: lambda_to_hz(tolerance),
-                lowest_hz: lowest.iter().map(|&l| lambda_to_hz(l)).collect(),
-            }),
-            None => Ok(counted),
-        }
+    let (kd, md) = (mats.k.diagonal(), mats.m.diagonal());
+    let scale = kd.iter().zip(&md).map(|(k, m)| k / m).fold(0.0, f64::max);
+    let tolerance = RIGID_TOLERANCE * scale;
+    let values = modal.values();
+    let lowest: Vec<f64> = values.iter().take(RIGID_SEARCH).copied().collect();
+    if values[0] < -tolerance {
+        return Err(MatricesError::StiffnessIndefinite {
+            lambda: values[0],
+            tolerance,
+        });
+    }
+    let counted = values.iter().take_while(|&&l| l <= tolerance).count();
+    let gap = |r: usize| {
+        r > 0 && r < values.len() && values[..r].iter().all(|l| l.abs() <= RIGID_GAP * values[r])
+    };
+    match declared {
+        Some(declared) if declared == counted || gap(declared) => Ok(declared),
+        Some(declared) => Err(MatricesError::Rigid {
+            declared,
+            counted,
+            tolerance_hz: lambda_to_hz(tolerance),
+            lowest_hz: lowest.iter().map(|&l| lambda_to_hz(l)).collect(),
+        }),
+        None => Ok(counted),
     }
 }
 

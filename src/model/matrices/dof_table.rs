@@ -88,20 +88,79 @@ fn placement(xyz: [&str; 3], direction: &str) -> Result<([f64; 3], Direction), S
             }
         };
     }
-    let Some(direction) = Direction::parse(direction) else {
+    Ok((position, direction_of(direction)?))
+}
+
+/// A direction by its name; the message when it is not one.
+fn direction_of(direction: &str) -> Result<Direction, String> {
+    Direction::parse(direction).ok_or_else(|| {
         let names: Vec<&str> = Direction::ALL.iter().map(|d| d.name()).collect();
         if direction.is_empty() {
-            return Err(format!(
+            format!(
                 "direction is empty: every DOF needs one, of {}",
                 names.join(", ")
+            )
+        } else {
+            format!(
+                "direction = `{direction}` is invalid: it must be one of {}",
+                names.join(", ")
+            )
+        }
+    })
+}
+
+/// A DOF table given by its columns in memory, row i the DOF of index i: every label not
+/// empty and unique, every position finite (m), every direction one of [`Direction::ALL`];
+/// `name` names the table in errors, and a row's "line" there is its 1-based index.
+pub fn from_columns(
+    labels: &[String],
+    positions: &[[f64; 3]],
+    directions: &[String],
+    name: &Path,
+) -> Result<Vec<DofInfo>, DofTableError> {
+    let line_err = |row: usize, message: String| DofTableError::Line {
+        file: name.to_path_buf(),
+        line: row as u64 + 1,
+        message,
+    };
+    let mut first: HashMap<&str, usize> = HashMap::new();
+    let mut dofs = Vec::with_capacity(labels.len());
+    for (row, ((label, position), direction)) in
+        labels.iter().zip(positions).zip(directions).enumerate()
+    {
+        if label.is_empty() {
+            return Err(line_err(
+                row,
+                "label is empty: every DOF needs a label".into(),
             ));
         }
-        return Err(format!(
-            "direction = `{direction}` is invalid: it must be one of {}",
-            names.join(", ")
-        ));
-    };
-    Ok((position, direction))
+        if let Some(before) = first.insert(label, row) {
+            return Err(line_err(
+                row,
+                format!(
+                    "label = `{label}` is given twice (first in row {}): labels must be unique",
+                    before + 1
+                ),
+            ));
+        }
+        if let Some((axis, v)) = ["x", "y", "z"]
+            .iter()
+            .zip(position)
+            .find(|(_, v)| !v.is_finite())
+        {
+            return Err(line_err(
+                row,
+                format!("{axis} = {v} is invalid: it must be a finite number (m)"),
+            ));
+        }
+        dofs.push(DofInfo {
+            label: label.clone(),
+            position: *position,
+            direction: direction_of(direction).map_err(|m| line_err(row, m))?,
+            node: None,
+        });
+    }
+    Ok(dofs)
 }
 
 /// Reads a DOF table from `reader` for matrices of size `size`; `file` names it in errors.

@@ -278,6 +278,49 @@ pub fn read(reader: impl io::Read, file: &Path) -> Result<LowerEntries, MatrixMa
     Ok(LowerEntries { size, entries })
 }
 
+/// A symmetric matrix given by its coordinates in memory, both triangles (as a `general`
+/// file holds them: checked for symmetry, duplicates summed), 0-based `(row, col, value)`;
+/// `name` names the matrix in errors, and an entry's "line" there is its 1-based position
+/// in `entries`.
+pub fn from_coordinates(
+    size: usize,
+    entries: &[(usize, usize, f64)],
+    name: &Path,
+) -> Result<LowerEntries, MatrixMarketError> {
+    let err = |at: usize, message: String| MatrixMarketError::Line {
+        file: name.to_path_buf(),
+        line: at,
+        message,
+    };
+    for (at, &(i, j, v)) in entries.iter().enumerate() {
+        if i >= size || j >= size {
+            return Err(err(
+                at + 1,
+                format!(
+                    "entry ({}, {}) is invalid: indices must be from 1 to the size {size}",
+                    i + 1,
+                    j + 1
+                ),
+            ));
+        }
+        if !v.is_finite() {
+            return Err(err(
+                at + 1,
+                format!(
+                    "value = {v} at ({}, {}) is invalid: it must be a finite number",
+                    i + 1,
+                    j + 1
+                ),
+            ));
+        }
+    }
+    let at: Vec<usize> = (1..=entries.len()).collect();
+    Ok(LowerEntries {
+        size,
+        entries: symmetric_part(entries, &at, name)?,
+    })
+}
+
 /// The lower triangle of a `general` file's matrix, after the symmetry check.
 fn symmetric_part(
     entries: &[(usize, usize, f64)],

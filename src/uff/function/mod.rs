@@ -205,25 +205,30 @@ impl Function {
     /// values of 6 significant digits (`E13.5`): `rel_tol = 5e-6` accepts them. `None` for
     /// fewer than two points or an uneven spacing.
     pub fn even_abscissa(&self, rel_tol: f64) -> Option<(f64, f64)> {
-        let x = match &self.abscissa {
-            Abscissa::Even { start, step } => return Some((*start, *step)),
-            Abscissa::Uneven(x) => x,
-        };
-        let (&first, &last) = (x.first()?, x.last()?);
-        if x.len() < 2 {
-            return None;
+        match &self.abscissa {
+            Abscissa::Even { start, step } => Some((*start, *step)),
+            Abscissa::Uneven(x) => even_values(x, rel_tol),
         }
-        let span = (x.len() - 1) as f64;
-        let step = (last - first) / span;
-        let even = step != 0.0
-            && x.iter().enumerate().all(|(i, &xi)| {
-                let t = i as f64 / span;
-                let ends = (1.0 - t) * first.abs() + t * last.abs();
-                let tolerance = rel_tol * (xi.abs().max(step.abs()) + ends);
-                (xi - (first + i as f64 * step)).abs() <= tolerance
-            });
-        even.then_some((first, step))
     }
+}
+
+/// The start and step of abscissa values `x` that are evenly spaced within `rel_tol`
+/// ([`Function::even_abscissa`]); None when they are not, or fewer than two.
+pub fn even_values(x: &[f64], rel_tol: f64) -> Option<(f64, f64)> {
+    let (&first, &last) = (x.first()?, x.last()?);
+    if x.len() < 2 {
+        return None;
+    }
+    let span = (x.len() - 1) as f64;
+    let step = (last - first) / span;
+    let even = step != 0.0
+        && x.iter().enumerate().all(|(i, &xi)| {
+            let t = i as f64 / span;
+            let ends = (1.0 - t) * first.abs() + t * last.abs();
+            let tolerance = rel_tol * (xi.abs().max(step.abs()) + ends);
+            (xi - (first + i as f64 * step)).abs() <= tolerance
+        });
+    even.then_some((first, step))
 }
 
 /// Reads a dataset 58 or 58b.

@@ -1,0 +1,306 @@
+//! The identification of a set of measured modes, each its own way: the paper's system on its
+//! shape (eq. (5)-(16)), else its parameter from its frequency alone ([`frequency_only`]),
+//! else nothing, with why. What `jointid identify` and the Python package run: the settings
+//! are checked before the eigensolution (minutes on a large model), the fallbacks of the
+//! modes run in parallel, each one's result the same as alone.
+
+use rayon::prelude::*;
+
+use super::frequency_only::{self, Choice, Fallback, FrequencyError, FrequencyOutcome};
+use super::{Identifier, IdentifyError, ModeOutcome, Selection, Settings, Weighting};
+use crate::input::{Number, RELATIVE_STD, SettingError};
+use crate::measured::{MeasuredMode, MeasuredModes};
+use crate::modal::{Mechanism, ModalError, ModalSolution, check_elastic};
+use crate::structure::{ModeBeyondModel, Parameter, Structure};
+
+/// What to identify and how: the paper's settings (n, m, weighting; all three, or none to
+/// identify every mode from its frequency alone), the parameters (`params`: names, or
+/// `["auto"]` to choose them per mode; all by default), the measured modes (all by default)
+/// and the relative standard deviation of a frequency without its own standard error.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Request {
+    /// Basis size n.
+    pub n: Option<usize>,
+    /// Retained equations m.
+    pub m: Option<usize>,
+    /// Weighting of the equations.
+    pub weighting: Option<Weighting>,
+    /// The parameters of the paper's system, by name (or `auto`).
+    pub params: Option<Vec<String>>,
+    /// The measured modes to identify.
+    pub modes: Option<Vec<usize>>,
+    /// Relative standard deviation of a frequency, from 1e-12 to below 1.
+    pub frequency_noise: Option<f64>,
+}
+
+/// Why the modes cannot be identified, by what is at fault.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// A setting of the request (named as the library names it: `n`, `params`, `modes`,
+    /// `frequency_noise`, ...).
+    #[error(transparent)]
+    Setting(#[from] SettingError),
+    /// The model identifies nothing.
+    #[error(transparent)]
+    Model(IdentifyError),
+    /// The model's eigensolution failed.
+    #[error("modal solution: {0}")]
+    Modal(#[from] ModalError),
+    /// The model is a mechanism beyond its rigid-body modes.
+    #[error(transparent)]
+    Mechanism(#[from] Mechanism),
+    /// A measured mode the model or the basis has no mode for.
+    #[error(transparent)]
+    Beyond(#[from] ModeBeyondModel),
+    /// A measured mode the method cannot work with.
+    #[error(transparent)]
+    Measured(IdentifyError),
+    /// A measured shape cannot be projected on the sub-basis.
+    #[error(
+        "{0}: lower n to the shape components the modes have, or identify each mode's parameter from its frequency alone"
+    )]
+    Projection(IdentifyError),
+}
+
+/// How one measured mode was identified.
+#[derive(Debug, Clone)]
+pub enum Way {
+    /// By the paper's system on its shape.
+    Paper(ModeOutcome),
+    /// From its frequency alone, and why.
+    Frequency(FrequencyOutcome, Fallback),
+    /// Not at all: why it fell back, and why its frequency could not identify it either.
+    Unsolved(Fallback, FrequencyError),
+}
+
+/// One measured mode's identification.
+#[derive(Debug, Clone)]
+pub struct ModeResult {
+    /// Mode r.
+    pub mode: usize,
+    /// Its measured frequency, Hz.
+    pub frequency_hz: f64,
+    /// The frequency of the model mode it pairs with, Hz.
+    pub model_frequency_hz: f64,
+    /// How it was identified.
+    pub way: Way,
+}
+
+/// The identification of the requested modes, in their order.
+#[derive(Debug, Clone)]
+pub struct Identified {
+    /// The parameters of the paper's system.
+    pub params: Vec<Parameter>,
+    /// Every identified parameter of the model (a frequency's choice).
+    pub all: Vec<Parameter>,
+    /// The modes.
+    pub modes: Vec<ModeResult>,
+}
+
+/// Identifies the modes `request` asks for of `measured` (checked against `model`).
+pub fn identify_modes(
+    model: &Structure,
+    measured: &MeasuredModes,
+    request: &Request,
+) -> Result<Identified, RunError> {
+    if let Some(v) = request.frequency_noise
+        && !(v.is_finite() && v >= RELATIVE_STD.0 && v < 1.0)
+    {
+        return Err(SettingError::new(
+            "frequency_noise",
+            Number(v),
+            "a relative standard deviation from 1e-12 to below 1",
+        )
+        .into());
+    }
+    let all = model.identified();
+    if all.is_empty() {
+        // before the eigensolution, and the same refusal with or without frequencies alone
+        return Err(RunError::Model(IdentifyError::NoParameters));
+    }
+    let (params, selection, choice) = chosen(request.params.as_deref(), &all)?;
+    let settings = match (request.n, request.m, request.weighting) {
+        (Some(n), Some(m), Some(weighting)) => {
+            let s = Settings::new(n, m, weighting, model)?;
+            s.check_equations(params.len(), model.rigid)?;
+            Some(s)
+        }
+        _ => None,
+    };
+    let modes = selected(request.modes.as_deref(), measured)?;
+    for mode in &modes {
+        model.model_mode(mode.mode)?;
+        if let Some(s) = &settings {
+            super::basis_index(mode.mode, model.rigid, s.n).map_err(RunError::Measured)?;
+        }
+    }
+    let matrices = model.assemble();
+    // the paper's basis of n pairs, or every pair the modes' frequencies pair with
+    let reach = modes.iter().map(|m| m.mode + model.rigid).max();
+    let count = request.n.or(reach).unwrap_or(model.rigid + 1);
+    let modal = ModalSolution::lowest_of(&matrices, count)?;
+    check_elastic(&matrices, &modal, model.rigid)?;
+    let identifier = settings
+        .map(|settings| Identifier::new(&modal, params.clone(), model.rigid, settings))
+        .transpose()
+        .map_err(RunError::Model)?;
+    let planned = planned(identifier.as_ref(), modes, selection)?;
+    let modes = planned
+        .into_par_iter()
+        .map(|(mode, plan)| {
+            let way = match plan {
+                Ok(o) => Way::Paper(o),
+                Err(why) => {
+                    let f_std = mode
+                        .frequency_std
+                        .map(|s| s / mode.frequency_hz)
+                        .or(request.frequency_noise);
+                    let f = model
+                        .model_mode(mode.mode)
+                        .map_err(FrequencyError::from)
+                        .and_then(|t| {
+                            frequency_only::identify(
+                                model,
+                                t,
+                                mode.mode,
+                                mode.frequency_hz,
+                                f_std,
+                                choice,
+                            )
+                        });
+                    match f {
+                        Ok(f) => Way::Frequency(f, why),
+                        Err(FrequencyError::Modal(e)) => return Err(RunError::Modal(e)),
+                        Err(e) => Way::Unsolved(why, e),
+                    }
+                }
+            };
+            let paired = model.model_mode(mode.mode)?;
+            Ok(ModeResult {
+                mode: mode.mode,
+                frequency_hz: mode.frequency_hz,
+                model_frequency_hz: modal.frequency_hz(paired),
+                way,
+            })
+        })
+        .collect::<Result<Vec<ModeResult>, RunError>>()?;
+    Ok(Identified { params, all, modes })
+}
+
+/// A mode and its paper's outcome, or why it falls back to its frequency alone.
+type Planned<'a> = (&'a MeasuredMode, Result<ModeOutcome, Fallback>);
+
+/// The paper's system on each mode's shape (`identifier`: None to use frequencies alone), or
+/// why the mode falls back to its frequency alone; an error where the projection cannot be
+/// made.
+fn planned<'a>(
+    identifier: Option<&Identifier>,
+    modes: Vec<&'a MeasuredMode>,
+    selection: Selection,
+) -> Result<Vec<Planned<'a>>, RunError> {
+    let mut planned = Vec::new();
+    for mode in modes {
+        let shape = identifier
+            .map(|id| id.identify_selected(mode, id.basis_index(mode.mode)?, selection))
+            .transpose();
+        let plan = match shape {
+            Ok(Some(o)) if o.relative.is_ok() => Ok(o),
+            Ok(Some(o)) => Err(Fallback::RankDeficient(o)),
+            Ok(None) => Err(Fallback::Asked),
+            Err(e @ IdentifyError::Projection { .. }) => return Err(RunError::Projection(e)),
+            Err(e) => return Err(RunError::Measured(e)),
+        };
+        planned.push((mode, plan));
+    }
+    Ok(planned)
+}
+
+/// The parameters of the paper's system (`names`), its selection, and the parameter a mode's
+/// frequency identifies (the one named when `names` names one, else the most sensitive).
+pub fn chosen(
+    names: Option<&[String]>,
+    all: &[Parameter],
+) -> Result<(Vec<Parameter>, Selection, Choice), SettingError> {
+    let names = match names {
+        None => return Ok((all.to_vec(), Selection::All, Choice::MostSensitive)),
+        Some([auto]) if auto == "auto" => {
+            return Ok((all.to_vec(), Selection::Auto, Choice::MostSensitive));
+        }
+        Some(names) if names.iter().any(|n| n == "auto") => {
+            return Err(SettingError::new(
+                "params",
+                names.join(","),
+                "`auto` chooses the parameters on each mode and is given alone, not with names",
+            ));
+        }
+        Some(names) => names,
+    };
+    let mut chosen: Vec<Parameter> = Vec::with_capacity(names.len());
+    for name in names {
+        let Some(p) = all.iter().find(|p| &p.name == name) else {
+            let known: Vec<&str> = all.iter().map(|p| p.name.as_str()).collect();
+            return Err(SettingError::new(
+                "params",
+                name,
+                format!("the model identifies {} (or give `auto`)", known.join(", ")),
+            ));
+        };
+        if chosen.iter().any(|c| &c.name == name) {
+            return Err(SettingError::new(
+                "params",
+                names.join(","),
+                format!("it lists {name} twice"),
+            ));
+        }
+        chosen.push(p.clone());
+    }
+    let choice = match chosen.as_slice() {
+        [one] => Choice::Named(all.iter().position(|p| p.name == one.name).unwrap_or(0)),
+        _ => Choice::MostSensitive,
+    };
+    Ok((chosen, Selection::All, choice))
+}
+
+/// The measured modes `list` asks for (every one by default).
+pub fn selected<'a>(
+    list: Option<&[usize]>,
+    measured: &'a MeasuredModes,
+) -> Result<Vec<&'a MeasuredMode>, SettingError> {
+    let Some(list) = list else {
+        return Ok(measured.modes().iter().collect());
+    };
+    let text = || {
+        let v: Vec<String> = list.iter().map(|r| r.to_string()).collect();
+        v.join(",")
+    };
+    if let Some(r) = list
+        .iter()
+        .enumerate()
+        .find_map(|(i, r)| list[..i].contains(r).then_some(r))
+    {
+        return Err(SettingError::new(
+            "modes",
+            text(),
+            format!("it lists mode {r} twice"),
+        ));
+    }
+    list.iter()
+        .map(|&r| {
+            measured.get(r).ok_or_else(|| {
+                let have: Vec<String> = measured
+                    .modes()
+                    .iter()
+                    .map(|m| m.mode.to_string())
+                    .collect();
+                SettingError::new(
+                    "modes",
+                    text(),
+                    format!(
+                        "it asks for mode {r}, which the measured modes do not hold (they have modes {})",
+                        have.join(",")
+                    ),
+                )
+            })
+        })
+        .collect()
+}
