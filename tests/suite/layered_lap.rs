@@ -309,8 +309,8 @@ fn axial_hz(model: &Structure, count: usize) -> Vec<f64> {
 /// The beams outside the overlap are bars along their axis, not rigid bodies: with the
 /// interface bonded, the half-lap bar's axial modes are the free-free bar's of the whole
 /// length, f_n = n c / (2 L), c = sqrt(E / rho) (the two half-height layers carry the full
-/// section over the overlap). The layers' offsets couple them weakly to bending: a few tenths
-/// of a percent.
+/// section over the overlap). The layers' offsets couple them weakly to bending: 0.02% here
+/// (the rigid outer parts of before put the first at 6.58 kHz, against 4.31 kHz).
 #[test]
 fn a_bonded_lap_has_the_axial_modes_of_the_whole_bar() {
     let bonded = structure(&model(
@@ -324,7 +324,7 @@ fn a_bonded_lap_has_the_axial_modes_of_the_whole_bar() {
     for (n, got) in fe.iter().enumerate() {
         let want = (n + 1) as f64 * c / (2.0 * 0.6);
         assert!(
-            (got / want - 1.0).abs() < 5e-3,
+            (got / want - 1.0).abs() < 1e-3,
             "axial mode {}: {got} Hz vs {want} Hz",
             n + 1
         );
