@@ -89,19 +89,59 @@ pub struct CalibrateArgs {
     /// Also write the calibration as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// The measurement error and the pairing.
+    #[command(flatten)]
+    pub error: ErrorModelArgs,
+}
+
+/// The measurement error a fit weighs with and the window its pairing looks in, as
+/// `calibrate` and `diagnose` take them.
+#[derive(Debug, Args)]
+pub struct ErrorModelArgs {
     /// Relative standard deviation of the measured frequencies.
     #[arg(long, default_value_t = 0.001)]
     pub frequency_noise: f64,
     /// Relative standard deviation of the measured shape components.
     #[arg(long, default_value_t = 0.02)]
     pub shape_noise: f64,
-    /// Weigh with the stated noise even when the reference file carries standard errors.
+    /// Judge with the stated noise (--frequency-noise, --shape-noise) even when the measured
+    /// file carries standard errors (they describe the random error of the test alone).
     #[arg(long)]
     pub stated_noise: bool,
     /// Half-width of the frequency window in which a measured mode looks for its model mode,
     /// relative to its frequency (0 < w <= 10).
     #[arg(long, default_value_t = jointid::diagnose::pairing::DEFAULT_WINDOW)]
     pub pairing_window: f64,
+}
+
+impl ErrorModelArgs {
+    /// The stated noise.
+    pub fn noise(&self) -> jointid::diagnose::Noise {
+        jointid::diagnose::Noise {
+            frequency: self.frequency_noise,
+            shape: self.shape_noise,
+        }
+    }
+
+    /// The pairing rule: the window, and the pairs `given` by number.
+    pub fn pairing(&self, given: Vec<(usize, usize)>) -> jointid::diagnose::PairingRule {
+        jointid::diagnose::PairingRule {
+            window: self.pairing_window,
+            given,
+        }
+    }
+
+    /// `measured` as the fit weighs it: without its standard errors under --stated-noise.
+    pub fn weighed(
+        &self,
+        measured: jointid::measured::MeasuredModes,
+    ) -> jointid::measured::MeasuredModes {
+        if self.stated_noise {
+            measured.without_std()
+        } else {
+            measured
+        }
+    }
 }
 
 /// `jointid amplitude`.
@@ -522,16 +562,9 @@ pub struct DiagnoseArgs {
     /// Measured modes (CSV).
     #[arg(long)]
     pub measured: PathBuf,
-    /// Relative standard deviation of the measured frequencies.
-    #[arg(long, default_value_t = 0.001)]
-    pub frequency_noise: f64,
-    /// Relative standard deviation of the measured shape components.
-    #[arg(long, default_value_t = 0.02)]
-    pub shape_noise: f64,
-    /// Judge with the stated noise (--frequency-noise, --shape-noise) even when the measured
-    /// file carries standard errors (they describe the random error of the test alone).
-    #[arg(long)]
-    pub stated_noise: bool,
+    /// The measurement error and the pairing.
+    #[command(flatten)]
+    pub error: ErrorModelArgs,
     /// Also write the report as JSON here.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -547,10 +580,6 @@ pub struct DiagnoseArgs {
     /// Weighting of the per-mode corrections.
     #[arg(long, value_parser = parse_weighting, default_value = "inverse")]
     pub weighting: Weighting,
-    /// Half-width of the frequency window in which a measured mode looks for its model mode,
-    /// relative to its frequency (0 < w <= 10).
-    #[arg(long, default_value_t = jointid::diagnose::pairing::DEFAULT_WINDOW)]
-    pub pairing_window: f64,
     /// Pairs given by number, `r:t` (measured mode r with the model's deformable mode t),
     /// comma-separated; the other modes pair by MAC within the window.
     #[arg(long, value_delimiter = ',', value_parser = parse_pair)]

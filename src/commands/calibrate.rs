@@ -9,7 +9,7 @@ use jointid::calibrate::adjusted::adjusted_model;
 use jointid::calibrate::{
     CalibrateError, Request, Specimen, calibrate, parse_fits, specimen_chain,
 };
-use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule};
+use jointid::diagnose::DiagnoseSettings;
 use jointid::input::read_file;
 use jointid::measured::MeasuredModes;
 use jointid::output::{calibrate as out, check_outputs, commit_all, stage};
@@ -22,14 +22,8 @@ const FLAGS: [(&str, &str); 3] = [
 ];
 
 pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
-    let noise = Noise {
-        frequency: args.frequency_noise,
-        shape: args.shape_noise,
-    };
-    let pairing = PairingRule {
-        window: args.pairing_window,
-        given: Vec::new(),
-    };
+    let noise = args.error.noise();
+    let pairing = args.error.pairing(Vec::new());
     // The noise and the window mean what they mean to diagnose, checked as it checks them.
     DiagnoseSettings {
         noise,
@@ -53,12 +47,9 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
     let structure = specimen_chain(&chain, specimen)
         .with_context(|| format!("--specimen {specimen}"))?
         .build();
-    let measured = MeasuredModes::from_path(&args.reference, &structure)?;
-    let measured = if args.stated_noise {
-        measured.without_std()
-    } else {
-        measured
-    };
+    let measured = args
+        .error
+        .weighed(MeasuredModes::from_path(&args.reference, &structure)?);
     let reference = args
         .reference
         .file_name()

@@ -7,9 +7,7 @@ use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
 use jointid::diagnose::absorbed::absorbed;
-use jointid::diagnose::{
-    DiagnoseError, DiagnoseSettings, Noise, PairingRule, Pass, Step, Watch, diagnose_watched,
-};
+use jointid::diagnose::{DiagnoseError, DiagnoseSettings, Pass, Step, Watch, diagnose_watched};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_log;
@@ -40,14 +38,8 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         _ => bail!("--n and --m go together (or leave both out for the defaults)"),
     };
     let settings = DiagnoseSettings {
-        noise: Noise {
-            frequency: args.frequency_noise,
-            shape: args.shape_noise,
-        },
-        pairing: PairingRule {
-            window: args.pairing_window,
-            given: args.pair.clone(),
-        },
+        noise: args.error.noise(),
+        pairing: args.error.pairing(args.pair.clone()),
         per_mode,
         extended: args.extended,
         causes: args
@@ -68,12 +60,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     // A chain whose beams were calibrated on a reference test: the same chain as typed.
     let typed =
         calibrated_chain(&args.model)?.map(|chain| (chain.typed().build(), chain.calibration));
-    let measured = MeasuredModes::from_path(&args.measured, &model)?;
-    let measured = if args.stated_noise {
-        measured.without_std()
-    } else {
-        measured
-    };
+    let measured = args
+        .error
+        .weighed(MeasuredModes::from_path(&args.measured, &model)?);
     let log = Log::new(HOLD, PACE, |line: &str| eprintln!("{line}"));
     let tell = |pass: Pass, step: &Step| log.tell(pass, step);
     let watch = if args.quiet {

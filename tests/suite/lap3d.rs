@@ -28,45 +28,40 @@ fn diagnose(case: &str, dir: &std::path::Path) -> Value {
 
 /// The diagnosis of fixture `case` by its model file `model`.toml.
 fn diagnose_with(case: &str, model: &str, dir: &std::path::Path) -> Value {
-    let fixture = format!("tests/fixtures/lap3d/{case}");
-    let json = dir.join(format!("{case}-{model}.json"));
-    jointid_ok(&[
-        "diagnose",
-        "--model",
-        &format!("{fixture}/{model}.toml"),
-        "--measured",
-        &format!("{fixture}/measured.csv"),
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.01",
-        "--quiet",
-        "--json",
-        json.to_str().unwrap(),
-    ]);
-    serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap()
+    run_diagnose(case, model, &[], dir)
 }
 
 /// The diagnosis of fixture `case` by its model file `model`.toml with the extended library
 /// of candidates (`--extended`).
 fn diagnose_extended(case: &str, model: &str, dir: &std::path::Path) -> Value {
+    run_diagnose(case, model, &["--extended"], dir)
+}
+
+/// `jointid diagnose` on fixture `case` by its model file `model`.toml, with the noise the
+/// fixtures were made with and the flags `extra`: its JSON report.
+fn run_diagnose(case: &str, model: &str, extra: &[&str], dir: &std::path::Path) -> Value {
     let fixture = format!("tests/fixtures/lap3d/{case}");
-    let json = dir.join(format!("{case}-{model}-extended.json"));
-    jointid_ok(&[
+    let json = dir.join(format!("{case}-{model}{}.json", extra.concat()));
+    let (model_file, measured) = (
+        format!("{fixture}/{model}.toml"),
+        format!("{fixture}/measured.csv"),
+    );
+    let mut args = vec![
         "diagnose",
         "--model",
-        &format!("{fixture}/{model}.toml"),
+        &model_file,
         "--measured",
-        &format!("{fixture}/measured.csv"),
+        &measured,
         "--frequency-noise",
         "0.001",
         "--shape-noise",
         "0.01",
-        "--extended",
         "--quiet",
         "--json",
         json.to_str().unwrap(),
-    ]);
+    ];
+    args.extend_from_slice(extra);
+    jointid_ok(&args);
     serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap()
 }
 
