@@ -136,6 +136,7 @@ pub fn assemble(f: Findings) -> Report {
         shape_floor: SHAPE_FLOOR,
         reference: None,
         hypotheses: f.hypotheses,
+        reduction: None,
     }
 }
 

@@ -49,6 +49,7 @@ pub mod fit;
 pub mod noise;
 pub mod pairing;
 pub mod progress;
+pub mod reduce;
 pub mod report;
 pub mod score;
 pub mod search;
@@ -72,7 +73,10 @@ pub use report::{
 pub use settings::DiagnoseSettings;
 pub use whiteness::Whiteness;
 
+use std::sync::Arc;
+
 use crate::measured::MeasuredModes;
+use crate::model::effects::EffectContext;
 use crate::modal::ModalError;
 use crate::structure::Structure;
 use assemble::Findings;
@@ -142,6 +146,31 @@ pub fn diagnose_watched(
 ) -> Result<Report, DiagnoseError> {
     settings.check()?;
     let ctx = calibrate::prepare(model, measured, &settings)?;
+    let reduced = reduce::attach(Arc::clone(&ctx), measured, settings.extended)?;
+    if Arc::ptr_eq(&reduced, &ctx) {
+        return Ok(diagnose_on(&ctx, model, measured, settings, watch)?.0);
+    }
+    let (mut report, check) = diagnose_on(&reduced, model, measured, settings.clone(), watch)?;
+    if check.as_ref().is_none_or(|c| c.verified) {
+        report.reduction = check;
+        return Ok(report);
+    }
+    // The reduced model missed the full one at the final parameters: the diagnosis again on
+    // the full model, the failed check reported beside it.
+    let (mut report, _) = diagnose_on(&ctx, model, measured, settings, watch)?;
+    report.reduction = check;
+    Ok(report)
+}
+
+/// The diagnosis on the effects' context `ctx` (its structure's reduced model when it carries
+/// one), with the check of the final model against the full one when it does.
+fn diagnose_on(
+    ctx: &Arc<EffectContext>,
+    model: &Structure,
+    measured: &MeasuredModes,
+    settings: DiagnoseSettings,
+    watch: Watch,
+) -> Result<(Report, Option<reduce::ReductionCheck>), DiagnoseError> {
     // The measurement error: the data's own standard errors where every mode carries them,
     // else the stated noise; each fit adds its own discrepancy to it.
     let calibration = Calibration {
@@ -185,7 +214,9 @@ pub fn diagnose_watched(
     let names: Vec<Verdict> = scored.iter().map(|s| s.verdict).collect();
     let explains = |i: usize| decide::Judgement::of(&scored[i].report).explains(&estimate);
     let decision = decide::decide(&path, explains, base_explains, &names);
-    Ok(assemble::assemble(Findings {
+    let after = decision.best.and_then(|b| scored[b].model.as_ref());
+    let check = reduce::check(after.unwrap_or(&calibrated.base), measured)?;
+    let report = assemble::assemble(Findings {
         measured,
         stated: settings.noise,
         criterion: decide::criterion(&estimate, hypotheses, library.len()),
@@ -199,7 +230,8 @@ pub fn diagnose_watched(
             .per_mode
             .unwrap_or_else(|| report::default_settings(model, measured)),
         left_out: calibrated.left_out.clone(),
-    }))
+    });
+    Ok((report, check))
 }
 
 /// The combinations of causes the settings ask for, as indices into `library`; refused when

@@ -13,19 +13,22 @@
 //! gradients of [`crate::modal::deflated`] give the part beyond them from the factor of
 //! K - sigma M, one factor for every mode; where they fail, Nelson's method
 //! ([`crate::modal::nelson`], one LU per mode), and the expansion over the computed pairs last
-//! (a repeated eigenvalue, where neither applies).
+//! (a repeated eigenvalue, where neither applies). Pairs solved on a reduced model take the
+//! reduced model's exact derivatives ([`crate::modal::reduced::derivative`]): no factor, no
+//! full matrices.
 
 use std::sync::Arc;
 
 use crate::modal::ModalSolution;
 use crate::modal::deflated::DeflatedModes;
 use crate::modal::nelson::{EigenDerivative, NelsonMode};
+use crate::modal::reduced::derivative::derivative;
 use crate::modal::sparse_llt::SparseLlt;
 use crate::structure::{Matrices, SparseSym};
 
 /// The derivatives of the computed modes with respect to any parameters (module docs).
 pub struct ModeDerivatives<'a> {
-    mats: &'a Matrices,
+    mats: Option<&'a Matrices>,
     modal: &'a ModalSolution,
     deflated: Option<DeflatedModes<'a>>,
 }
@@ -40,17 +43,39 @@ impl<'a> ModeDerivatives<'a> {
         Self::with(mats, modal, |k, m| DeflatedModes::new(k, m, modal))
     }
 
-    /// As [`ModeDerivatives::new`], with the factor `shared` of [`ModeDerivatives::factor`]
-    /// of a model of the same DOFs that differs in its joint as the preconditioner: no
-    /// factorisation (a fresh one without `shared`).
+    /// As [`ModeDerivatives::new`] for pairs that may have been solved on a reduced model:
+    /// `mats` (K and M of the model) is needed only when they were not (the caller assembles
+    /// them only then: [`ModeDerivatives::needs_matrices`]).
+    pub fn of_solution(mats: Option<&'a Matrices>, modal: &'a ModalSolution) -> Self {
+        match mats {
+            Some(mats) if modal.reduced().is_none() => Self::new(mats, modal),
+            _ => Self {
+                mats,
+                modal,
+                deflated: None,
+            },
+        }
+    }
+
+    /// Whether the derivatives of `modal`'s pairs need the model's full matrices: not for
+    /// pairs solved on a reduced model.
+    pub fn needs_matrices(modal: &ModalSolution) -> bool {
+        modal.reduced().is_none()
+    }
+
+    /// As [`ModeDerivatives::of_solution`], with the factor `shared` of
+    /// [`ModeDerivatives::factor`] of a model of the same DOFs that differs in its joint as
+    /// the preconditioner: no factorisation (a fresh one without `shared`).
     pub fn sharing(
-        mats: &'a Matrices,
+        mats: Option<&'a Matrices>,
         modal: &'a ModalSolution,
         shared: Option<Arc<SparseLlt>>,
     ) -> Self {
-        match shared {
-            Some(llt) => Self::with(mats, modal, |k, m| DeflatedModes::sharing(k, m, modal, llt)),
-            None => Self::new(mats, modal),
+        match (mats, shared) {
+            (Some(mats), Some(llt)) if modal.reduced().is_none() => {
+                Self::with(mats, modal, |k, m| DeflatedModes::sharing(k, m, modal, llt))
+            }
+            _ => Self::of_solution(mats, modal),
         }
     }
 
@@ -72,7 +97,7 @@ impl<'a> ModeDerivatives<'a> {
             .then(|| deflate(mats.k.as_faer(), mats.m.as_faer()).ok())
             .flatten();
         Self {
-            mats,
+            mats: Some(mats),
             modal,
             deflated,
         }
@@ -81,6 +106,20 @@ impl<'a> ModeDerivatives<'a> {
     /// The derivatives of the modes `modes` for each parameter's derivative matrices
     /// (dK, dM): `[mode][parameter]`.
     pub fn of(&self, modes: &[usize], params: &[(&SparseSym, &SparseSym)]) -> Vec<Vec<Derivative>> {
+        if let Some(reduced) = self.modal.reduced() {
+            return modes
+                .iter()
+                .map(|&s| {
+                    params
+                        .iter()
+                        .map(|(dk, dm)| {
+                            derivative(self.modal, reduced, s, dk, dm)
+                                .unwrap_or_else(|_| eigen_derivative(self.modal, s, dk, dm))
+                        })
+                        .collect()
+                })
+                .collect();
+        }
         let pairs = |d: Vec<EigenDerivative>| d.into_iter().map(|d| (d.value, d.vector)).collect();
         match self.deflated.as_ref().map(|d| d.derivatives(modes, params)) {
             Some(Ok(all)) => all.into_iter().map(pairs).collect(),
@@ -98,9 +137,9 @@ impl<'a> ModeDerivatives<'a> {
                 .map(|d| (d.value, d.vector))
                 .collect();
         }
-        let nelson = self.deflated.as_ref().and_then(|_| {
+        let nelson = self.deflated.as_ref().zip(self.mats).and_then(|(_, mats)| {
             let y: Vec<f64> = self.modal.vectors().col(s).iter().copied().collect();
-            let (k, m) = (self.mats.k.as_faer(), self.mats.m.as_faer());
+            let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
             NelsonMode::new(k, m, self.modal.values()[s], &y).ok()
         });
         params

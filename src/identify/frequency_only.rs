@@ -30,7 +30,7 @@
 //!
 //! Layer 4 (identification): imports the structure and the modal solution.
 
-use crate::modal::{ModalError, ModalSolution, hz_to_lambda, lambda_to_hz};
+use crate::modal::{ModalError, ModalSolution, hz_to_lambda, lambda_to_hz, reduced};
 use crate::structure::{Parameter, Structure};
 
 /// What a per-mode correction of one parameter comes from.
@@ -141,7 +141,7 @@ impl Probe<'_> {
     /// (ln lambda_t, d ln lambda_t / d ln p) at p.
     fn at_value(&mut self, p: f64) -> Result<(f64, f64), ModalError> {
         self.structure.parameters[self.at].value = p;
-        let modal = ModalSolution::lowest_of(&self.structure.assemble(), self.t + 1)?;
+        let modal = reduced::lowest(&self.structure, &[], self.t + 1)?;
         let lambda = modal.values()[self.t];
         let y: Vec<f64> = modal.vectors().col(self.t).iter().copied().collect();
         let dk = quadratic(&self.param.stiffness, &y);
@@ -185,7 +185,7 @@ pub fn identify(
     if identified.is_empty() {
         return Err(FrequencyError::NoParameter);
     }
-    let start = ModalSolution::lowest_of(&structure.assemble(), t + 1)?;
+    let start = reduced::lowest(structure, &[], t + 1)?;
     let frequency_model_hz = start.frequency_hz(t);
     let param = match choice {
         Choice::Named(i) => i,

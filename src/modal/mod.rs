@@ -28,6 +28,7 @@ pub mod lanczos;
 pub mod memo;
 pub mod nelson;
 mod pencil;
+pub mod reduced;
 pub mod refine;
 pub mod residual;
 mod shift;
@@ -224,6 +225,8 @@ fn listed(unconverged: &[(usize, f64)]) -> String {
 pub struct ModalSolution {
     values: Vec<f64>,
     vectors: Mat<f64>,
+    /// The reduced pencil's pairs when solved on a reduced model ([`reduced`]).
+    reduced: Option<std::sync::Arc<reduced::ReducedPairs>>,
 }
 
 impl ModalSolution {
@@ -281,7 +284,11 @@ impl ModalSolution {
         for j in 0..n {
             fix_sign(&mut vectors, j);
         }
-        Ok(ModalSolution { values, vectors })
+        Ok(ModalSolution {
+            values,
+            vectors,
+            reduced: None,
+        })
     }
 
     /// The `count` lowest pairs of a sparse problem (K, M given with both triangles), by
@@ -296,7 +303,28 @@ impl ModalSolution {
         Ok(ModalSolution {
             values: modes.values,
             vectors: modes.vectors,
+            reduced: None,
         })
+    }
+
+    /// Pairs solved elsewhere (a reduced model's, lifted): `values` ascending, `vectors` N x
+    /// len under the contract of the module docs.
+    pub(crate) fn from_parts(
+        values: Vec<f64>,
+        vectors: Mat<f64>,
+        reduced: Option<std::sync::Arc<reduced::ReducedPairs>>,
+    ) -> ModalSolution {
+        ModalSolution {
+            values,
+            vectors,
+            reduced,
+        }
+    }
+
+    /// The reduced pencil's pairs, when these pairs were solved on a reduced model
+    /// ([`reduced`]): their residuals in the full model, and what their derivatives need.
+    pub fn reduced(&self) -> Option<&reduced::ReducedPairs> {
+        self.reduced.as_deref()
     }
 
     /// Number of computed eigenpairs (N for the dense solution, `count` for the sparse one).

@@ -12,7 +12,9 @@
 //! - [`dofs`]: the DOF map (labels, positions, directions, line elements);
 //! - [`observation`]: what a sensor reads, c^T u, at a DOF or between nodes;
 //! - [`nearest`]: a sensor given by coordinates in space, resolved to the nearest DOF;
-//! - [`sites`]: joints, elements and free ends, for the effects.
+//! - [`sites`]: joints, elements and free ends, for the effects;
+//! - [`reduced`]: a reduction basis with the matrices projected on it, which a structure may
+//!   carry to every solve of its eigenproblem.
 //!
 //! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
 //! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::uff`].
@@ -21,6 +23,7 @@ pub mod dofs;
 pub mod matrix;
 pub mod nearest;
 pub mod observation;
+pub mod reduced;
 pub mod sites;
 pub mod sparse;
 
@@ -142,6 +145,10 @@ pub struct Structure {
     /// of an external model (a lap's notch, a crack), which change no entry of K or M; a
     /// sensor position on one asks for the DOF's label.
     pub open_faces: usize,
+    /// The reduced model every solve of this structure's eigenproblem uses in place of the
+    /// full one ([`crate::modal::reduced`]), when one is attached (none: the full model).
+    /// Shared by the structures made from this one with other parameter values.
+    pub reduced: Option<std::sync::Arc<reduced::Reduced>>,
 }
 
 /// Another model of the same test, made by the builder that made a structure: every DOF of

@@ -144,8 +144,8 @@ pub(super) fn limit(
 fn moved(problem: &Problem, x: &[f64], pairing: &Pairing, j: usize, v: f64) -> Option<f64> {
     let mut y = x.to_vec();
     y[j] = v;
-    let configured = problem.configured(&y);
-    let modal = problem.modes(&configured.assemble()).ok()?;
+    let mut configured = problem.configured(&y);
+    let modal = problem.modes(&mut configured).ok()?;
     initial_scales(problem, &modal, pairing, &mut y);
     Some(chi2(&problem.evaluate(&y, pairing).ok()?.residual))
 }

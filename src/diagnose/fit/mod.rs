@@ -29,8 +29,8 @@ mod limits;
 
 pub use limits::{BOUND_CHI2, FREE, RIGID, ranges, structural_scale};
 
-use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 
 use faer::Mat;
 
@@ -40,7 +40,8 @@ use crate::measured::MeasuredModes;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{Configured, Effect, EffectContext};
 use crate::optim::{self, Bounds, LevenbergMarquardt, Observer, Progress, Termination};
-use crate::structure::{Matrices, Parameter, Structure};
+use crate::structure::reduced::Reduced;
+use crate::structure::{Parameter, Structure};
 
 /// Floor of the shape standard deviation, as a fraction of the mode's largest component.
 pub const SHAPE_FLOOR: f64 = 0.02;
@@ -311,6 +312,10 @@ struct Problem<'a> {
     /// Pairs the last eigensolution needed to cover the pairing window: the next one starts
     /// there instead of doubling up from the minimum again.
     covering: AtomicUsize,
+    /// The reduced model as the last solve enriched it (none: the structure's own), for the
+    /// next solves: the fit's evaluations run one after the other, so the basis each one
+    /// solves on does not depend on the number of threads.
+    enriched: Mutex<Option<Arc<Reduced>>>,
 }
 
 struct Evaluation {
@@ -341,6 +346,7 @@ impl<'a> Problem<'a> {
             ranges: ranges(&ctx.structure),
             discrepancy: calibration.discrepancy.clone(),
             covering: AtomicUsize::new(0),
+            enriched: Mutex::new(None),
         }
     }
 
@@ -395,21 +401,31 @@ impl<'a> Problem<'a> {
     /// The model modes the pairing can reach: every mode up to (1 + window) times the highest
     /// measured frequency and at least those paired by number (all of them for a model solved
     /// densely, see [`ModalSolution::covering`]).
-    fn modes(&self, mats: &Matrices) -> Result<ModalSolution, ModalError> {
+    /// On the structure's reduced model when it carries one (the enriched one of an earlier
+    /// solve of this fit if any), else in full.
+    fn modes(&self, configured: &mut Configured) -> Result<ModalSolution, ModalError> {
         let modes = self.measured.modes();
         let given = self.pairing.given.iter().map(|g| g.1).max().unwrap_or(0);
         let count = self.rigid() + modes.len().max(given) + 2;
         let f_max = modes.iter().map(|m| m.frequency_hz).fold(0.0, f64::max);
         let start = count.max(self.covering.load(Ordering::Relaxed));
-        let modal = ModalSolution::covering(mats, start, (1.0 + self.pairing.window) * f_max)?;
+        let mut enriched = self.enriched.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(reduced) = enriched.as_ref() {
+            configured.structure.reduced = Some(Arc::clone(reduced));
+        }
+        let (modal, next) = configured.covering(start, (1.0 + self.pairing.window) * f_max)?;
+        if let Some(next) = next {
+            configured.structure.reduced = Some(Arc::clone(&next));
+            *enriched = Some(next);
+        }
         self.covering.store(modal.len(), Ordering::Relaxed);
         Ok(modal)
     }
 
     /// Residuals at x, with the pairing fixed; model shapes signed to agree with the data.
     fn evaluate(&self, x: &[f64], pairing: &Pairing) -> Result<Evaluation, ModalError> {
-        let configured = self.configured(x);
-        let modal = self.modes(&configured.assemble())?;
+        let mut configured = self.configured(x);
+        let modal = self.modes(&mut configured)?;
         let scale_at = self.joint_count() + self.effect_count();
         let y = modal.vectors();
         let mut residual = Vec::new();
@@ -448,8 +464,8 @@ impl<'a> Problem<'a> {
                     .zip(self.scales()),
             )
             .collect();
-        let mats = eval.configured.assemble();
-        let derivatives = ModeDerivatives::new(&mats, &eval.modal);
+        let mats = ModeDerivatives::needs_matrices(&eval.modal).then(|| eval.configured.assemble());
+        let derivatives = ModeDerivatives::of_solution(mats.as_ref(), &eval.modal);
         let pairs: Vec<_> = params
             .iter()
             .map(|(p, _)| (&p.stiffness, &p.mass))
@@ -806,8 +822,8 @@ fn run(
         }
         None => vec![0.0; unknowns],
     };
-    let start = problem.configured(&x);
-    let start_modal = problem.modes(&start.assemble())?;
+    let mut start = problem.configured(&x);
+    let start_modal = problem.modes(&mut start)?;
     let mut pairing = pair(&start_modal, measured, problem.rigid(), problem.pairing)?;
     if given.is_none_or(|x0| x0.len() < unknowns) {
         initial_scales(&problem, &start_modal, &pairing, &mut x);

@@ -250,6 +250,10 @@ pub struct Report {
     /// members; for the figures, not in the JSON).
     #[serde(skip)]
     pub hypotheses: usize,
+    /// The reduced model against the full one at the final parameters, when the diagnosis
+    /// ran on a reduced model (module `crate::diagnose::reduce`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reduction: Option<super::reduce::ReductionCheck>,
 }
 
 /// chi^2 of a scan along its coordinate.

@@ -16,7 +16,7 @@ use crate::identify::frequency_only::{self, Choice};
 use crate::identify::propagation::{jacobian, propagated_std};
 use crate::identify::{Identifier, Projector, Settings, Weighting};
 use crate::measured::{MeasuredMode, MeasuredModes};
-use crate::modal::ModalSolution;
+use crate::modal::reduced;
 use crate::stats::chi2_sf;
 use crate::structure::{Structure, observe};
 
@@ -86,7 +86,7 @@ pub fn per_mode_corrections(
         // needed), solved again for n.
         let wider;
         let modal = if modal.len() < settings.n && modal.len() < modal.dof_count() {
-            wider = ModalSolution::lowest_of(&structure.assemble(), settings.n).ok()?;
+            wider = reduced::lowest(structure, &[], settings.n).ok()?;
             &wider
         } else {
             modal

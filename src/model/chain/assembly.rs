@@ -100,6 +100,7 @@ impl Chain {
             },
             alternatives: self.alternatives(),
             open_faces: 0,
+            reduced: None,
         }
     }
 

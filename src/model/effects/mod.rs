@@ -46,6 +46,9 @@ pub use suspension::Suspension;
 
 use std::sync::Arc;
 
+use crate::modal::reduced;
+use crate::modal::{ModalError, ModalSolution};
+use crate::structure::reduced::Reduced;
 use crate::structure::{Matrices, Observation, Parameter, Role, SparseSym, Structure};
 
 /// What an effect may depend on besides its parameters.
@@ -211,17 +214,40 @@ impl Configured {
     /// K and M of the structure plus every effect.
     pub fn assemble(&self) -> Matrices {
         let mats = self.structure.assemble();
-        let contributions: Vec<(SparseSym, SparseSym)> = self
-            .effects
-            .iter()
-            .map(|(effect, theta)| effect.contribution(&self.ctx, theta))
-            .collect();
+        let contributions = self.contributions();
         if contributions.is_empty() {
             return mats;
         }
-        let terms: Vec<(&SparseSym, &SparseSym, f64)> =
-            contributions.iter().map(|(k, m)| (k, m, 1.0)).collect();
-        mats.plus(&terms)
+        mats.plus(&terms(&contributions))
+    }
+
+    /// Every effect's K(theta) - K(0) and M(theta) - M(0), in effect order.
+    pub fn contributions(&self) -> Vec<(SparseSym, SparseSym)> {
+        self.effects
+            .iter()
+            .map(|(effect, theta)| effect.contribution(&self.ctx, theta))
+            .collect()
+    }
+
+    /// The lowest `count` pairs of the structure plus every effect: on the structure's
+    /// reduced model when it carries one, else in full ([`reduced::lowest`]).
+    pub fn lowest(&self, count: usize) -> Result<ModalSolution, ModalError> {
+        reduced::lowest(&self.structure, &terms(&self.contributions()), count)
+    }
+
+    /// The lowest pairs up to `f_max_hz` and at least `count` ([`reduced::covering`]), with
+    /// the reduction when the solve enriched it.
+    pub fn covering(
+        &self,
+        count: usize,
+        f_max_hz: f64,
+    ) -> Result<(ModalSolution, Option<Arc<Reduced>>), ModalError> {
+        reduced::covering(
+            &self.structure,
+            &terms(&self.contributions()),
+            count,
+            f_max_hz,
+        )
     }
 
     /// The effects' parameters with their derivatives at the current theta, in effect order.
@@ -253,6 +279,11 @@ impl Configured {
             .iter()
             .all(|(e, t)| e.admissible(&self.ctx, &self.structure, t).is_ok())
     }
+}
+
+/// Contributions as the extra terms of [`Matrices::plus`], each at scale 1.
+fn terms(contributions: &[(SparseSym, SparseSym)]) -> Vec<(&SparseSym, &SparseSym, f64)> {
+    contributions.iter().map(|(k, m)| (k, m, 1.0)).collect()
 }
 
 /// K(theta) - K(0), M(theta) - M(0) of an effect linear in its parameters, whose

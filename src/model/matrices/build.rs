@@ -163,6 +163,7 @@ impl MatricesData {
             sensors: Vec::new(),
             alternatives: Vec::new(),
             open_faces,
+            reduced: None,
         };
         let assembled = structure.assemble();
         check_mass(&assembled, &structure.dofs)?;

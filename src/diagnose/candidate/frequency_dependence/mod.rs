@@ -34,7 +34,7 @@ use crate::diagnose::discrepancy;
 use crate::diagnose::fit::{self, Calibration, Discrepancy, Estimate, FitError, Fitted, OwnModel};
 use crate::diagnose::progress::Iterations;
 use crate::diagnose::report::Verdict;
-use crate::modal::ModalSolution;
+use crate::modal::reduced;
 use crate::model::effects::{Configured, EffectContext};
 use crate::optim::Termination;
 use problem::{Problem, State};
@@ -220,7 +220,7 @@ fn finish(
     let (q0, _) = problem.law(&x);
     let values: Vec<f64> = q0.iter().map(|q| q.exp()).collect();
     let structure = problem.ctx.structure.with_values(&values);
-    let modal = ModalSolution::lowest_of(&structure.assemble(), problem.count())?;
+    let modal = reduced::lowest(&structure, &[], problem.count())?;
     let params = structure.identified();
     let mut estimates = fit::joint_estimates(&structure, &covariance);
     let alpha_estimates: Vec<Estimate> = (0..alphas)

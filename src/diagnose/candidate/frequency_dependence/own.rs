@@ -38,7 +38,7 @@
 
 use crate::diagnose::fit::FitError;
 use crate::identify::frequency_only::sensitivities;
-use crate::modal::ModalSolution;
+use crate::modal::{ModalSolution, reduced};
 use crate::structure::Structure;
 
 /// Self-consistency reached: the joint at most this far (relative) from its self-consistent
@@ -154,9 +154,18 @@ pub fn solve(
     let mut u = start;
     let mut last = f64::INFINITY;
     let largest = law.alpha.iter().fold(0.0, |m: f64, a| m.max(a.abs()));
+    // The reduced model as this mode's solves enrich it (module `crate::modal::reduced`).
+    let mut enriched = None;
     for _ in 0..MAX_ITERATIONS {
-        let structure = nominal.with_values(&law.values(u));
-        let modal = ModalSolution::lowest_of(&structure.assemble(), count.max(s + 1))?;
+        let mut structure = nominal.with_values(&law.values(u));
+        if let Some(reduced) = &enriched {
+            structure.reduced = Some(std::sync::Arc::clone(reduced));
+        }
+        let (modal, next) = reduced::lowest_keeping(&structure, &[], count.max(s + 1))?;
+        if let Some(next) = next {
+            structure.reduced = Some(std::sync::Arc::clone(&next));
+            enriched = Some(next);
+        }
         if s >= modal.len() || modal.values()[s] <= 0.0 {
             break;
         }

@@ -202,8 +202,8 @@ impl<'a> Problem<'a> {
             // d y_s / d q_j at the measured points.
             let params = sv.structure.identified();
             let pairs: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
-            let mats = sv.structure.assemble();
-            let derivatives = ModeDerivatives::sharing(&mats, &sv.modal, shared.take());
+            let mats = ModeDerivatives::needs_matrices(&sv.modal).then(|| sv.structure.assemble());
+            let derivatives = ModeDerivatives::sharing(mats.as_ref(), &sv.modal, shared.take());
             let dy: Vec<Vec<f64>> = derivatives
                 .of(&[s], &pairs)
                 .remove(0)

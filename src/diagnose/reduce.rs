@@ -1,0 +1,180 @@
+//! The reduced model of a diagnosis: built once on the nominal model before the calibration,
+//! shared by every fit (the calibration, each candidate, the frequency-dependent joint's
+//! per-mode solves) and the per-mode tables; and the check of the final model by one full
+//! solve (module [`crate::modal::reduced`] for the method).
+//!
+//! Which models: those solved sparsely whose DOFs are not a beam chain's, from
+//! [`MIN_DOFS`] DOFs: the 3D solids and other external models. Beam chains stay on the full
+//! solve: their fits solve a banded model of a few thousand DOFs in milliseconds, and their
+//! derivatives are exact there.
+//!
+//! The basis: the nominal model's lowest rigid + 2 m + 2 pairs (m measured modes), and the
+//! static corrections of the rigid + m + 2 lowest in the direction of every joint parameter
+//! and of every candidate effect of the library (at its typical size).
+
+use std::sync::Arc;
+
+use serde::Serialize;
+
+use super::fit::Fitted;
+use crate::measured::MeasuredModes;
+use crate::modal::reduced::{self, TOLERANCE};
+use crate::modal::{ModalError, ModalSolution};
+use crate::model::effects::{EffectContext, Tier, registry};
+use crate::structure::{SparseSym, Structure};
+
+/// Fewest DOFs of a model diagnosed on a reduced model.
+pub const MIN_DOFS: usize = 2000;
+
+/// Largest relative frequency difference between the reduced and the full model at the final
+/// parameters accepted without solving the diagnosis again in full.
+pub const FREQUENCY_TOLERANCE: f64 = 1e-6;
+
+/// Whether `structure` is diagnosed on a reduced model (module docs).
+pub fn applies(structure: &Structure) -> bool {
+    structure.dof_count() >= MIN_DOFS
+        && structure.dofs.lines().is_empty()
+        && structure.reduced.is_none()
+}
+
+/// `ctx` with its structure carrying the reduced model of the module docs, when it applies;
+/// `ctx` itself otherwise. `extended`: the library's extended tier is searched too, and its
+/// effects' directions join the basis.
+pub fn attach(
+    ctx: Arc<EffectContext>,
+    measured: &MeasuredModes,
+    extended: bool,
+) -> Result<Arc<EffectContext>, ModalError> {
+    let structure = &ctx.structure;
+    if !applies(structure) {
+        return Ok(ctx);
+    }
+    let (rigid, m, n) = (structure.rigid, measured.modes().len(), structure.dof_count());
+    let nominal = ModalSolution::lowest_of(&structure.assemble(), (rigid + 2 * m + 2).min(n))?;
+    let effects: Vec<(SparseSym, SparseSym)> = registry()
+        .into_iter()
+        .filter(|e| e.tier() == Tier::Default || (extended && e.tier() == Tier::Extended))
+        .filter(|e| e.applies(&ctx))
+        .flat_map(|e| {
+            let theta: Vec<f64> = e.parameters(&ctx).iter().map(|p| p.scale).collect();
+            e.derivatives(&ctx, &theta)
+        })
+        .collect();
+    let params = structure.identified();
+    let directions: Vec<(&SparseSym, &SparseSym)> = params
+        .iter()
+        .map(|p| (&p.stiffness, &p.mass))
+        .chain(effects.iter().map(|(k, m)| (k, m)))
+        .collect();
+    let built = reduced::build(
+        structure,
+        &nominal,
+        &directions,
+        rigid..(rigid + m + 2).min(nominal.len()),
+        TOLERANCE,
+    )?;
+    let mut with = (*ctx).clone();
+    with.structure.reduced = Some(Arc::new(built));
+    Ok(Arc::new(with))
+}
+
+/// The reduced against the full model at a fit's final parameters (module
+/// [`crate::modal::reduced`]): per measured mode, its partner's frequency and vector from
+/// both, and the reduced pair's residual in the full model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReductionCheck {
+    /// Basis vectors of the reduced model at the end (the enrichment included).
+    pub dimension: usize,
+    /// Of them, added by enrichment.
+    pub enriched: usize,
+    /// Per measured mode.
+    pub modes: Vec<CheckedMode>,
+    /// The largest |f_reduced / f_full - 1| over them.
+    pub largest_frequency_difference: f64,
+    /// The largest 1 - MAC(reduced, full) over them (the vectors over every DOF).
+    pub largest_mac_difference: f64,
+    /// The largest relative residual of a reduced pair in the full model.
+    pub largest_residual: f64,
+    /// Whether every frequency agrees within [`FREQUENCY_TOLERANCE`].
+    pub verified: bool,
+}
+
+/// One measured mode's partner in the reduced and the full model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckedMode {
+    /// The measured mode.
+    pub mode: usize,
+    /// Its partner (1-based, rigid-body modes counted).
+    pub model_mode: usize,
+    /// Its frequency on the reduced model, Hz.
+    pub reduced_hz: f64,
+    /// On the full model, Hz.
+    pub full_hz: f64,
+    /// f_reduced / f_full - 1.
+    pub frequency_difference: f64,
+    /// 1 - MAC of the two vectors over every DOF.
+    pub mac_difference: f64,
+    /// The reduced pair's relative residual in the full model.
+    pub residual: f64,
+}
+
+/// The check of `fitted` by one full solve of its model (one per measured mode read from a
+/// model of its own); none when its pairs were not solved on a reduced model.
+pub fn check(fitted: &Fitted, measured: &MeasuredModes) -> Result<Option<ReductionCheck>, ModalError> {
+    if fitted.modal.reduced().is_none() && fitted.own.iter().all(|o| o.modal.reduced().is_none()) {
+        return Ok(None);
+    }
+    let contributions = fitted.configured.contributions();
+    let extra: Vec<(&SparseSym, &SparseSym, f64)> =
+        contributions.iter().map(|(k, m)| (k, m, 1.0)).collect();
+    let shared = if fitted.own.is_empty() {
+        Some(reduced::full(&fitted.configured.structure, &extra, fitted.modal.len())?)
+    } else {
+        None
+    };
+    let mut modes = Vec::new();
+    let mut dimension = (0, 0);
+    for (r, m) in measured.modes().iter().enumerate() {
+        let s = fitted.pairing.model_index[r];
+        let modal = fitted.modal_of(r);
+        let own;
+        let full = match &shared {
+            Some(full) => full,
+            None => {
+                own = reduced::full(fitted.structure_of(r), &[], modal.len())?;
+                &own
+            }
+        };
+        if let Some(pairs) = modal.reduced() {
+            dimension = (pairs.reduced.dimension(), pairs.reduced.enriched);
+        }
+        let (fr, ff) = (modal.frequency_hz(s), full.frequency_hz(s));
+        modes.push(CheckedMode {
+            mode: m.mode,
+            model_mode: s + 1,
+            reduced_hz: fr,
+            full_hz: ff,
+            frequency_difference: fr / ff - 1.0,
+            mac_difference: 1.0 - mac(modal.vectors().col_as_slice(s), full.vectors().col_as_slice(s)),
+            residual: reduced::residuals(modal).get(s).copied().unwrap_or(0.0),
+        });
+    }
+    let largest = |f: fn(&CheckedMode) -> f64| modes.iter().map(f).fold(0.0, f64::max);
+    let largest_frequency_difference = largest(|c| c.frequency_difference.abs());
+    Ok(Some(ReductionCheck {
+        dimension: dimension.0,
+        enriched: dimension.1,
+        largest_frequency_difference,
+        largest_mac_difference: largest(|c| c.mac_difference.abs()),
+        largest_residual: largest(|c| c.residual),
+        verified: largest_frequency_difference <= FREQUENCY_TOLERANCE,
+        modes,
+    }))
+}
+
+/// (a . b)^2 / ((a . a)(b . b)).
+fn mac(a: &[f64], b: &[f64]) -> f64 {
+    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>();
+    let ab = dot(a, b);
+    ab * ab / (dot(a, a) * dot(b, b)).max(f64::MIN_POSITIVE)
+}

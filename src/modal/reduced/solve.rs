@@ -1,0 +1,191 @@
+//! One solve of a structure's eigenproblem on its reduced model: the projected matrices at the
+//! structure's parameter values (and any extra terms, a candidate effect's contribution), the
+//! small dense pencil, the pairs lifted to the N DOFs, and each lifted pair's residual in the
+//! full model.
+//!
+//! The residual of pair j, x_j = V y_j, is
+//!
+//! ```text
+//!   r_j = K x_j - lambda_j M x_j
+//!       = (K_base V) y_j - lambda_j (M_base V) y_j + sum_t a_t (S_t - lambda_j T_t) x_j,
+//! ```
+//! the sum over the parameters (a_t = p_t, S_t = dK_t, T_t = dM_t) and the extra terms, which
+//! touch few DOFs. It costs two products of N x r by r x count, about what the lift x = V y
+//! costs, and is exact to rounding (the products are the full model's, in another order).
+//! Its size is measured as ||r_j||_W / max(lambda_j, scale), W = diag(M_base)^-1 (the
+//! relative residual of [`super::TOLERANCE`]).
+
+use std::sync::Arc;
+
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
+
+use super::ReducedPairs;
+use super::super::pencil::dense_pencil;
+use super::super::{ModalError, ModalSolution};
+use crate::structure::reduced::Reduced;
+use crate::structure::{SparseSym, Structure};
+
+/// A reduced solve: the lifted pairs and their residual vectors in the full model.
+pub(super) struct Solved {
+    /// The pairs, with [`ReducedPairs`] attached.
+    pub modal: ModalSolution,
+    /// r_j of every lifted pair (N x count).
+    pub residual: Mat<f64>,
+}
+
+/// The lowest `count` pairs of `structure` plus `extra` on `reduced` (module docs).
+pub(super) fn solve(
+    reduced: &Arc<Reduced>,
+    structure: &Structure,
+    extra: &[(&SparseSym, &SparseSym, f64)],
+    count: usize,
+) -> Result<Solved, ModalError> {
+    let (k, m) = projected(reduced, structure, extra);
+    let (values, mut vectors) = dense_pencil(&k, &m).ok_or(ModalError::NoConvergence)?;
+    if !values.iter().all(|v| v.is_finite()) {
+        return Err(ModalError::NonFinite);
+    }
+    let c = count.min(values.len());
+    if c == 0 {
+        return Err(ModalError::NoConvergence);
+    }
+    let n = reduced.dof_count();
+    let mut x = Mat::<f64>::zeros(n, c);
+    matmul(
+        x.as_mut(),
+        Accum::Replace,
+        reduced.basis.as_ref(),
+        vectors.subcols(0, c),
+        1.0,
+        Par::Seq,
+    );
+    for j in 0..c {
+        if largest_is_negative(x.col_as_slice(j)) {
+            x.col_mut(j).iter_mut().for_each(|v| *v = -*v);
+            vectors.col_mut(j).iter_mut().for_each(|v| *v = -*v);
+        }
+    }
+    let lambda = &values[..c];
+    let residual = residuals(reduced, structure, extra, &vectors, &x, lambda);
+    let norms = (0..c)
+        .map(|j| {
+            let r = residual.col_as_slice(j);
+            let w: f64 = r.iter().zip(&reduced.weights).map(|(r, w)| r * r * w).sum();
+            w.sqrt() / lambda[j].max(reduced.scale)
+        })
+        .collect();
+    let pairs = ReducedPairs {
+        reduced: Arc::clone(reduced),
+        values: values.clone(),
+        vectors,
+        residuals: norms,
+    };
+    Ok(Solved {
+        modal: ModalSolution::from_parts(values[..c].to_vec(), x, Some(Arc::new(pairs))),
+        residual,
+    })
+}
+
+/// V^T K V and V^T M V at the structure's parameter values, with the extra terms.
+fn projected(
+    reduced: &Reduced,
+    structure: &Structure,
+    extra: &[(&SparseSym, &SparseSym, f64)],
+) -> (Mat<f64>, Mat<f64>) {
+    let (mut k, mut m) = (reduced.k.clone(), reduced.m.clone());
+    let r = k.nrows();
+    for (p, (pk, pm)) in structure.parameters.iter().zip(&reduced.parameters) {
+        for j in 0..r {
+            for i in 0..r {
+                k[(i, j)] += p.value * pk[(i, j)];
+                m[(i, j)] += p.value * pm[(i, j)];
+            }
+        }
+    }
+    for (sk, sm, a) in extra {
+        add_projection(&mut k, sk, &reduced.basis, *a);
+        add_projection(&mut m, sm, &reduced.basis, *a);
+    }
+    (k, m)
+}
+
+/// target += a V^T S V, entry by entry of S.
+fn add_projection(target: &mut Mat<f64>, s: &SparseSym, basis: &Mat<f64>, a: f64) {
+    let r = basis.ncols();
+    let row = |i: usize| -> Vec<f64> { (0..r).map(|q| basis[(i, q)]).collect() };
+    for &(i, j, v) in s.entries() {
+        let (vi, vj) = (row(i), row(j));
+        for (q, &b) in vj.iter().enumerate() {
+            let t = a * v * b;
+            for (p, &u) in vi.iter().enumerate() {
+                target[(p, q)] += u * t;
+            }
+        }
+    }
+}
+
+/// The residual vectors of the module docs.
+fn residuals(
+    reduced: &Reduced,
+    structure: &Structure,
+    extra: &[(&SparseSym, &SparseSym, f64)],
+    vectors: &Mat<f64>,
+    x: &Mat<f64>,
+    lambda: &[f64],
+) -> Mat<f64> {
+    let (n, c) = (x.nrows(), x.ncols());
+    let y = vectors.subcols(0, c);
+    let mut residual = Mat::<f64>::zeros(n, c);
+    matmul(
+        residual.as_mut(),
+        Accum::Replace,
+        reduced.k_basis.as_ref(),
+        y,
+        1.0,
+        Par::Seq,
+    );
+    let mut my = Mat::<f64>::zeros(n, c);
+    matmul(
+        my.as_mut(),
+        Accum::Replace,
+        reduced.m_basis.as_ref(),
+        y,
+        1.0,
+        Par::Seq,
+    );
+    for j in 0..c {
+        let (r, mx) = (residual.col_as_slice_mut(j), my.col_as_slice(j));
+        r.iter_mut().zip(mx).for_each(|(r, m)| *r -= lambda[j] * m);
+    }
+    let terms = structure
+        .parameters
+        .iter()
+        .map(|p| (&p.stiffness, &p.mass, p.value))
+        .chain(extra.iter().copied());
+    for (sk, sm, a) in terms {
+        for j in 0..c {
+            let xj = x.col_as_slice(j);
+            let r = residual.col_as_slice_mut(j);
+            for &(p, q, v) in sk.entries() {
+                r[p] += a * v * xj[q];
+            }
+            for &(p, q, v) in sm.entries() {
+                r[p] -= lambda[j] * a * v * xj[q];
+            }
+        }
+    }
+    residual
+}
+
+/// Whether the component of largest magnitude (the first on a tie) is negative: the sign
+/// convention of [`ModalSolution`].
+fn largest_is_negative(v: &[f64]) -> bool {
+    let mut best = 0;
+    for (i, x) in v.iter().enumerate() {
+        if x.abs() > v[best].abs() {
+            best = i;
+        }
+    }
+    v.get(best).is_some_and(|&x| x < 0.0)
+}

@@ -1,0 +1,87 @@
+//! The data of a parametric reduced model of a structure: a basis V of N x r columns, the
+//! base matrices and every parameter's derivative matrices projected on it. The algorithms
+//! that build it, solve on it, check its pairs against the full model and enrich it are the
+//! eigensolution's ([`crate::modal::reduced`]); this module only holds what they share, so
+//! that a [`super::Structure`] can carry it to every place that solves its eigenproblem.
+//!
+//! Why the parameters stay exact: K and M are affine in the parameters (module docs of
+//! [`super`]), so V^T K(p) V = V^T K_base V + sum_i p_i V^T dK_i V for any V: a reduced model
+//! at new parameter values is a sum of r x r matrices, with no approximation beyond the choice
+//! of V. What V must hold for the reduced pairs to be the full ones is the eigensolution's
+//! business, and what decides whether they are is the residual of each reduced pair in the
+//! full model, which [`Reduced::k_basis`] and [`Reduced::m_basis`] give at the cost of a
+//! product of N x r by r.
+//!
+//! Layer 1 (foundations), like [`super`].
+
+use std::sync::Arc;
+
+use faer::{Mat, MatMut};
+
+use super::Matrices;
+
+/// The preconditioner of the enrichment: (K - sigma M)^-1 of the nominal model applied to the
+/// columns of a block, in place.
+pub type Precondition = Arc<dyn Fn(MatMut<'_, f64>) + Send + Sync>;
+
+/// A reduction basis and the projected matrices (module docs).
+#[derive(Clone)]
+pub struct Reduced {
+    /// The base matrices the basis was built for: the reduction serves a structure only when
+    /// its base is this one (the same allocation).
+    pub base: Arc<Matrices>,
+    /// How many parameters the structure has (each one's projections below).
+    pub parameter_count: usize,
+    /// V, N x r, orthonormal in the base mass matrix: V^T M_base V = I.
+    pub basis: Mat<f64>,
+    /// K_base V.
+    pub k_basis: Mat<f64>,
+    /// M_base V.
+    pub m_basis: Mat<f64>,
+    /// V^T K_base V.
+    pub k: Mat<f64>,
+    /// V^T M_base V.
+    pub m: Mat<f64>,
+    /// Per parameter of the structure, in model order: V^T dK_i V and V^T dM_i V.
+    pub parameters: Vec<(Mat<f64>, Mat<f64>)>,
+    /// 1 / diag(M_base): the weights of the residual norm, ||r||^2 = sum_i r_i^2 / M_ii (an
+    /// inexpensive stand-in for the M^-1 norm in which the eigenvalue bounds are stated).
+    pub weights: Vec<f64>,
+    /// The eigenvalue that scales the residuals of pairs below it (the first elastic one of
+    /// the nominal model): the rigid-body pairs' residual is measured against it.
+    pub scale: f64,
+    /// Largest relative residual ||r||_W / max(lambda, scale) of a reduced pair accepted.
+    pub tolerance: f64,
+    /// (K - sigma M)^-1 of the nominal model, for the enrichment.
+    pub precondition: Precondition,
+    /// Columns added since the basis was built, by enrichment.
+    pub enriched: usize,
+}
+
+impl Reduced {
+    /// r, the number of basis vectors.
+    pub fn dimension(&self) -> usize {
+        self.basis.ncols()
+    }
+
+    /// N.
+    pub fn dof_count(&self) -> usize {
+        self.basis.nrows()
+    }
+
+    /// Whether it serves a structure with base `base` and `parameters` parameters.
+    pub fn serves(&self, base: &Arc<Matrices>, parameters: usize) -> bool {
+        Arc::ptr_eq(&self.base, base) && self.parameter_count == parameters
+    }
+}
+
+impl std::fmt::Debug for Reduced {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Reduced")
+            .field("dofs", &self.dof_count())
+            .field("dimension", &self.dimension())
+            .field("enriched", &self.enriched)
+            .field("tolerance", &self.tolerance)
+            .finish()
+    }
+}
