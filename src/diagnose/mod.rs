@@ -76,8 +76,8 @@ pub use whiteness::Whiteness;
 use std::sync::Arc;
 
 use crate::measured::MeasuredModes;
-use crate::model::effects::EffectContext;
 use crate::modal::ModalError;
+use crate::model::effects::EffectContext;
 use crate::structure::Structure;
 use assemble::Findings;
 use candidate::Stage;
@@ -180,7 +180,9 @@ fn diagnose_on(
         shape_floor: fit::SHAPE_FLOOR,
         measured_std: measured.has_std(),
     };
-    let calibrated = calibrate::calibrate(&ctx, measured, &calibration)?;
+    let calibrated = calibrate::calibrate(ctx, measured, &calibration)?;
+    // The reduced model as the calibration enriched it, for every fit after it.
+    let ctx = &reduce::recentred(ctx, &calibrated.base);
     watch.tell(&Step::Calibrated {
         chi2: calibrated.base.chi2,
         iterations: calibrated.base.iterations,

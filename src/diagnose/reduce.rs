@@ -3,10 +3,8 @@
 //! per-mode solves) and the per-mode tables; and the check of the final model by one full
 //! solve (module [`crate::modal::reduced`] for the method).
 //!
-//! Which models: those solved sparsely whose DOFs are not a beam chain's, from
-//! [`MIN_DOFS`] DOFs: the 3D solids and other external models. Beam chains stay on the full
-//! solve: their fits solve a banded model of a few thousand DOFs in milliseconds, and their
-//! derivatives are exact there.
+//! Which models: those of [`reduced::applies`] (the 3D solids and other external models of
+//! [`reduced::MIN_DOFS`] DOFs or more); beam chains stay on the full solve.
 //!
 //! The basis: the nominal model's lowest rigid + 2 m + 2 pairs (m measured modes), and the
 //! static corrections of the rigid + m + 2 lowest in the direction of every joint parameter
@@ -18,24 +16,14 @@ use serde::Serialize;
 
 use super::fit::Fitted;
 use crate::measured::MeasuredModes;
-use crate::modal::reduced::{self, TOLERANCE};
+use crate::modal::reduced;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{EffectContext, Tier, registry};
-use crate::structure::{SparseSym, Structure};
-
-/// Fewest DOFs of a model diagnosed on a reduced model.
-pub const MIN_DOFS: usize = 2000;
+use crate::structure::SparseSym;
 
 /// Largest relative frequency difference between the reduced and the full model at the final
 /// parameters accepted without solving the diagnosis again in full.
 pub const FREQUENCY_TOLERANCE: f64 = 1e-6;
-
-/// Whether `structure` is diagnosed on a reduced model (module docs).
-pub fn applies(structure: &Structure) -> bool {
-    structure.dof_count() >= MIN_DOFS
-        && structure.dofs.lines().is_empty()
-        && structure.reduced.is_none()
-}
 
 /// `ctx` with its structure carrying the reduced model of the module docs, when it applies;
 /// `ctx` itself otherwise. `extended`: the library's extended tier is searched too, and its
@@ -46,10 +34,14 @@ pub fn attach(
     extended: bool,
 ) -> Result<Arc<EffectContext>, ModalError> {
     let structure = &ctx.structure;
-    if !applies(structure) {
+    if !reduced::applies(structure) {
         return Ok(ctx);
     }
-    let (rigid, m, n) = (structure.rigid, measured.modes().len(), structure.dof_count());
+    let (rigid, m, n) = (
+        structure.rigid,
+        measured.modes().len(),
+        structure.dof_count(),
+    );
     let nominal = ModalSolution::lowest_of(&structure.assemble(), (rigid + 2 * m + 2).min(n))?;
     let effects: Vec<(SparseSym, SparseSym)> = registry()
         .into_iter()
@@ -66,16 +58,29 @@ pub fn attach(
         .map(|p| (&p.stiffness, &p.mass))
         .chain(effects.iter().map(|(k, m)| (k, m)))
         .collect();
-    let built = reduced::build(
+    let attached = reduced::attach(
         structure,
         &nominal,
         &directions,
         rigid..(rigid + m + 2).min(nominal.len()),
-        TOLERANCE,
     )?;
     let mut with = (*ctx).clone();
-    with.structure.reduced = Some(Arc::new(built));
+    with.structure = attached;
     Ok(Arc::new(with))
+}
+
+/// `ctx` with the reduced model as `fitted`'s solves left it (enriched on their way), when it
+/// differs from `ctx`'s: the fits after it start from there.
+pub fn recentred(ctx: &Arc<EffectContext>, fitted: &Fitted) -> Arc<EffectContext> {
+    let current = reduced::usable(&ctx.structure);
+    match fitted.configured.structure.reduced.as_ref() {
+        Some(r) if current.is_some_and(|c| !Arc::ptr_eq(c, r)) => {
+            let mut with = (**ctx).clone();
+            with.structure.reduced = Some(Arc::clone(r));
+            Arc::new(with)
+        }
+        _ => Arc::clone(ctx),
+    }
 }
 
 /// The reduced against the full model at a fit's final parameters (module
@@ -120,7 +125,10 @@ pub struct CheckedMode {
 
 /// The check of `fitted` by one full solve of its model (one per measured mode read from a
 /// model of its own); none when its pairs were not solved on a reduced model.
-pub fn check(fitted: &Fitted, measured: &MeasuredModes) -> Result<Option<ReductionCheck>, ModalError> {
+pub fn check(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+) -> Result<Option<ReductionCheck>, ModalError> {
     if fitted.modal.reduced().is_none() && fitted.own.iter().all(|o| o.modal.reduced().is_none()) {
         return Ok(None);
     }
@@ -128,7 +136,11 @@ pub fn check(fitted: &Fitted, measured: &MeasuredModes) -> Result<Option<Reducti
     let extra: Vec<(&SparseSym, &SparseSym, f64)> =
         contributions.iter().map(|(k, m)| (k, m, 1.0)).collect();
     let shared = if fitted.own.is_empty() {
-        Some(reduced::full(&fitted.configured.structure, &extra, fitted.modal.len())?)
+        Some(reduced::full(
+            &fitted.configured.structure,
+            &extra,
+            fitted.modal.len(),
+        )?)
     } else {
         None
     };
@@ -155,7 +167,11 @@ pub fn check(fitted: &Fitted, measured: &MeasuredModes) -> Result<Option<Reducti
             reduced_hz: fr,
             full_hz: ff,
             frequency_difference: fr / ff - 1.0,
-            mac_difference: 1.0 - mac(modal.vectors().col_as_slice(s), full.vectors().col_as_slice(s)),
+            mac_difference: 1.0
+                - mac(
+                    modal.vectors().col_as_slice(s),
+                    full.vectors().col_as_slice(s),
+                ),
             residual: reduced::residuals(modal).get(s).copied().unwrap_or(0.0),
         });
     }

@@ -30,6 +30,7 @@
 //!
 //! Layer 4 (identification): imports the structure and the modal solution.
 
+use super::reach::Ends;
 use crate::modal::{ModalError, ModalSolution, hz_to_lambda, lambda_to_hz, reduced};
 use crate::structure::{Parameter, Structure};
 
@@ -139,9 +140,14 @@ struct Probe<'a> {
 
 impl Probe<'_> {
     /// (ln lambda_t, d ln lambda_t / d ln p) at p.
+    /// On the structure's reduced model when it carries one, kept as the solves enrich it.
     fn at_value(&mut self, p: f64) -> Result<(f64, f64), ModalError> {
         self.structure.parameters[self.at].value = p;
-        let modal = reduced::lowest(&self.structure, &[], self.t + 1)?;
+        let (modal, enriched) =
+            reduced::lowest_checking(&self.structure, &[], self.t + 1, Some(self.t))?;
+        if enriched.is_some() {
+            self.structure.reduced = enriched;
+        }
         let lambda = modal.values()[self.t];
         let y: Vec<f64> = modal.vectors().col(self.t).iter().copied().collect();
         let dk = quadratic(&self.param.stiffness, &y);
@@ -180,6 +186,20 @@ pub fn identify(
     f_rel_std: Option<f64>,
     choice: Choice,
 ) -> Result<FrequencyOutcome, FrequencyError> {
+    identify_within(structure, t, mode, f_hz, f_rel_std, choice, None)
+}
+
+/// As [`identify`], the ends of the parameter's reach taken from `ends` (solved once for
+/// every mode, [`super::reach`]) when given and `structure` carries a reduced model.
+pub fn identify_within(
+    structure: &Structure,
+    t: usize,
+    mode: usize,
+    f_hz: f64,
+    f_rel_std: Option<f64>,
+    choice: Choice,
+    ends: Option<&Ends>,
+) -> Result<FrequencyOutcome, FrequencyError> {
     let identified = structure.identified();
     let at_all = structure.identified_indices();
     if identified.is_empty() {
@@ -205,8 +225,15 @@ pub fn identify(
     };
     let target = hz_to_lambda(f_hz).ln();
     let span = REACH.ln();
-    let (g_lo, _) = probe.at_value(p0 * (-span).exp())?;
-    let (g_hi, _) = probe.at_value(p0 * span.exp())?;
+    let ends = ends.filter(|_| reduced::usable(structure).is_some());
+    let mut end = |high: bool| -> Result<f64, ModalError> {
+        let factor = if high { span.exp() } else { (-span).exp() };
+        match ends.and_then(|e| e.eigenvalue(param, high, factor, t)) {
+            Some(lambda) => Ok(lambda?.ln()),
+            None => Ok(probe.at_value(p0 * factor)?.0),
+        }
+    };
+    let (g_lo, g_hi) = (end(false)?, end(true)?);
     let (g_lo, g_hi) = (g_lo - target, g_hi - target);
     let name = identified[param].name.clone();
     if (g_hi - g_lo).abs() < 1e-6 {

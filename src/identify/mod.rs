@@ -23,6 +23,7 @@ pub mod frequency_only;
 pub mod identifiability;
 pub mod projection;
 pub mod propagation;
+pub mod reach;
 pub mod run;
 pub mod system;
 pub mod weighting;

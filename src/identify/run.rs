@@ -7,10 +7,11 @@
 use rayon::prelude::*;
 
 use super::frequency_only::{self, Choice, Fallback, FrequencyError, FrequencyOutcome};
+use super::reach::Ends;
 use super::{Identifier, IdentifyError, ModeOutcome, Selection, Settings, Weighting};
 use crate::input::{Number, RELATIVE_STD, SettingError};
 use crate::measured::{MeasuredMode, MeasuredModes};
-use crate::modal::{Mechanism, ModalError, ModalSolution, check_elastic};
+use crate::modal::{Mechanism, ModalError, ModalSolution, check_elastic, reduced};
 use crate::structure::{ModeBeyondModel, Parameter, Structure};
 
 /// What to identify and how: the paper's settings (n, m, weighting; all three, or none to
@@ -138,13 +139,35 @@ pub fn identify_modes(
     // the paper's basis of n pairs, or every pair the modes' frequencies pair with
     let reach = modes.iter().map(|m| m.mode + model.rigid).max();
     let count = request.n.or(reach).unwrap_or(model.rigid + 1);
-    let modal = ModalSolution::lowest_of(&matrices, count)?;
+    // A large external model's frequency fallbacks solve on a reduced model (module
+    // `crate::modal::reduced`) built on these pairs: as many again as the modes, and two.
+    let basis = reduced::applies(model).then(|| (count + modes.len() + 2).min(matrices.size()));
+    let modal = match (basis, &settings) {
+        (Some(b), None) => ModalSolution::lowest_of(&matrices, b)?,
+        _ => ModalSolution::lowest_of(&matrices, count)?,
+    };
     check_elastic(&matrices, &modal, model.rigid)?;
     let identifier = settings
         .map(|settings| Identifier::new(&modal, params.clone(), model.rigid, settings))
         .transpose()
         .map_err(RunError::Model)?;
     let planned = planned(identifier.as_ref(), modes, selection)?;
+    let falls_back = planned.iter().any(|(_, plan)| plan.is_err());
+    let attached = match basis {
+        Some(b) if falls_back => {
+            let nominal = if modal.len() >= b {
+                modal.clone()
+            } else {
+                ModalSolution::lowest_of(&matrices, b)?
+            };
+            let directions: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
+            let wanted = model.rigid..(reach.unwrap_or(count) + 2).min(nominal.len());
+            Some(reduced::attach(model, &nominal, &directions, wanted)?)
+        }
+        _ => None,
+    };
+    let model = attached.as_ref().unwrap_or(model);
+    let ends = Ends::new(model, reach.unwrap_or(count));
     let modes = planned
         .into_par_iter()
         .map(|(mode, plan)| {
@@ -159,13 +182,14 @@ pub fn identify_modes(
                         .model_mode(mode.mode)
                         .map_err(FrequencyError::from)
                         .and_then(|t| {
-                            frequency_only::identify(
+                            frequency_only::identify_within(
                                 model,
                                 t,
                                 mode.mode,
                                 mode.frequency_hz,
                                 f_std,
                                 choice,
+                                Some(&ends),
                             )
                         });
                     match f {

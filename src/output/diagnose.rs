@@ -202,6 +202,9 @@ pub fn write_text(out: &mut dyn Write, r: &Report) -> io::Result<()> {
     write_errors(out, r)?;
     write_candidates(out, r)?;
     write_parameters(out, &r.after.parameters)?;
+    if let Some(check) = &r.reduction {
+        super::reduction::write_reduction(out, check)?;
+    }
     if let Some(reference) = &r.reference {
         write_absorbed(out, reference)?;
     }

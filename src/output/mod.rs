@@ -20,6 +20,7 @@ pub mod identify;
 pub mod plan;
 pub mod plan_figure;
 pub mod plot;
+pub mod reduction;
 pub mod stabilization;
 pub mod study;
 pub mod study_report;

@@ -10,7 +10,7 @@
 //! of V. What V must hold for the reduced pairs to be the full ones is the eigensolution's
 //! business, and what decides whether they are is the residual of each reduced pair in the
 //! full model, which [`Reduced::k_basis`] and [`Reduced::m_basis`] give at the cost of a
-//! product of N x r by r.
+//! product of N x r by r, measured through [`Reduced::precondition`].
 //!
 //! Layer 1 (foundations), like [`super`].
 
@@ -44,13 +44,11 @@ pub struct Reduced {
     pub m: Mat<f64>,
     /// Per parameter of the structure, in model order: V^T dK_i V and V^T dM_i V.
     pub parameters: Vec<(Mat<f64>, Mat<f64>)>,
-    /// 1 / diag(M_base): the weights of the residual norm, ||r||^2 = sum_i r_i^2 / M_ii (an
-    /// inexpensive stand-in for the M^-1 norm in which the eigenvalue bounds are stated).
-    pub weights: Vec<f64>,
     /// The eigenvalue that scales the residuals of pairs below it (the first elastic one of
     /// the nominal model): the rigid-body pairs' residual is measured against it.
     pub scale: f64,
-    /// Largest relative residual ||r||_W / max(lambda, scale) of a reduced pair accepted.
+    /// Largest relative error estimate r^T (K_0 - sigma M_0)^-1 r / max(lambda, scale) of a
+    /// reduced pair accepted.
     pub tolerance: f64,
     /// (K - sigma M)^-1 of the nominal model, for the enrichment.
     pub precondition: Precondition,

@@ -46,6 +46,7 @@ mod messages;
 mod numerics_refused;
 mod outputs_guarded;
 mod plan;
+mod reduced;
 mod registry;
 mod reliability;
 mod report;

@@ -14,6 +14,7 @@ use crate::diagnose::fit::{Fitted, Noise};
 pub use crate::identify::frequency_only::Source;
 use crate::identify::frequency_only::{self, Choice};
 use crate::identify::propagation::{jacobian, propagated_std};
+use crate::identify::reach::Ends;
 use crate::identify::{Identifier, Projector, Settings, Weighting};
 use crate::measured::{MeasuredMode, MeasuredModes};
 use crate::modal::reduced;
@@ -101,6 +102,12 @@ pub fn per_mode_corrections(
     } else {
         None
     };
+    // The ends of the frequency-only search's reach, solved once for the modes of one model.
+    let reach = fitted.pairing.model_index.iter().max().map_or(0, |s| s + 1);
+    let ends = fitted
+        .own
+        .is_empty()
+        .then(|| Ends::new(&fitted.configured.structure, reach));
     // Modes in parallel: each may solve its structure several times (its own model, the
     // frequency-only identification's Newton steps).
     let correct = |(r, m): (usize, &MeasuredMode)| -> Vec<ModeCorrection> {
@@ -121,13 +128,14 @@ pub fn per_mode_corrections(
             .and_then(|o| o.relative.as_ref().ok())
             .cloned();
         if relatives.is_none()
-            && let Ok(f) = frequency_only::identify(
+            && let Ok(f) = frequency_only::identify_within(
                 fitted.structure_of(r),
                 s,
                 m.mode,
                 m.frequency_hz,
                 Some(noise.frequency),
                 Choice::MostSensitive,
+                ends.as_ref().filter(|_| fitted.own.is_empty()),
             )
         {
             return from_frequency(m, &params, &f);

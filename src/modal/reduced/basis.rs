@@ -7,7 +7,8 @@
 //!   candidate effect's parameter), the static correction of every wanted elastic mode s,
 //!   (K - sigma M)^-1 (dK - lambda_s dM) phi_s: the part of the mode's first derivative that
 //!   the other modes of Phi do not carry (the derivative of a pair is Phi's modes plus this
-//!   vector, to first order in the shift sigma). Where a direction touches at most
+//!   vector, to first order in the shift sigma). Every load is first relieved of what the
+//!   nominal modes carry ([`relieve`]). Where a direction touches at most
 //!   [`UNIT_SUPPORT`] DOFs (a sensor's mass, a point spring), the static response to a unit
 //!   load at each of them instead: it carries the correction of every mode at once, and of
 //!   any size of the effect.
@@ -53,13 +54,6 @@ pub fn build(
     let llt = Arc::new(llt);
     let precondition: Precondition = Arc::new(move |x| llt.solve_columns_in_place(x));
     let n = structure.dof_count();
-    let weights = structure
-        .base
-        .m
-        .diagonal()
-        .iter()
-        .map(|&d| if d > 0.0 { 1.0 / d } else { 0.0 })
-        .collect();
     let elastic = nominal.values().get(structure.rigid).copied();
     let mut reduced = Reduced {
         base: Arc::clone(&structure.base),
@@ -70,7 +64,6 @@ pub fn build(
         k: Mat::zeros(0, 0),
         m: Mat::zeros(0, 0),
         parameters: vec![(Mat::zeros(0, 0), Mat::zeros(0, 0)); structure.parameters.len()],
-        weights,
         scale: elastic.unwrap_or(1.0).max(f64::MIN_POSITIVE),
         tolerance,
         precondition,
@@ -78,6 +71,7 @@ pub fn build(
     };
     extend(&mut reduced, structure, nominal.vectors().as_ref());
     let mut loads = corrections(nominal, directions, modes);
+    relieve(&mut loads, nominal, &mats.m);
     (reduced.precondition)(loads.as_mut());
     extend(&mut reduced, structure, loads.as_ref());
     Ok(reduced)
@@ -124,6 +118,32 @@ fn corrections(
     });
     let columns: Vec<Vec<f64>> = unit_columns.chain(columns).collect();
     Mat::from_fn(n, columns.len(), |i, j| columns[j][i])
+}
+
+/// Takes out of every load the part the nominal modes carry, f - M Phi Phi^T f (inertia
+/// relief): what is left is balanced by no rigid-body motion and excites the modes above
+/// Phi alone, so that its static response is not swamped by 1 / sigma times the rigid-body
+/// modes (a unit load at one DOF has a resultant; the shift sigma lies just below zero).
+fn relieve(loads: &mut Mat<f64>, nominal: &ModalSolution, m: &crate::structure::SymMatrix) {
+    let phi = nominal.vectors();
+    let m_phi = apply(m.as_faer(), phi);
+    let mut c = Mat::<f64>::zeros(phi.ncols(), loads.ncols());
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        phi.transpose(),
+        loads.as_ref(),
+        1.0,
+        Par::Seq,
+    );
+    matmul(
+        loads.as_mut(),
+        Accum::Add,
+        m_phi.as_ref(),
+        c.as_ref(),
+        -1.0,
+        Par::Seq,
+    );
 }
 
 /// Adds the directions of the columns of `w` that the basis lacks: each made M-orthogonal to
@@ -206,11 +226,19 @@ fn independent(
     let k = w.ncols();
     let d: Vec<f64> = before
         .iter()
-        .map(|&b| if b > 0.0 && b.is_finite() { 1.0 / b } else { 0.0 })
+        .map(|&b| {
+            if b > 0.0 && b.is_finite() {
+                1.0 / b
+            } else {
+                0.0
+            }
+        })
         .collect();
     let mw = apply(m, w);
     let gram = Mat::from_fn(k, k, |i, j| {
-        let g = 0.5 * (dot(w.col_as_slice(i), mw.col_as_slice(j)) + dot(w.col_as_slice(j), mw.col_as_slice(i)));
+        let g = 0.5
+            * (dot(w.col_as_slice(i), mw.col_as_slice(j))
+                + dot(w.col_as_slice(j), mw.col_as_slice(i)));
         d[i] * g * d[j]
     });
     let Ok(evd) = gram.self_adjoint_eigen(Side::Lower) else {
@@ -223,7 +251,14 @@ fn independent(
         d[i] * evd.U()[(i, kept[c])] / evd.S()[kept[c]].sqrt()
     });
     let mut out = Mat::zeros(w.nrows(), kept.len());
-    matmul(out.as_mut(), Accum::Replace, w.as_ref(), t.as_ref(), 1.0, Par::Seq);
+    matmul(
+        out.as_mut(),
+        Accum::Replace,
+        w.as_ref(),
+        t.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     out
 }
 

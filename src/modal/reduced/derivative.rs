@@ -66,6 +66,13 @@ pub fn derivative(
     }
     let dy = Mat::from_fn(r, 1, |q, _| dy[q]);
     let mut dx = Mat::<f64>::zeros(basis.nrows(), 1);
-    matmul(dx.as_mut(), Accum::Replace, basis.as_ref(), dy.as_ref(), 1.0, Par::Seq);
+    matmul(
+        dx.as_mut(),
+        Accum::Replace,
+        basis.as_ref(),
+        dy.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     Ok((a[s], dx.col_as_slice(0).to_vec()))
 }

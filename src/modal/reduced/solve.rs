@@ -12,17 +12,18 @@
 //! the sum over the parameters (a_t = p_t, S_t = dK_t, T_t = dM_t) and the extra terms, which
 //! touch few DOFs. It costs two products of N x r by r x count, about what the lift x = V y
 //! costs, and is exact to rounding (the products are the full model's, in another order).
-//! Its size is measured as ||r_j||_W / max(lambda_j, scale), W = diag(M_base)^-1 (the
-//! relative residual of [`super::TOLERANCE`]).
+//! Its size is measured as e_j = |r_j^T d_j| / max(lambda_j, scale) with the correction
+//! d_j = (K_0 - sigma M_0)^-1 r_j (the estimate of [`super::TOLERANCE`]), d_j kept for the
+//! enrichment.
 
 use std::sync::Arc;
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
 
-use super::ReducedPairs;
 use super::super::pencil::dense_pencil;
 use super::super::{ModalError, ModalSolution};
+use super::ReducedPairs;
 use crate::structure::reduced::Reduced;
 use crate::structure::{SparseSym, Structure};
 
@@ -30,16 +31,22 @@ use crate::structure::{SparseSym, Structure};
 pub(super) struct Solved {
     /// The pairs, with [`ReducedPairs`] attached.
     pub modal: ModalSolution,
-    /// r_j of every lifted pair (N x count).
-    pub residual: Mat<f64>,
+    /// (K_0 - sigma M_0)^-1 r_j of the pairs checked, from pair `first` on: the
+    /// enrichment's vectors.
+    pub correction: Mat<f64>,
+    /// The first pair checked.
+    pub first: usize,
 }
 
-/// The lowest `count` pairs of `structure` plus `extra` on `reduced` (module docs).
+/// The lowest `count` pairs of `structure` plus `extra` on `reduced` (module docs), the
+/// error estimate of pair `only` alone when given (the others' left at 0), else of every
+/// elastic pair.
 pub(super) fn solve(
     reduced: &Arc<Reduced>,
     structure: &Structure,
     extra: &[(&SparseSym, &SparseSym, f64)],
     count: usize,
+    only: Option<usize>,
 ) -> Result<Solved, ModalError> {
     let (k, m) = projected(reduced, structure, extra);
     let (values, mut vectors) = dense_pencil(&k, &m).ok_or(ModalError::NoConvergence)?;
@@ -66,13 +73,29 @@ pub(super) fn solve(
             vectors.col_mut(j).iter_mut().for_each(|v| *v = -*v);
         }
     }
-    let lambda = &values[..c];
-    let residual = residuals(reduced, structure, extra, &vectors, &x, lambda);
+    // The rigid-body pairs (below a thousandth of the first elastic eigenvalue) lie in the
+    // basis whatever the parameters: their estimate is not solved for.
+    let elastic = values[..c]
+        .iter()
+        .position(|&l| l > 1e-3 * reduced.scale)
+        .unwrap_or(c);
+    let (first, last) = match only {
+        Some(s) if s < c => (s.max(elastic), (s + 1).max(elastic)),
+        _ => (elastic, c),
+    };
+    let lambda = &values[first..last];
+    let residual = residuals(reduced, structure, extra, &vectors, &x, first..last, lambda);
+    let mut correction = residual.clone();
+    (reduced.precondition)(correction.as_mut());
     let norms = (0..c)
         .map(|j| {
-            let r = residual.col_as_slice(j);
-            let w: f64 = r.iter().zip(&reduced.weights).map(|(r, w)| r * r * w).sum();
-            w.sqrt() / lambda[j].max(reduced.scale)
+            if !(first..last).contains(&j) {
+                return 0.0;
+            }
+            let k = j - first;
+            let (r, d) = (residual.col_as_slice(k), correction.col_as_slice(k));
+            let e: f64 = r.iter().zip(d).map(|(r, d)| r * d).sum();
+            e.abs() / lambda[k].max(reduced.scale)
         })
         .collect();
     let pairs = ReducedPairs {
@@ -83,7 +106,8 @@ pub(super) fn solve(
     };
     Ok(Solved {
         modal: ModalSolution::from_parts(values[..c].to_vec(), x, Some(Arc::new(pairs))),
-        residual,
+        correction,
+        first,
     })
 }
 
@@ -125,17 +149,19 @@ fn add_projection(target: &mut Mat<f64>, s: &SparseSym, basis: &Mat<f64>, a: f64
     }
 }
 
-/// The residual vectors of the module docs.
+/// The residual vectors of the module docs, of the lifted pairs `pairs` (eigenvalues
+/// `lambda`).
 fn residuals(
     reduced: &Reduced,
     structure: &Structure,
     extra: &[(&SparseSym, &SparseSym, f64)],
     vectors: &Mat<f64>,
     x: &Mat<f64>,
+    pairs: std::ops::Range<usize>,
     lambda: &[f64],
 ) -> Mat<f64> {
-    let (n, c) = (x.nrows(), x.ncols());
-    let y = vectors.subcols(0, c);
+    let (n, c) = (x.nrows(), pairs.len());
+    let y = vectors.subcols(pairs.start, c);
     let mut residual = Mat::<f64>::zeros(n, c);
     matmul(
         residual.as_mut(),
@@ -165,7 +191,7 @@ fn residuals(
         .chain(extra.iter().copied());
     for (sk, sm, a) in terms {
         for j in 0..c {
-            let xj = x.col_as_slice(j);
+            let xj = x.col_as_slice(pairs.start + j);
             let r = residual.col_as_slice_mut(j);
             for &(p, q, v) in sk.entries() {
                 r[p] += a * v * xj[q];

@@ -1,0 +1,196 @@
+//! The parametric reduced model (`jointid::modal::reduced`) on a 3D solid (the small lap of
+//! the solid tests, 540 DOFs, read back as an external model): its pairs against the full
+//! solve at parameters far from the nominal ones, the enrichment of a basis too poor for
+//! them, its derivatives against central differences, the same bits on any number of
+//! threads; and a diagnosis of a larger lap on it, checked against the full model.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use jointid::modal::reduced::{self, TOLERANCE, derivative::derivative};
+use jointid::modal::{ModalSolution, lambda_to_hz};
+use jointid::model::solid::{Solid, SolidConfig};
+use jointid::structure::Structure;
+use jointid::structure::reduced::Reduced;
+
+use crate::common::scratch;
+use crate::solid::LAP;
+
+const RIGID: usize = 6;
+/// Pairs asked for: the rigid-body modes and ten elastic ones (eight measured and two).
+const COUNT: usize = RIGID + 10;
+
+/// The small lap as an external model, from its files.
+fn lap(name: &str, text: &str) -> Structure {
+    let dir = scratch("reduced", name);
+    let solid =
+        Solid::generate(&SolidConfig::from_toml(text, Path::new("lap.toml")).unwrap()).unwrap();
+    for file in solid.file_names() {
+        let mut f = std::fs::File::create(dir.join(&file)).unwrap();
+        solid.write_file(&file, "lap.toml", &mut f).unwrap();
+    }
+    let structure = jointid::model::from_path(&dir.join("model.toml")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    structure
+}
+
+/// `structure` carrying the basis of `jointid diagnose`: the nominal rigid + 2 x 8 + 2 pairs
+/// and the static corrections of the ten elastic pairs in every parameter's direction;
+/// `modes` nominal pairs and no corrections for a poor one.
+fn reduced_lap(structure: &Structure, modes: usize, corrections: bool) -> Structure {
+    let nominal = ModalSolution::lowest_of(&structure.assemble(), modes).unwrap();
+    let params = structure.identified();
+    let directions: Vec<_> = params
+        .iter()
+        .map(|p| (&p.stiffness, &p.mass))
+        .filter(|_| corrections)
+        .collect();
+    let built = reduced::build(structure, &nominal, &directions, RIGID..COUNT, TOLERANCE).unwrap();
+    let mut out = structure.clone();
+    out.reduced = Some(Arc::new(built));
+    out
+}
+
+/// `structure` with its parameters (shear x, shear y, normal) scaled by `factors`.
+fn scaled(structure: &Structure, factors: [f64; 3]) -> Structure {
+    let values: Vec<f64> = structure
+        .identified()
+        .iter()
+        .zip(factors)
+        .map(|(p, f)| p.value * f)
+        .collect();
+    structure.with_values(&values)
+}
+
+/// The largest |f_reduced / f_full - 1| and 1 - MAC over the elastic pairs.
+fn against_full(reduced: &ModalSolution, structure: &Structure) -> (f64, f64) {
+    let full = reduced::full(structure, &[], reduced.len()).unwrap();
+    let (mut df, mut dmac) = (0.0_f64, 0.0_f64);
+    for j in RIGID..reduced.len() {
+        df = df.max((reduced.frequency_hz(j) / full.frequency_hz(j) - 1.0).abs());
+        let (a, b) = (reduced.vectors().col(j), full.vectors().col(j));
+        let ab = a.transpose() * b;
+        dmac = dmac.max(1.0 - ab * ab / (a.squared_norm_l2() * b.squared_norm_l2()));
+    }
+    (df, dmac)
+}
+
+#[test]
+fn reduced_pairs_of_a_solid_are_the_full_ones_far_from_the_nominal_springs() {
+    let structure = reduced_lap(&lap("far", LAP), RIGID + 2 * 8 + 2, true);
+    for factors in [
+        [1.0, 1.0, 1.0],
+        [1.0, 1.0, 0.5],
+        [0.5, 2.0, 0.5],
+        [0.2, 3.0, 0.3],
+    ] {
+        let at = scaled(&structure, factors);
+        let modal = reduced::lowest(&at, &[], COUNT).unwrap();
+        let pairs = modal.reduced().expect("solved on the reduced model");
+        assert!(pairs.residuals.iter().all(|&e| e <= TOLERANCE));
+        let (df, dmac) = against_full(&modal, &at);
+        assert!(df < 1e-7, "{factors:?}: frequencies {df:e}");
+        assert!(dmac < 1e-6, "{factors:?}: 1 - MAC {dmac:e}");
+    }
+}
+
+#[test]
+fn a_basis_too_poor_is_enriched_until_its_pairs_are_the_full_ones() {
+    let structure = reduced_lap(&lap("poor", LAP), COUNT + 2, false);
+    let at = scaled(&structure, [0.6, 1.5, 0.6]);
+    // Without the enrichment (a tolerance nothing exceeds), the poor basis misses.
+    let mut lax: Reduced = (**structure.reduced.as_ref().unwrap()).clone();
+    lax.tolerance = f64::INFINITY;
+    let mut unchecked = at.clone();
+    unchecked.reduced = Some(Arc::new(lax));
+    let poor = reduced::lowest(&unchecked, &[], COUNT).unwrap();
+    let (df, _) = against_full(&poor, &at);
+    assert!(df > 1e-6, "the poor basis already fits: {df:e}");
+    let worst = reduced::residuals(&poor)
+        .iter()
+        .fold(0.0_f64, |a, &e| a.max(e));
+    assert!(
+        worst > TOLERANCE,
+        "its error estimate {worst:e} does not say so"
+    );
+    // Checked, it is enriched, stays reduced, and meets the full solve.
+    let (modal, enriched) = reduced::lowest_keeping(&at, &[], COUNT).unwrap();
+    let enriched = enriched.unwrap_or_else(|| panic!("not enriched (error estimate {worst:e})"));
+    assert!(enriched.enriched > 0);
+    assert!(enriched.dimension() > structure.reduced.as_ref().unwrap().dimension());
+    assert!(modal.reduced().is_some(), "fell back to the full model");
+    let (df, dmac) = against_full(&modal, &at);
+    assert!(df < 1e-7, "enriched: frequencies {df:e}");
+    assert!(dmac < 1e-6, "enriched: 1 - MAC {dmac:e}");
+}
+
+#[test]
+fn reduced_derivatives_match_central_differences_of_the_reduced_model() {
+    let structure = reduced_lap(&lap("derivative", LAP), RIGID + 2 * 8 + 2, true);
+    // The basis held fixed: the derivatives are the reduced model's own.
+    let mut fixed: Reduced = (**structure.reduced.as_ref().unwrap()).clone();
+    fixed.tolerance = f64::INFINITY;
+    let mut at = scaled(&structure, [0.7, 1.3, 0.8]);
+    at.reduced = Some(Arc::new(fixed));
+    let modal = reduced::lowest(&at, &[], COUNT).unwrap();
+    let pairs = modal.reduced().unwrap();
+    let params = at.identified();
+    for (i, p) in params.iter().enumerate() {
+        let h = 1e-4 * p.value;
+        let solve = |d: f64| {
+            let mut values: Vec<f64> = params.iter().map(|q| q.value).collect();
+            values[i] += d;
+            reduced::lowest(&at.with_values(&values), &[], COUNT).unwrap()
+        };
+        let (plus, minus) = (solve(h), solve(-h));
+        for s in [RIGID, RIGID + 3, COUNT - 1] {
+            let (d_lambda, dx) = derivative(&modal, pairs, s, &p.stiffness, &p.mass).unwrap();
+            let fd = (plus.values()[s] - minus.values()[s]) / (2.0 * h);
+            assert!(
+                (fd - d_lambda).abs()
+                    <= 1e-5 * d_lambda.abs().max(1e-9 * modal.values()[s] / p.value),
+                "{} pair {s}: d lambda {d_lambda:e} against {fd:e}",
+                p.name
+            );
+            let fdx: Vec<f64> = (0..dx.len())
+                .map(|k| (plus.vectors()[(k, s)] - minus.vectors()[(k, s)]) / (2.0 * h))
+                .collect();
+            // A mode that hardly sees the parameter: its vector's change measured against
+            // the vector, 1e-8 of it per relative change of the parameter.
+            let floor = 1e-8 * modal.vectors().col(s).norm_max() / p.value;
+            let scale = fdx.iter().fold(floor, |a, v| a.max(v.abs()));
+            let off = dx
+                .iter()
+                .zip(&fdx)
+                .fold(0.0_f64, |a, (x, y)| a.max((x - y).abs()));
+            assert!(
+                off <= 1e-3 * scale,
+                "{} pair {s}: d x off by {off:e} of {scale:e}",
+                p.name
+            );
+        }
+    }
+}
+
+#[test]
+fn a_reduced_solve_is_the_same_bits_on_any_number_of_threads() {
+    let structure = reduced_lap(&lap("threads", LAP), COUNT + 2, false);
+    let at = scaled(&structure, [0.3, 2.0, 0.4]);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| reduced::lowest(&at, &[], COUNT).unwrap())
+    };
+    let (one, two) = (on(1), on(2));
+    let bits = |m: &ModalSolution| -> Vec<u64> {
+        m.values()
+            .iter()
+            .chain(m.vectors().col_as_slice(COUNT - 1))
+            .map(|v| v.to_bits())
+            .collect()
+    };
+    assert_eq!(bits(&one), bits(&two));
+    assert!(lambda_to_hz(one.values()[RIGID]) > 0.0);
+}
