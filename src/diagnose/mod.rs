@@ -188,9 +188,9 @@ fn diagnose_on(
         iterations: calibrated.base.iterations,
     });
     let measured = &calibrated.measured;
-    let library = candidate::library(&ctx, settings.extended);
+    let library = candidate::library(ctx, settings.extended);
     let stage = Stage {
-        ctx: &ctx,
+        ctx,
         measured,
         calibration: &calibration,
         base: &calibrated.base,
@@ -200,7 +200,7 @@ fn diagnose_on(
     let found = search::search(
         &library,
         &stage,
-        candidate::hypotheses(&library, &ctx),
+        candidate::hypotheses(&library, ctx),
         &given,
     );
     let (largest, fitted) = found.largest(&calibrated.base);

@@ -144,7 +144,7 @@ impl Probe<'_> {
     fn at_value(&mut self, p: f64) -> Result<(f64, f64), ModalError> {
         self.structure.parameters[self.at].value = p;
         let (modal, enriched) =
-            reduced::lowest_checking(&self.structure, &[], self.t + 1, Some(self.t))?;
+            reduced::lowest_checking(&self.structure, &[], self.t + 1, Some(self.t..self.t + 1))?;
         if enriched.is_some() {
             self.structure.reduced = enriched;
         }

@@ -12,12 +12,15 @@ use std::sync::OnceLock;
 use crate::modal::{ModalError, reduced};
 use crate::structure::Structure;
 
+/// The eigenvalues of one end, solved when first asked for.
+type End = OnceLock<Result<Vec<f64>, ModalError>>;
+
 /// The eigenvalues at both ends of every identified parameter's reach, solved when first
 /// asked for.
 pub struct Ends<'a> {
     structure: &'a Structure,
     count: usize,
-    solved: Vec<[OnceLock<Result<Vec<f64>, ModalError>>; 2]>,
+    solved: Vec<[End; 2]>,
 }
 
 impl<'a> Ends<'a> {

@@ -137,6 +137,19 @@ impl SparseLlt {
         split_columns(x, SOLVE_WIDTH, &solve);
     }
 
+    /// Overwrites every column of `x` with A^-1 x, all of them one block on the calling
+    /// thread: the least work per column (0.013 s a column in a block of 24 on the 212k-DOF
+    /// lap's factor, against 0.021 s in blocks of [`SOLVE_WIDTH`]), for a caller whose own
+    /// callers already run in parallel (the reduced model's check, `super::reduced`).
+    pub fn solve_block_in_place(&self, x: MatMut<'_, f64>) {
+        let llt = LltRef::new(&self.symbolic, &self.values);
+        let mut scratch = MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(x.ncols(), Par::Seq),
+        );
+        llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, MemStack::new(&mut scratch));
+    }
+
     /// Entries of the factor L.
     pub fn factor_entries(&self) -> usize {
         self.values.len()

@@ -413,7 +413,8 @@ impl<'a> Problem<'a> {
         if let Some(reduced) = enriched.as_ref() {
             configured.structure.reduced = Some(Arc::clone(reduced));
         }
-        let (modal, next) = configured.covering(start, (1.0 + self.pairing.window) * f_max)?;
+        let window = (1.0 + self.pairing.window) * f_max;
+        let (modal, next) = configured.covering(start, window, count)?;
         if let Some(next) = next {
             configured.structure.reduced = Some(Arc::clone(&next));
             *enriched = Some(next);

@@ -52,7 +52,7 @@ pub fn build(
     let mats = structure.assemble();
     let (_, llt) = factor_shifted(mats.k.as_faer(), mats.m.as_faer(), None)?;
     let llt = Arc::new(llt);
-    let precondition: Precondition = Arc::new(move |x| llt.solve_columns_in_place(x));
+    let precondition: Precondition = Arc::new(move |x| llt.solve_block_in_place(x));
     let n = structure.dof_count();
     let elastic = nominal.values().get(structure.rigid).copied();
     let mut reduced = Reduced {

@@ -133,14 +133,14 @@ pub fn lowest_keeping(
     lowest_checking(structure, extra, count, None)
 }
 
-/// As [`lowest_keeping`], the error of pair `only` alone checked when given (a caller that
-/// reads that pair alone: the frequency-dependent joint's mode at its own frequency); the
-/// others' estimates are then 0.
+/// As [`lowest_keeping`], the errors of the pairs `checked` alone checked when given (a
+/// caller that reads those alone: the frequency-dependent joint's mode at its own frequency,
+/// a fit's pairs below the pairing window's); the others' estimates are then 0.
 pub fn lowest_checking(
     structure: &Structure,
     extra: &Extra,
     count: usize,
-    only: Option<usize>,
+    checked: Option<std::ops::Range<usize>>,
 ) -> Result<(ModalSolution, Option<Arc<Reduced>>), ModalError> {
     let Some(start) = usable(structure) else {
         return Ok((full(structure, extra, count)?, None));
@@ -151,11 +151,11 @@ pub fn lowest_checking(
     let mut reduced = Arc::clone(start);
     let mut enriched = false;
     for round in 0..=MAX_ROUNDS {
-        let solved = solve::solve(&reduced, structure, extra, count, only)?;
+        let solved = solve::solve(&reduced, structure, extra, count, checked.clone())?;
         let bad: Vec<usize> = residuals(&solved.modal)
             .iter()
             .enumerate()
-            .filter(|(_, e)| !(**e <= reduced.tolerance))
+            .filter(|(_, e)| e.is_nan() || **e > reduced.tolerance)
             .map(|(j, _)| j)
             .collect();
         if bad.is_empty() {
@@ -164,7 +164,7 @@ pub fn lowest_checking(
         let worst = residuals(&solved.modal)
             .iter()
             .fold(0.0, |a: f64, &e| a.max(e));
-        if round == MAX_ROUNDS || !(worst <= HOPELESS) {
+        if round == MAX_ROUNDS || worst.is_nan() || worst > HOPELESS {
             break;
         }
         let bad: Vec<usize> = bad.iter().map(|j| j - solved.first).collect();
@@ -181,12 +181,14 @@ pub fn lowest_checking(
 
 /// The lowest pairs up to `f_max_hz`, at least `count` of them (as
 /// [`ModalSolution::covering`]), on the reduction when it reaches that far, with the enriched
-/// reduction as [`lowest_keeping`].
+/// reduction as [`lowest_keeping`]; the first `checked` pairs checked (the others are the
+/// window's: a pair missed there shows in the final check against the full model).
 pub fn covering(
     structure: &Structure,
     extra: &Extra,
     count: usize,
     f_max_hz: f64,
+    checked: usize,
 ) -> Result<(ModalSolution, Option<Arc<Reduced>>), ModalError> {
     let Some(reduced) = usable(structure) else {
         return Ok((full_covering(structure, extra, count, f_max_hz)?, None));
@@ -195,8 +197,11 @@ pub fn covering(
     let mut count = count.clamp(1, n);
     let mut kept: Option<Arc<Reduced>> = None;
     let mut current = structure.clone();
+    // The first `checked` pairs are checked; those beyond, solved for the window, only lie
+    // there.
+    let checked = 0..checked;
     while count <= r {
-        let (sol, next) = lowest_keeping(&current, extra, count)?;
+        let (sol, next) = lowest_checking(&current, extra, count, Some(checked.clone()))?;
         if let Some(next) = next {
             current.reduced = Some(Arc::clone(&next));
             kept = Some(next);

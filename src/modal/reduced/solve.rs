@@ -39,14 +39,14 @@ pub(super) struct Solved {
 }
 
 /// The lowest `count` pairs of `structure` plus `extra` on `reduced` (module docs), the
-/// error estimate of pair `only` alone when given (the others' left at 0), else of every
-/// elastic pair.
+/// error estimates of the elastic pairs among `checked` (all of them when none; the others'
+/// left at 0).
 pub(super) fn solve(
     reduced: &Arc<Reduced>,
     structure: &Structure,
     extra: &[(&SparseSym, &SparseSym, f64)],
     count: usize,
-    only: Option<usize>,
+    checked: Option<std::ops::Range<usize>>,
 ) -> Result<Solved, ModalError> {
     let (k, m) = projected(reduced, structure, extra);
     let (values, mut vectors) = dense_pencil(&k, &m).ok_or(ModalError::NoConvergence)?;
@@ -79,10 +79,9 @@ pub(super) fn solve(
         .iter()
         .position(|&l| l > 1e-3 * reduced.scale)
         .unwrap_or(c);
-    let (first, last) = match only {
-        Some(s) if s < c => (s.max(elastic), (s + 1).max(elastic)),
-        _ => (elastic, c),
-    };
+    let wanted = checked.unwrap_or(0..c);
+    let (first, last) = (wanted.start.max(elastic), wanted.end.min(c).max(elastic));
+    let (first, last) = (first.min(last), last);
     let lambda = &values[first..last];
     let residual = residuals(reduced, structure, extra, &vectors, &x, first..last, lambda);
     let mut correction = residual.clone();
@@ -180,9 +179,9 @@ fn residuals(
         1.0,
         Par::Seq,
     );
-    for j in 0..c {
+    for (j, &l) in lambda.iter().enumerate() {
         let (r, mx) = (residual.col_as_slice_mut(j), my.col_as_slice(j));
-        r.iter_mut().zip(mx).for_each(|(r, m)| *r -= lambda[j] * m);
+        r.iter_mut().zip(mx).for_each(|(r, m)| *r -= l * m);
     }
     let terms = structure
         .parameters
@@ -190,14 +189,14 @@ fn residuals(
         .map(|p| (&p.stiffness, &p.mass, p.value))
         .chain(extra.iter().copied());
     for (sk, sm, a) in terms {
-        for j in 0..c {
+        for (j, &l) in lambda.iter().enumerate() {
             let xj = x.col_as_slice(pairs.start + j);
             let r = residual.col_as_slice_mut(j);
             for &(p, q, v) in sk.entries() {
                 r[p] += a * v * xj[q];
             }
             for &(p, q, v) in sm.entries() {
-                r[p] -= lambda[j] * a * v * xj[q];
+                r[p] -= l * a * v * xj[q];
             }
         }
     }

@@ -235,18 +235,20 @@ impl Configured {
         reduced::lowest(&self.structure, &terms(&self.contributions()), count)
     }
 
-    /// The lowest pairs up to `f_max_hz` and at least `count` ([`reduced::covering`]), with
-    /// the reduction when the solve enriched it.
+    /// The lowest pairs up to `f_max_hz` and at least `count`, the first `checked` of them
+    /// checked ([`reduced::covering`]), with the reduction when the solve enriched it.
     pub fn covering(
         &self,
         count: usize,
         f_max_hz: f64,
+        checked: usize,
     ) -> Result<(ModalSolution, Option<Arc<Reduced>>), ModalError> {
         reduced::covering(
             &self.structure,
             &terms(&self.contributions()),
             count,
             f_max_hz,
+            checked,
         )
     }
 

@@ -161,7 +161,8 @@ pub fn solve(
         if let Some(reduced) = &enriched {
             structure.reduced = Some(std::sync::Arc::clone(reduced));
         }
-        let (modal, next) = reduced::lowest_checking(&structure, &[], count.max(s + 1), Some(s))?;
+        let (modal, next) =
+            reduced::lowest_checking(&structure, &[], count.max(s + 1), Some(s..s + 1))?;
         if let Some(next) = next {
             structure.reduced = Some(std::sync::Arc::clone(&next));
             enriched = Some(next);
