@@ -68,3 +68,4 @@ pub mod stats;
 pub mod structure;
 pub mod study;
 pub mod uff;
+
