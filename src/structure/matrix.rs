@@ -182,15 +182,18 @@ impl SymMatrix {
         }
     }
 
-    /// The diagonal.
+    /// The diagonal (read column by column where it is stored: the list of all entries is
+    /// not formed, which on a large model was hundreds of MB).
     pub fn diagonal(&self) -> Vec<f64> {
-        let mut d = vec![0.0; self.size()];
-        for (i, j, v) in self.entries() {
-            if i == j {
-                d[i] = v;
-            }
-        }
-        d
+        let a = self.inner.as_ref();
+        let (col_ptr, row_idx, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+        (0..self.size())
+            .map(|j| {
+                (col_ptr[j]..col_ptr[j + 1])
+                    .find(|&k| row_idx[k] == j)
+                    .map_or(0.0, |k| val[k])
+            })
+            .collect()
     }
 
     /// Whether every stored value is finite.

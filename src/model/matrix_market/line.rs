@@ -194,7 +194,7 @@ mod tests {
     #[test]
     fn values_in_every_form_read_the_same_on_both_paths() {
         let cases = [
-            ("1 1 2", 2.0),
+            ("2 1 2", 2.0),
             ("2 1 -1e4", -1e4),
             ("2 1 -1E+04", -1e4),
             ("2 1 1.5e-300", 1.5e-300),
