@@ -19,8 +19,11 @@
 #   eigen-only split;
 # - eigen only, jointid: `eigen_bench solve` (examples/eigen_bench.rs) on K(p), M(p) exported
 #   beforehand, the solve timed inside the process, with the residuals.
-# The model of a chain is the cantilever exported as an external model (with a 1e-300 N/m
-# tip spring as its parameter, which leaves K bitwise unchanged).
+# A chain has no whole-process run of jointid: exported as an external model (with a 1e-300
+# N/m tip spring as its parameter, which leaves K bitwise unchanged) it is refused by the
+# rigid-body check, whose tolerance (1e-14 max K_jj / M_jj, 487 Hz on the 1e4 cantilever)
+# lies above its first modes (src/model/matrices/build.rs); scipy's whole process reads that
+# exported model all the same.
 # Prints the table of bench/eigen_table.py: medians, their ratio, peak resident memory
 # (/usr/bin/time), the largest relative residual ||K y - lambda M y|| / ||K y|| (jointid's
 # with its rounding floor, src/modal/residual.rs), and the largest relative difference of
@@ -92,8 +95,10 @@ for r in $(seq "$repeat"); do
         esac
         for threads in $threads_list; do
             echo "run $r/$repeat: $case, $threads thread(s) ($(cut -d' ' -f1-3 /proc/loadavg))" >&2
-            run "$case" "$threads" jointid whole "$dir/out.csv" \
-                $jointid simulate --model "${model[$case]}/model.toml" --modes $count --out "$dir/out.csv"
+            case $case in
+                solid*) run "$case" "$threads" jointid whole "$dir/out.csv" $jointid simulate \
+                    --model "${model[$case]}/model.toml" --modes $count --out "$dir/out.csv" ;;
+            esac
             run "$case" "$threads" jointid eigen - $bench solve "$dir/$case" $count
             for variant in $variants; do
                 run "$case" "$threads" "scipy-$variant" whole - "$python" bench/eigen_vs_scipy.py \

@@ -119,9 +119,9 @@ pub fn measured_modes(
     let exact = exact_modes(modal, rigid, modes, points);
     MeasuredModes::new(
         exact
-            .modes()
-            .iter()
-            .map(|m| {
+            .into_modes()
+            .into_iter()
+            .map(|mut m| {
                 let mut rng = TrialRng::new(errors.seed, 0, m.mode as u64);
                 let peak = m
                     .values
@@ -129,18 +129,11 @@ pub fn measured_modes(
                     .copied()
                     .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
                 let peak = if peak == 0.0 { 1.0 } else { peak };
-                let values = m
-                    .values
-                    .iter()
-                    .map(|v| v / peak * (1.0 + rng.shape_error(errors.kind, errors.shape)))
-                    .collect();
-                let frequency_hz =
-                    m.frequency_hz * (1.0 + rng.frequency_error(errors.kind, errors.frequency));
-                MeasuredMode {
-                    values,
-                    frequency_hz,
-                    ..m.clone()
+                for v in &mut m.values {
+                    *v = *v / peak * (1.0 + rng.shape_error(errors.kind, errors.shape));
                 }
+                m.frequency_hz *= 1.0 + rng.frequency_error(errors.kind, errors.frequency);
+                m
             })
             .collect(),
     )
@@ -365,12 +358,7 @@ pub fn simulate_from(
             solved = Some((factor, modal));
         }
         let (_, modal) = solved.as_ref().expect("solved just above");
-        out.extend(
-            measured_modes(modal, rigid, &[r], points, errors)
-                .modes()
-                .iter()
-                .cloned(),
-        );
+        out.extend(measured_modes(modal, rigid, &[r], points, errors).into_modes());
     }
     Ok(MeasuredModes::new(out))
 }
