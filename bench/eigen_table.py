@@ -68,6 +68,7 @@ print("every run kind, medians (runs):")
 for key in sorted(runs):
     rows = runs[key]
     solve = median(key, "solve")
+    ours = runs.get((key[0], key[1], "jointid", "whole")) or runs[(key[0], key[1], "jointid", "eigen")]
     print(f"  {key[0]:9s} {key[1]} {key[2]:14s} {key[3]:5s} whole {median(key, 'wall'):.2f} s"
           f"  solve {solve:.3f} s  {median(key, 'mb'):.0f} MB  residual {worst(key, 'residual'):.1e}"
-          f"  ({len(rows)})")
+          f"  f from jointid's {difference(rows[-1]['hz'], ours[-1]['hz']):.1e}  ({len(rows)})")

@@ -68,4 +68,3 @@ pub mod stats;
 pub mod structure;
 pub mod study;
 pub mod uff;
-

@@ -273,7 +273,11 @@ mod tests {
         let mut lower = Vec::new();
         for _ in 0..60 {
             let (a, b) = ((draw() * 7.0) as usize, (draw() * 7.0) as usize);
-            lower.push((a.max(b), a.min(b), (draw() - 0.5) * 10f64.powi((draw() * 30.0) as i32)));
+            lower.push((
+                a.max(b),
+                a.min(b),
+                (draw() - 0.5) * 10f64.powi((draw() * 30.0) as i32),
+            ));
         }
         let both: Vec<(usize, usize, f64)> = lower
             .iter()
@@ -282,7 +286,10 @@ mod tests {
                 mirror.into_iter().chain(Some((i, j, v)))
             })
             .collect();
-        let (a, b) = (SymMatrix::from_lower(n, &lower), SymMatrix::from_entries(n, &both));
+        let (a, b) = (
+            SymMatrix::from_lower(n, &lower),
+            SymMatrix::from_entries(n, &both),
+        );
         let (a, b) = (a.as_faer(), b.as_faer());
         assert_eq!(a.symbolic().col_ptr(), b.symbolic().col_ptr());
         assert_eq!(a.symbolic().row_idx(), b.symbolic().row_idx());

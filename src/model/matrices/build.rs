@@ -82,7 +82,10 @@ impl MatricesFile {
     /// [`MatricesFile::build`], and the lowest pairs of the structure at its parameter values
     /// that the rigid-body check computed, at least `elastic` beyond the declared rigid-body
     /// modes ([`MatricesData::build_solved`]).
-    pub fn build_solved(&self, elastic: usize) -> Result<(Structure, ModalSolution), MatricesError> {
+    pub fn build_solved(
+        &self,
+        elastic: usize,
+    ) -> Result<(Structure, ModalSolution), MatricesError> {
         let read = |field: &str, path: &std::path::Path| {
             matrix_market::from_path(path).map_err(|problem| MatricesError::Matrix {
                 field: field.to_string(),

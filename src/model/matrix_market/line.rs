@@ -167,8 +167,8 @@ pub fn fast_entry(line: &[u8], size: usize, general: bool) -> Option<(usize, usi
     }
     let value: f64 = std::str::from_utf8(&line[start..end]).ok()?.parse().ok()?;
     let inside = |k: usize| (1..=size).contains(&k);
-    (inside(row) && inside(col) && value.is_finite() && (general || row >= col))
-        .then_some((row - 1, col - 1, value))
+    let taken = inside(row) && inside(col) && value.is_finite() && (general || row >= col);
+    taken.then_some((row - 1, col - 1, value))
 }
 
 #[cfg(test)]
@@ -223,22 +223,58 @@ mod tests {
     #[test]
     fn bad_lines_are_left_to_the_general_path_which_says_why() {
         let cases = [
-            ("3 1 1.0", "row = `3` is invalid: it must be an integer from 1 to 2"),
-            ("0 1 1.0", "row = `0` is invalid: it must be an integer from 1 to 2"),
-            ("2 x 1.0", "column = `x` is invalid: it must be an integer from 1 to 2"),
-            ("2 1.0 1.0", "column = `1.0` is invalid: it must be an integer from 1 to 2"),
-            ("-2 1 1.0", "row = `-2` is invalid: it must be an integer from 1 to 2"),
+            (
+                "3 1 1.0",
+                "row = `3` is invalid: it must be an integer from 1 to 2",
+            ),
+            (
+                "0 1 1.0",
+                "row = `0` is invalid: it must be an integer from 1 to 2",
+            ),
+            (
+                "2 x 1.0",
+                "column = `x` is invalid: it must be an integer from 1 to 2",
+            ),
+            (
+                "2 1.0 1.0",
+                "column = `1.0` is invalid: it must be an integer from 1 to 2",
+            ),
+            (
+                "-2 1 1.0",
+                "row = `-2` is invalid: it must be an integer from 1 to 2",
+            ),
             (
                 "99999999999999999999 1 1",
                 "row = `99999999999999999999` is invalid: it must be an integer from 1 to 2",
             ),
-            ("2 1 1.0d3", "value = `1.0d3` at (2, 1) is invalid: it must be a finite number"),
-            ("2 1 1e309", "value = `1e309` at (2, 1) is invalid: it must be a finite number"),
-            ("2 1 inf", "value = `inf` at (2, 1) is invalid: it must be a finite number"),
-            ("2 1 NaN", "value = `NaN` at (2, 1) is invalid: it must be a finite number"),
-            ("2 1 1..0", "value = `1..0` at (2, 1) is invalid: it must be a finite number"),
-            ("2 1", "entry `2 1` is invalid: it must be `row column value`"),
-            ("2 1 1.0 4", "entry `2 1 1.0 4` is invalid: it must be `row column value`"),
+            (
+                "2 1 1.0d3",
+                "value = `1.0d3` at (2, 1) is invalid: it must be a finite number",
+            ),
+            (
+                "2 1 1e309",
+                "value = `1e309` at (2, 1) is invalid: it must be a finite number",
+            ),
+            (
+                "2 1 inf",
+                "value = `inf` at (2, 1) is invalid: it must be a finite number",
+            ),
+            (
+                "2 1 NaN",
+                "value = `NaN` at (2, 1) is invalid: it must be a finite number",
+            ),
+            (
+                "2 1 1..0",
+                "value = `1..0` at (2, 1) is invalid: it must be a finite number",
+            ),
+            (
+                "2 1",
+                "entry `2 1` is invalid: it must be `row column value`",
+            ),
+            (
+                "2 1 1.0 4",
+                "entry `2 1 1.0 4` is invalid: it must be `row column value`",
+            ),
             (
                 "1 2 1.0",
                 "entry (1, 2) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)",

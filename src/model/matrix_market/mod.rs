@@ -130,10 +130,18 @@ const BLOCK: usize = 1 << 20;
 /// Reads Matrix Market text from `reader` (within [`crate::input::bounded::TABLE`]'s limits);
 /// `file` names it in errors.
 pub fn read(reader: impl io::Read, file: &Path) -> Result<LowerEntries, MatrixMarketError> {
-    let mut reader =
-        crate::input::bounded::Bounded::new(reader, crate::input::bounded::TABLE);
+    read_in_blocks(reader, file, BLOCK)
+}
+
+/// [`read`] with a first buffer of `block` bytes (the tests make lines cross its ends).
+fn read_in_blocks(
+    reader: impl io::Read,
+    file: &Path,
+    block: usize,
+) -> Result<LowerEntries, MatrixMarketError> {
+    let mut reader = crate::input::bounded::Bounded::new(reader, crate::input::bounded::TABLE);
     let mut reading = Reading::new(file);
-    let mut buf = vec![0u8; BLOCK];
+    let mut buf = vec![0u8; block.max(1)];
     let mut filled = 0;
     loop {
         if filled == buf.len() {
@@ -277,10 +285,7 @@ impl<'a> Reading<'a> {
     fn finish(self) -> Result<LowerEntries, MatrixMarketError> {
         match self.stage {
             Stage::Header => {
-                return Err(self.error(
-                    1,
-                    format!("the file is empty: {}", line::HEADER_ALLOWED),
-                ));
+                return Err(self.error(1, format!("the file is empty: {}", line::HEADER_ALLOWED)));
             }
             Stage::Size => {
                 return Err(self.error(
@@ -440,6 +445,55 @@ mod tests {
         )
         .unwrap();
         assert_eq!(m.entries[1], (1, 0, 0.5 * (-1.0 + -1.0000000000002)));
+    }
+
+    /// Lines that cross the ends of the read buffer, CRLF line ends, a last line without its
+    /// newline, comments between entries, exponents in every form: the same matrix whatever
+    /// the buffer's size, and an error on the same line.
+    #[test]
+    fn lines_across_the_buffer_read_the_same_at_every_block_size() {
+        let text = "%%MatrixMarket matrix coordinate real symmetric\r\n% K\r\n  \r\n3 3 6\r\n1 1 1.5E+04\r\n% between\r\n2 1 -2.5e-3\r\n2 2 7\r\n3 2 +1e0\r\n3   3\t.25\r\n3 3 1.0000000000000002";
+        let whole = read_str(text).unwrap();
+        assert_eq!(whole.size, 3);
+        assert_eq!(
+            whole.entries,
+            vec![
+                (0, 0, 1.5e4),
+                (1, 0, -2.5e-3),
+                (1, 1, 7.0),
+                (2, 1, 1.0),
+                (2, 2, 0.25),
+                (2, 2, 1.0000000000000002)
+            ]
+        );
+        let bad = text.replace("2 2 7", "2 2 7e");
+        for block in [1, 2, 3, 5, 7, 16, 64, 1 << 20] {
+            let m = read_in_blocks(text.as_bytes(), Path::new("K.mtx"), block).unwrap();
+            assert_eq!(m, whole, "block {block}");
+            let e = read_in_blocks(bad.as_bytes(), Path::new("K.mtx"), block).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                "K.mtx:8: value = `7e` at (2, 2) is invalid: it must be a finite number",
+                "block {block}"
+            );
+        }
+    }
+
+    #[test]
+    fn integer_and_pattern_headers() {
+        let m = read_str("%%MatrixMarket matrix coordinate integer symmetric\n1 1 1\n1 1 3\n");
+        assert_eq!(m.unwrap().entries, vec![(0, 0, 3.0)]);
+        let e = read_str("%%MatrixMarket matrix coordinate pattern symmetric\n1 1 1\n1 1\n");
+        assert_eq!(
+            e.unwrap_err().to_string(),
+            "K.mtx:1: header `%%MatrixMarket matrix coordinate pattern symmetric` is invalid: a `pattern` file has no values (a stiffness or mass matrix needs them); the first line must be `%%MatrixMarket matrix coordinate real symmetric` (or `integer` for `real`, `general` for `symmetric`)"
+        );
+        let bytes = b"%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n2 1 1\xff\n";
+        let e = read(&bytes[..], Path::new("K.mtx"));
+        assert_eq!(
+            e.unwrap_err().to_string(),
+            "K.mtx: cannot read the file: stream did not contain valid UTF-8"
+        );
     }
 
     #[test]
