@@ -6,7 +6,10 @@
 //!   `discrepancy`); D = deviance(extended model) - deviance(model) is the likelihood-ratio
 //!   statistic of the cause added, the discrepancy profiled out of both. Its p-value is
 //!   P(chi^2_k > D) where no discrepancy was estimated, and P(F(k, nu) > D / k) where one was
-//!   on nu degrees of freedom ([`lr_p_value`]). A cause is significant when that p-value, times
+//!   on nu degrees of freedom ([`lr_p_value`]); a cause whose unknowns are all held
+//!   non-negative (a mass, a spring, an Euler-Bernoulli beam's shear flexibility) is zero in
+//!   the model it extends, on the edge of its range, and its test is one-sided (the
+//!   chi-bar-square bound of [`crate::stats::lr_sf`]). A cause is significant when that p-value, times
 //!   the hypotheses tried so far (one per candidate, the members of a scan, then every
 //!   addition the search tried: module `search`), is below [`ALPHA`] (Bonferroni).
 //! - **Clearly best** ([`select`]): among the significant causes whose size is physical, the
@@ -32,7 +35,7 @@
 
 use super::noise::NoiseEstimate;
 use super::report::{CandidateReport, Verdict};
-use crate::stats::{chi2_sf, f_sf};
+use crate::stats::lr_sf;
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -53,14 +56,11 @@ pub fn adjusted(p: f64, tried: usize) -> f64 {
 
 /// P-value of the likelihood-ratio statistic `lrt` of `k` added unknowns, the discrepancy of
 /// the larger model estimated on `dof` degrees of freedom (infinite: none estimated): the
-/// chi-square test, or the F test P(F(k, dof) > lrt / k).
-pub fn lr_p_value(lrt: f64, k: usize, dof: f64) -> f64 {
-    let k = k.max(1) as f64;
-    if dof.is_infinite() {
-        chi2_sf(lrt, k)
-    } else {
-        f_sf(lrt / k, k, dof)
-    }
+/// chi-square test, or the F test P(F(k, dof) > lrt / k); `bounded` when every added unknown
+/// is held non-negative and zero in the model extended (a mass, a spring: the one-sided test,
+/// [`crate::stats::lr_sf`]).
+pub fn lr_p_value(lrt: f64, k: usize, dof: f64, bounded: bool) -> f64 {
+    lr_sf(lrt, k, dof, bounded)
 }
 
 /// What the relative rules read of one fitted cause.
@@ -251,13 +251,14 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
         )
     };
     format!(
-        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
+        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated; one-sided for a mass, a spring or a shear flexibility added from zero) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
     )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::chi2_sf;
 
     fn rival(deviance: f64, parameters: usize) -> Rival {
         let lrt = 100.0 - deviance;
@@ -309,10 +310,10 @@ mod tests {
     /// same statistic, equal in the limit of many degrees of freedom.
     #[test]
     fn an_estimated_discrepancy_makes_the_test_an_f_test() {
-        let chi2 = lr_p_value(9.0, 1, f64::INFINITY);
+        let chi2 = lr_p_value(9.0, 1, f64::INFINITY, false);
         assert!((chi2 - chi2_sf(9.0, 1.0)).abs() < 1e-15);
-        assert!(lr_p_value(9.0, 1, 5.0) > 3.0 * chi2);
-        assert!((lr_p_value(9.0, 1, 1e7) - chi2).abs() < 1e-5 * chi2);
+        assert!(lr_p_value(9.0, 1, 5.0, false) > 3.0 * chi2);
+        assert!((lr_p_value(9.0, 1, 1e7, false) - chi2).abs() < 1e-5 * chi2);
     }
 
     #[test]

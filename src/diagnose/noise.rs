@@ -35,7 +35,7 @@ use serde::Serialize;
 use super::along;
 use super::fit::{Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals, sigmas};
 use crate::measured::MeasuredModes;
-use crate::stats::{chi2_isf, chi2_sf, f_isf, f_sf};
+use crate::stats::{chi2_sf, f_sf, lr_sf};
 
 /// Smallest relative shape noise the estimate returns, as a fraction of the stated (a fit
 /// that interpolates the shapes must not make the noise vanish).
@@ -481,22 +481,10 @@ impl NoiseEstimate {
     }
 
     /// P(F(k, nu) > D / k): the likelihood-ratio statistic D of k more unknowns under the
-    /// estimated scale.
-    pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
-        let k = k.max(1) as f64;
-        if self.dof.is_infinite() {
-            return chi2_sf(lrt, k);
-        }
-        f_sf(lrt / k, k, self.dof)
-    }
-
-    /// The D with [`Self::lrt_p_value`] = p.
-    pub fn lrt_critical(&self, p: f64, k: usize) -> f64 {
-        let k = k.max(1) as f64;
-        if self.dof.is_infinite() {
-            return chi2_isf(p, k);
-        }
-        k * f_isf(p, k, self.dof)
+    /// estimated scale (chi-square under a known one); `bounded` when every added unknown is
+    /// held non-negative and zero in the model extended ([`crate::stats::lr_sf`]).
+    pub fn lrt_p_value(&self, lrt: f64, k: usize, bounded: bool) -> f64 {
+        lr_sf(lrt, k, self.dof, bounded)
     }
 
     /// The lack of fit of the frequency residuals `res` of a fit (with `unknowns` model parameters)
