@@ -13,9 +13,11 @@
 //!   the hypotheses tried so far (one per candidate, the members of a scan, then every
 //!   addition the search tried: module `search`), is below [`ALPHA`] (Bonferroni).
 //! - **Clearly best** ([`select`]): among the significant causes whose size is physical, the
-//!   one with the largest D; every other less than [`AMBIGUITY_MARGIN`] behind it in Akaike's
-//!   criterion (deviance + 2 k; Burnham & Anderson, "Model Selection and Multimodel
-//!   Inference", sec. 2.6) contends with it. Where the frequency-dependent joint is the best
+//!   one of least Akaike's criterion (deviance + 2 k, each model with its own discrepancy;
+//!   Burnham & Anderson, "Model Selection and Multimodel Inference", sec. 2.6); every other
+//!   less than [`AMBIGUITY_MARGIN`] behind it contends with it. The criterion, not D, ranks
+//!   them: the D of a cause that fits within the measurement error stands on the yardstick
+//!   of its own residuals, so two causes' D are not on one scale. Where the frequency-dependent joint is the best
 //!   and a static cause contends, the static one is taken (what looks frequency-dependent to
 //!   the paper's per-mode method is often an unmodelled static effect) and the
 //!   frequency-dependent joint does not contend with a static best.
@@ -96,7 +98,7 @@ pub fn select(rivals: &[Rival]) -> Option<(usize, Vec<usize>)> {
     let mut significant: Vec<usize> = (0..rivals.len())
         .filter(|&i| rivals[i].significant())
         .collect();
-    significant.sort_by(|&a, &b| rivals[b].lrt.total_cmp(&rivals[a].lrt));
+    significant.sort_by(|&a, &b| rivals[a].aic().total_cmp(&rivals[b].aic()));
     let &first = significant.first()?;
     let within = |best: usize, i: usize| rivals[i].aic() - rivals[best].aic() < AMBIGUITY_MARGIN;
     // Static first: a static cause within the margin of a frequency-dependent best is taken.
@@ -298,6 +300,17 @@ mod tests {
     /// A static cause within the margin of a frequency-dependent best is taken, and the
     /// frequency-dependent joint does not contend with it; clearly ahead, the dependent one
     /// is the best.
+    /// Two causes tested on yardsticks of their own residuals: the larger D does not make the
+    /// best, the criterion does (here 15.6 ahead: alone).
+    #[test]
+    fn the_best_is_the_least_criterion_not_the_largest_statistic() {
+        let mut coupling = rival(-246.9, 1);
+        coupling.lrt = 111.8;
+        let mut mass = rival(-264.5, 2);
+        mass.lrt = 111.2;
+        assert_eq!(select(&[coupling, mass]), Some((1, Vec::new())));
+    }
+
     #[test]
     fn a_static_cause_comes_before_the_frequency_dependent_joint() {
         let mut dependent = rival(50.0, 1);
