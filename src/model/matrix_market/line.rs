@@ -131,11 +131,11 @@ fn index(line: &[u8], at: usize) -> Option<(usize, usize)> {
     let mut k: u64 = 0;
     let mut end = at;
     while end < line.len() && line[end].is_ascii_digit() {
+        if end - at == 19 {
+            return None; // 20 digits and more: the general path's (it says the range)
+        }
         k = k * 10 + u64::from(line[end] - b'0');
         end += 1;
-        if end - at > 19 {
-            return None;
-        }
     }
     if end == at {
         return None;
@@ -168,7 +168,7 @@ pub fn fast_entry(line: &[u8], size: usize, general: bool) -> Option<(usize, usi
     let value: f64 = std::str::from_utf8(&line[start..end]).ok()?.parse().ok()?;
     let inside = |k: usize| (1..=size).contains(&k);
     let taken = inside(row) && inside(col) && value.is_finite() && (general || row >= col);
-    taken.then_some((row - 1, col - 1, value))
+    taken.then(|| (row - 1, col - 1, value))
 }
 
 #[cfg(test)]
