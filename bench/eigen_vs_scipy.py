@@ -10,10 +10,20 @@ Prints the solve time (the factorisation included, the reading of the files not)
 frequencies and per elastic mode the relative residual ||K y - lambda M y|| / ||K y||
 (plain double precision products).
 
-python bench/eigen_vs_scipy.py DIR COUNT VARIANT"""
+With MODEL and OUT, the whole process that `jointid simulate --model MODEL/model.toml
+--modes COUNT --out X.csv` is timed against: the external model's own files are read (K.mtx,
+M.mtx and every dK/dp, dM/dp of model.toml, by scipy.io.mmread, its fast_matrix_market
+reader on as many threads as OMP_NUM_THREADS), K(p) = K + sum p dK/dp and M(p) assembled,
+solved as above (the shift of DIR/case.txt, a constant given beforehand), and the modes
+written to OUT (np.savetxt: one line per DOF, a column per mode, the frequencies in the
+header); the reading and writing times are printed beside the solve's.
+
+python bench/eigen_vs_scipy.py DIR COUNT VARIANT [MODEL OUT]"""
 import math
+import os
 import sys
 import time
+import tomllib
 
 import numpy as np
 import scipy.io
@@ -49,12 +59,35 @@ def operator(a, variant):
     raise ValueError(variant)
 
 
+def read_model(model):
+    """K(p) and M(p) of the external model in the folder `model`, as jointid assembles them."""
+    with open(f"{model}/model.toml", "rb") as f:
+        spec = tomllib.load(f)
+    k = scipy.io.mmread(f"{model}/{spec['stiffness']}").tocsc()
+    m = scipy.io.mmread(f"{model}/{spec['mass']}").tocsc()
+    for p in spec["parameter"]:
+        k = k + p["value"] * scipy.io.mmread(f"{model}/{p['dk']}").tocsc()
+        if "dm" in p:
+            m = m + p["value"] * scipy.io.mmread(f"{model}/{p['dm']}").tocsc()
+    return k.tocsc(), m.tocsc()
+
+
 def main():
     directory, count, variant = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    whole = sys.argv[4:6] if len(sys.argv) >= 6 else None
+    threads = os.environ.get("OMP_NUM_THREADS")
+    if threads:
+        import scipy.io._fast_matrix_market as fmm
+        fmm.PARALLELISM = int(threads)
     case = dict(line.split() for line in open(f"{directory}/case.txt"))
     rigid, shift = int(case["rigid"]), float(case["shift"]) if case["rigid"] != "0" else 0.0
-    k = scipy.io.mmread(f"{directory}/k.mtx").tocsc()
-    m = scipy.io.mmread(f"{directory}/m.mtx").tocsc()
+    t = time.perf_counter()
+    if whole:
+        k, m = read_model(whole[0])
+    else:
+        k = scipy.io.mmread(f"{directory}/k.mtx").tocsc()
+        m = scipy.io.mmread(f"{directory}/m.mtx").tocsc()
+    print(f"read_s {time.perf_counter() - t:.4f}")
     t = time.perf_counter()
     try:
         op = operator((k - shift * m).tocsc(), variant)
@@ -66,6 +99,12 @@ def main():
     order = np.argsort(values)
     values, vectors = values[order], vectors[:, order]
     print(f"time_s {seconds:.4f}")
+    if whole:
+        t = time.perf_counter()
+        hz = np.sqrt(np.maximum(values, 0.0)) / (2 * math.pi)
+        np.savetxt(whole[1], vectors[:, rigid:], fmt="%.17g", delimiter=",",
+                   header="frequencies_hz " + ",".join(f"{f!r}" for f in hz[rigid:]))
+        print(f"write_s {time.perf_counter() - t:.4f}")
     for j in range(rigid, rigid + count):
         y = vectors[:, j]
         ky = k @ y

@@ -46,6 +46,30 @@ fn read_matrix(path: &Path) -> SymMatrix {
     SymMatrix::from_entries(lower.size, &lower.both_triangles())
 }
 
+/// `structure` as an external model in `dir` (what `jointid simulate` reads in the
+/// whole-process runs): an external model needs a parameter, so the cantilever gets a
+/// grounded spring at its tip of 1e-300 N/m, which leaves K(p) bitwise K (K's tip entries are
+/// of order 1e8).
+fn write_external(structure: &mut jointid::structure::Structure, dir: &Path) {
+    let tip = structure.dof_count() - 2;
+    let mut spring = jointid::structure::SparseSym::zero();
+    spring.add(tip, tip, 1.0);
+    structure.parameters.push(jointid::structure::Parameter {
+        name: "tip_spring".into(),
+        unit: "N/m",
+        value: 1e-300,
+        stiffness: spring,
+        mass: jointid::structure::SparseSym::zero(),
+        role: jointid::structure::Role::Fixed,
+    });
+    let exported = jointid::model::matrices::export(structure, "eigen_bench export chain")
+        .expect("an exportable chain");
+    std::fs::create_dir_all(dir).expect("the model folder");
+    for (name, bytes) in &exported.files {
+        std::fs::write(dir.join(name), bytes).expect("write the model's files");
+    }
+}
+
 fn export(kind: &str, what: &str, dir: &Path) {
     let (mats, rigid): (Matrices, usize) = match kind {
         "chain" => {
@@ -56,7 +80,9 @@ fn export(kind: &str, what: &str, dir: &Path) {
                 kind: SupportKind::Clamped,
                 identify: [false, false],
             });
-            (chain.build().assemble(), 0)
+            let mut structure = chain.build();
+            write_external(&mut structure, &dir.join("model"));
+            (structure.assemble(), 0)
         }
         "model" => {
             let path = Path::new(what);

@@ -119,9 +119,9 @@ pub fn measured_modes(
     let exact = exact_modes(modal, rigid, modes, points);
     MeasuredModes::new(
         exact
-            .modes()
-            .iter()
-            .map(|m| {
+            .into_modes()
+            .into_iter()
+            .map(|mut m| {
                 let mut rng = TrialRng::new(errors.seed, 0, m.mode as u64);
                 let peak = m
                     .values
@@ -129,18 +129,11 @@ pub fn measured_modes(
                     .copied()
                     .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
                 let peak = if peak == 0.0 { 1.0 } else { peak };
-                let values = m
-                    .values
-                    .iter()
-                    .map(|v| v / peak * (1.0 + rng.shape_error(errors.kind, errors.shape)))
-                    .collect();
-                let frequency_hz =
-                    m.frequency_hz * (1.0 + rng.frequency_error(errors.kind, errors.frequency));
-                MeasuredMode {
-                    values,
-                    frequency_hz,
-                    ..m.clone()
+                for v in &mut m.values {
+                    *v = *v / peak * (1.0 + rng.shape_error(errors.kind, errors.shape));
                 }
+                m.frequency_hz *= 1.0 + rng.frequency_error(errors.kind, errors.frequency);
+                m
             })
             .collect(),
     )
@@ -248,10 +241,31 @@ pub fn simulate(
     points: &[Observation],
     errors: Errors,
 ) -> Result<MeasuredModes, SimulateError> {
+    simulate_from(structure, None, effects, modes, points, errors)
+}
+
+/// [`simulate`] with the lowest pairs of `structure` as given, when the caller has them
+/// (the check of an external model's rigid-body modes computed them,
+/// [`crate::model::from_path_solved`]): used when they reach the highest mode asked for,
+/// instead of a solve of the same matrices. Without effects and a rising joint the truth is
+/// the structure itself, and its pairs are these too.
+pub fn simulate_from(
+    structure: &Structure,
+    nominal: Option<ModalSolution>,
+    effects: &[(String, f64)],
+    modes: &[usize],
+    points: &[Observation],
+    errors: Errors,
+) -> Result<MeasuredModes, SimulateError> {
     errors.check()?;
     let rigid = structure.rigid;
     let highest = modes.iter().copied().max().unwrap_or(1) + rigid;
-    let nominal = ModalSolution::lowest_of(&structure.assemble(), highest)?;
+    let nominal = match nominal {
+        Some(given) if given.len() >= highest && given.dof_count() == structure.dof_count() => {
+            given
+        }
+        _ => ModalSolution::lowest_of(&structure.assemble(), highest)?,
+    };
     if highest > nominal.len() {
         return Err(SimulateError::NoSuchMode {
             mode: highest - rigid,
@@ -309,8 +323,10 @@ pub fn simulate(
     }
     let mut out = Vec::with_capacity(modes.len());
     // The modes of one joint stiffness factor share one solution (all of them when the
-    // joint does not rise): solved once, not once per mode.
+    // joint does not rise): solved once, not once per mode. Factor 1 without effects is the
+    // structure as given, whose pairs are the nominal ones (checked below like any other).
     let mut solved: Option<(f64, ModalSolution)> = None;
+    let mut nominal = applied.is_empty().then_some(nominal);
     for &r in modes {
         let factor = 1.0 + rising * (r as f64 - 1.0);
         if factor <= 0.0 {
@@ -334,17 +350,15 @@ pub fn simulate(
                 effects: applied.clone(),
             };
             let matrices = truth.assemble();
-            let modal = ModalSolution::lowest_of(&matrices, highest)?;
+            let modal = match nominal.take_if(|_| factor == 1.0) {
+                Some(nominal) => nominal,
+                None => ModalSolution::lowest_of(&matrices, highest)?,
+            };
             check_elastic(&matrices, &modal, rigid)?;
             solved = Some((factor, modal));
         }
         let (_, modal) = solved.as_ref().expect("solved just above");
-        out.extend(
-            measured_modes(modal, rigid, &[r], points, errors)
-                .modes()
-                .iter()
-                .cloned(),
-        );
+        out.extend(measured_modes(modal, rigid, &[r], points, errors).into_modes());
     }
     Ok(MeasuredModes::new(out))
 }

@@ -51,7 +51,20 @@ pub(crate) fn to_stdout(
 /// Reads and validates a model file. An external model's open faces (coincident DOFs that
 /// nothing ties) are accepted and said once on stderr.
 fn read_model(path: &std::path::Path) -> anyhow::Result<jointid::structure::Structure> {
-    let model = jointid::model::from_path(path)?;
+    Ok(read_model_solved(path, 0)?.0)
+}
+
+/// [`read_model`], and an external model's lowest pairs, `elastic` beyond its declared
+/// rigid-body modes at least, from the check of its rigid-body modes
+/// ([`jointid::model::from_path_solved`]).
+fn read_model_solved(
+    path: &std::path::Path,
+    elastic: usize,
+) -> anyhow::Result<(
+    jointid::structure::Structure,
+    Option<jointid::modal::ModalSolution>,
+)> {
+    let (model, nominal) = jointid::model::from_path_solved(path, elastic)?;
     if model.open_faces > 0 {
         eprintln!(
             "note: {}: {} pair(s) of coincident DOFs that nothing ties (open faces: a lap's notch, a crack) change no entry of K or M; a sensor on one is named by its label",
@@ -59,7 +72,7 @@ fn read_model(path: &std::path::Path) -> anyhow::Result<jointid::structure::Stru
             model.open_faces
         );
     }
-    Ok(model)
+    Ok((model, nominal))
 }
 
 /// Runs the parsed command.

@@ -7,7 +7,7 @@ use crate::commands::flagged;
 use jointid::input::SettingError;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, write_atomically};
-use jointid::simulate::{Errors, first_modes, measured_points, simulate};
+use jointid::simulate::{Errors, first_modes, measured_points, simulate_from};
 use jointid::study::NoiseKind;
 
 /// The library's settings by their flags.
@@ -22,7 +22,7 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     let inputs = model_inputs(&args.model);
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&[&args.out], &inputs)?;
-    let model = super::read_model(&args.model)?;
+    let (model, nominal) = super::read_model_solved(&args.model, args.modes)?;
     let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
     let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {
         flagged(SettingError::new("noise", &args.noise, allowed), FLAGS)
@@ -41,9 +41,10 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
             args.model.display()
         );
     };
-    let measured = simulate(&model, &args.effects, &modes, &points, errors)?;
+    let measured = simulate_from(&model, nominal, &args.effects, &modes, &points, errors)?;
     write_atomically(&args.out, |w| {
         measured.write_csv(w, &model).map_err(std::io::Error::other)
     })
-    .with_context(|| format!("{}: cannot write", args.out.display()))
+    .with_context(|| format!("{}: cannot write", args.out.display()))?;
+    Ok(())
 }

@@ -6,13 +6,18 @@
 //!   `discrepancy`); D = deviance(extended model) - deviance(model) is the likelihood-ratio
 //!   statistic of the cause added, the discrepancy profiled out of both. Its p-value is
 //!   P(chi^2_k > D) where no discrepancy was estimated, and P(F(k, nu) > D / k) where one was
-//!   on nu degrees of freedom ([`lr_p_value`]). A cause is significant when that p-value, times
+//!   on nu degrees of freedom ([`lr_p_value`]); a cause whose unknowns are all held
+//!   non-negative (a mass, a spring, an Euler-Bernoulli beam's shear flexibility) is zero in
+//!   the model it extends, on the edge of its range, and its test is one-sided (the
+//!   chi-bar-square bound of [`crate::stats::lr_sf`]). A cause is significant when that p-value, times
 //!   the hypotheses tried so far (one per candidate, the members of a scan, then every
 //!   addition the search tried: module `search`), is below [`ALPHA`] (Bonferroni).
 //! - **Clearly best** ([`select`]): among the significant causes whose size is physical, the
-//!   one with the largest D; every other less than [`AMBIGUITY_MARGIN`] behind it in Akaike's
-//!   criterion (deviance + 2 k; Burnham & Anderson, "Model Selection and Multimodel
-//!   Inference", sec. 2.6) contends with it. Where the frequency-dependent joint is the best
+//!   one of least Akaike's criterion (deviance + 2 k, each model with its own discrepancy;
+//!   Burnham & Anderson, "Model Selection and Multimodel Inference", sec. 2.6); every other
+//!   less than [`AMBIGUITY_MARGIN`] behind it contends with it. The criterion, not D, ranks
+//!   them: the D of a cause that fits within the measurement error stands on the yardstick
+//!   of its own residuals, so two causes' D are not on one scale. Where the frequency-dependent joint is the best
 //!   and a static cause contends, the static one is taken (what looks frequency-dependent to
 //!   the paper's per-mode method is often an unmodelled static effect) and the
 //!   frequency-dependent joint does not contend with a static best.
@@ -32,7 +37,7 @@
 
 use super::noise::NoiseEstimate;
 use super::report::{CandidateReport, Verdict};
-use crate::stats::{chi2_sf, f_sf};
+use crate::stats::lr_sf;
 
 /// Family-wise false-alarm probability of the candidate search.
 pub const ALPHA: f64 = 0.01;
@@ -53,14 +58,11 @@ pub fn adjusted(p: f64, tried: usize) -> f64 {
 
 /// P-value of the likelihood-ratio statistic `lrt` of `k` added unknowns, the discrepancy of
 /// the larger model estimated on `dof` degrees of freedom (infinite: none estimated): the
-/// chi-square test, or the F test P(F(k, dof) > lrt / k).
-pub fn lr_p_value(lrt: f64, k: usize, dof: f64) -> f64 {
-    let k = k.max(1) as f64;
-    if dof.is_infinite() {
-        chi2_sf(lrt, k)
-    } else {
-        f_sf(lrt / k, k, dof)
-    }
+/// chi-square test, or the F test P(F(k, dof) > lrt / k); `bounded` when every added unknown
+/// is held non-negative and zero in the model extended (a mass, a spring: the one-sided test,
+/// [`crate::stats::lr_sf`]).
+pub fn lr_p_value(lrt: f64, k: usize, dof: f64, bounded: bool) -> f64 {
+    lr_sf(lrt, k, dof, bounded)
 }
 
 /// What the relative rules read of one fitted cause.
@@ -96,7 +98,7 @@ pub fn select(rivals: &[Rival]) -> Option<(usize, Vec<usize>)> {
     let mut significant: Vec<usize> = (0..rivals.len())
         .filter(|&i| rivals[i].significant())
         .collect();
-    significant.sort_by(|&a, &b| rivals[b].lrt.total_cmp(&rivals[a].lrt));
+    significant.sort_by(|&a, &b| rivals[a].aic().total_cmp(&rivals[b].aic()));
     let &first = significant.first()?;
     let within = |best: usize, i: usize| rivals[i].aic() - rivals[best].aic() < AMBIGUITY_MARGIN;
     // Static first: a static cause within the margin of a frequency-dependent best is taken.
@@ -251,13 +253,14 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
         )
     };
     format!(
-        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
+        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated; one-sided for a mass, a spring or a shear flexibility added from zero) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
     )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stats::chi2_sf;
 
     fn rival(deviance: f64, parameters: usize) -> Rival {
         let lrt = 100.0 - deviance;
@@ -297,6 +300,17 @@ mod tests {
     /// A static cause within the margin of a frequency-dependent best is taken, and the
     /// frequency-dependent joint does not contend with it; clearly ahead, the dependent one
     /// is the best.
+    /// Two causes tested on yardsticks of their own residuals: the larger D does not make the
+    /// best, the criterion does (here 15.6 ahead: alone).
+    #[test]
+    fn the_best_is_the_least_criterion_not_the_largest_statistic() {
+        let mut coupling = rival(-246.9, 1);
+        coupling.lrt = 111.8;
+        let mut mass = rival(-264.5, 2);
+        mass.lrt = 111.2;
+        assert_eq!(select(&[coupling, mass]), Some((1, Vec::new())));
+    }
+
     #[test]
     fn a_static_cause_comes_before_the_frequency_dependent_joint() {
         let mut dependent = rival(50.0, 1);
@@ -309,10 +323,10 @@ mod tests {
     /// same statistic, equal in the limit of many degrees of freedom.
     #[test]
     fn an_estimated_discrepancy_makes_the_test_an_f_test() {
-        let chi2 = lr_p_value(9.0, 1, f64::INFINITY);
+        let chi2 = lr_p_value(9.0, 1, f64::INFINITY, false);
         assert!((chi2 - chi2_sf(9.0, 1.0)).abs() < 1e-15);
-        assert!(lr_p_value(9.0, 1, 5.0) > 3.0 * chi2);
-        assert!((lr_p_value(9.0, 1, 1e7) - chi2).abs() < 1e-5 * chi2);
+        assert!(lr_p_value(9.0, 1, 5.0, false) > 3.0 * chi2);
+        assert!((lr_p_value(9.0, 1, 1e7, false) - chi2).abs() < 1e-5 * chi2);
     }
 
     #[test]

@@ -35,7 +35,7 @@ use serde::Serialize;
 use super::along;
 use super::fit::{Calibration, Fitted, Noise, Residuals, SHAPE_FLOOR, residuals, sigmas};
 use crate::measured::MeasuredModes;
-use crate::stats::{chi2_isf, chi2_sf, f_isf, f_sf};
+use crate::stats::{chi2_sf, f_sf, lr_sf};
 
 /// Smallest relative shape noise the estimate returns, as a fraction of the stated (a fit
 /// that interpolates the shapes must not make the noise vanish).
@@ -60,8 +60,13 @@ pub struct NoiseEstimate {
     /// Whether the working frequency noise was scaled by the estimate (else it is the
     /// stated, known).
     pub frequency_estimated: bool,
-    /// Working floor b / a, as a fraction of the peak (at least half the stated floor: a
-    /// vanishing floor would let components at a node of the mode dominate).
+    /// Working floor b / a, as a fraction of the peak, at least the stated floor: the data
+    /// show a floor larger than stated (an additive error the statement left out), never a
+    /// smaller one. The floor stands on the few components near the modes' nodes, whose
+    /// squares cannot tell b = 0 from the stated b (the variance function's fit settles on
+    /// the edge b = 0 wherever they are few), and a floor taken too small lets those
+    /// components dominate chi^2: under twice the stated noise the true model's chi^2 was 3x
+    /// its degrees of freedom with half the stated floor.
     pub working_floor: f64,
     /// a / sigma_s (stated): how far the shape statement was off.
     pub shape_factor: f64,
@@ -209,7 +214,7 @@ pub fn estimate(
             shape: a,
         },
         frequency_estimated: shape_factor > 1.0,
-        working_floor: (b / a).max(0.5 * stated_floor),
+        working_floor: (b / a).max(stated_floor),
         shape_factor,
         frequency_factor: frequency_check / stated.frequency,
         from_differences,
@@ -481,22 +486,10 @@ impl NoiseEstimate {
     }
 
     /// P(F(k, nu) > D / k): the likelihood-ratio statistic D of k more unknowns under the
-    /// estimated scale.
-    pub fn lrt_p_value(&self, lrt: f64, k: usize) -> f64 {
-        let k = k.max(1) as f64;
-        if self.dof.is_infinite() {
-            return chi2_sf(lrt, k);
-        }
-        f_sf(lrt / k, k, self.dof)
-    }
-
-    /// The D with [`Self::lrt_p_value`] = p.
-    pub fn lrt_critical(&self, p: f64, k: usize) -> f64 {
-        let k = k.max(1) as f64;
-        if self.dof.is_infinite() {
-            return chi2_isf(p, k);
-        }
-        k * f_isf(p, k, self.dof)
+    /// estimated scale (chi-square under a known one); `bounded` when every added unknown is
+    /// held non-negative and zero in the model extended ([`crate::stats::lr_sf`]).
+    pub fn lrt_p_value(&self, lrt: f64, k: usize, bounded: bool) -> f64 {
+        lr_sf(lrt, k, self.dof, bounded)
     }
 
     /// The lack of fit of the frequency residuals `res` of a fit (with `unknowns` model parameters)

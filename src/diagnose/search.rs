@@ -278,6 +278,9 @@ fn together(
             .iter()
             .map(|&i| singles[i].fit().map_or(0, |f| f.added))
             .sum();
+        fit.bounded = parts
+            .iter()
+            .all(|&i| singles[i].fit().is_some_and(|f| f.bounded));
         fit.describe = format!("the causes {name} together, asked for (--causes)");
     }
     tell_fitted(&watch, &name, &outcome);
@@ -321,7 +324,7 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
         );
         let before = refitted_chi2(from, measured, &e.calibration()).map_or(own, |c| c.min(own));
         let lrt = (before - chi2).max(0.0);
-        Some((lrt, e.lrt_p_value(lrt, fit.added)))
+        Some((lrt, e.lrt_p_value(lrt, fit.added, fit.bounded)))
     });
     let (lrt, p, test) = match against_noise {
         Some((lrt, p)) => (lrt, p, Test::MeasurementError),
@@ -329,7 +332,7 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
             let lrt = (from.deviance - fit.deviance).max(0.0);
             (
                 lrt,
-                lr_p_value(lrt, fit.added, fit.discrepancy_dof),
+                lr_p_value(lrt, fit.added, fit.discrepancy_dof, fit.bounded),
                 Test::Discrepancy,
             )
         }

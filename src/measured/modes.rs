@@ -147,6 +147,12 @@ impl MeasuredModes {
         &self.modes
     }
 
+    /// The modes, ascending mode number, taken (not copied: a large model's modes hold
+    /// millions of points).
+    pub fn into_modes(self) -> Vec<MeasuredMode> {
+        self.modes
+    }
+
     /// Whether every mode carries its standard errors ([`MeasuredMode::has_std`]; the reader
     /// takes them for every mode or for none).
     pub fn has_std(&self) -> bool {

@@ -34,6 +34,24 @@ pub fn from_path(path: &Path) -> Result<Structure, InputError> {
     from_toml(&read_file(path)?, path)
 }
 
+/// [`from_path`], and for an external model the lowest pairs that its check of the rigid-body
+/// modes computed, at least `elastic` beyond them where the model declares its rigid-body
+/// count ([`matrices::build::MatricesData::build_solved`]): a command that solves the model
+/// as read for `elastic` modes takes them instead of solving it again. A beam chain has no
+/// such solution (`None`).
+pub fn from_path_solved(
+    path: &Path,
+    elastic: usize,
+) -> Result<(Structure, Option<crate::modal::ModalSolution>), InputError> {
+    let text = read_file(path)?;
+    match kind(&text, path)?.as_deref() {
+        Some("matrices") => matrices::from_toml_solved(&text, path, elastic)
+            .map(|(s, modal)| (s, Some(modal)))
+            .map_err(|e| e.into_input(path)),
+        _ => Ok((from_toml(&text, path)?, None)),
+    }
+}
+
 /// Parses and validates model TOML text; `file` names it in errors.
 pub fn from_toml(text: &str, file: &Path) -> Result<Structure, InputError> {
     match kind(text, file)?.as_deref() {

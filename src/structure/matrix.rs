@@ -20,27 +20,63 @@ impl SymMatrix {
     /// The matrix of size `n` with the entries of `entries`, summed per position in list order.
     /// The caller lists both triangles (as [`SparseSym`] does) and indices below `n`.
     pub fn from_entries(n: usize, entries: &[(usize, usize, f64)]) -> Self {
-        let mut order: Vec<usize> = (0..entries.len()).collect();
-        // Stable: entries of one position keep their listed order.
-        order.sort_by_key(|&e| (entries[e].1, entries[e].0));
-        let mut col_ptr = vec![0usize; n + 1];
-        let mut row_idx = Vec::with_capacity(entries.len());
-        let mut values: Vec<f64> = Vec::with_capacity(entries.len());
-        let mut last: Option<(usize, usize)> = None;
-        for &e in &order {
-            let (i, j, v) = entries[e];
+        Self::sorted(n, entries.len(), || entries.iter().copied())
+    }
+
+    /// The matrix of size `n` whose lower triangle (row >= column) `lower` lists: the matrix
+    /// [`SymMatrix::from_entries`] gives for both triangles listed as each lower entry's
+    /// mirror, then itself (a diagonal entry once), bit for bit, without that list.
+    pub fn from_lower(n: usize, lower: &[(usize, usize, f64)]) -> Self {
+        let count = lower.iter().map(|e| 1 + usize::from(e.0 != e.1)).sum();
+        Self::sorted(n, count, || {
+            lower.iter().flat_map(|&(i, j, v)| {
+                let mirror = (i != j).then_some((j, i, v));
+                mirror.into_iter().chain(std::iter::once((i, j, v)))
+            })
+        })
+    }
+
+    /// The matrix of the `count` entries that `entries()` lists (called twice), summed per
+    /// position in list order: a counting sort by column (stable), then each column's rows
+    /// sorted (stable, a few dozen entries), in linear time where a comparison sort of all
+    /// the entries took most of the time of reading a large model.
+    fn sorted<I: Iterator<Item = (usize, usize, f64)>>(
+        n: usize,
+        count: usize,
+        entries: impl Fn() -> I,
+    ) -> Self {
+        let mut start = vec![0usize; n + 1];
+        for (i, j, _) in entries() {
             assert_inside(n, i, j);
-            if last == Some((i, j)) {
-                *values.last_mut().expect("a value for the position") += v;
-            } else {
-                row_idx.push(i);
-                values.push(0.0 + v);
-                col_ptr[j + 1] += 1;
-                last = Some((i, j));
-            }
+            start[j + 1] += 1;
         }
         for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
+            start[j + 1] += start[j];
+        }
+        debug_assert_eq!(start[n], count);
+        let mut next = start.clone();
+        let mut by_column = vec![(0usize, 0.0f64); count];
+        for (i, j, v) in entries() {
+            by_column[next[j]] = (i, v);
+            next[j] += 1;
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let mut row_idx: Vec<usize> = Vec::with_capacity(count);
+        let mut values: Vec<f64> = Vec::with_capacity(count);
+        for j in 0..n {
+            let column = &mut by_column[start[j]..start[j + 1]];
+            column.sort_by_key(|e| e.0);
+            let first = row_idx.len();
+            for &(i, v) in column.iter() {
+                if row_idx.len() > first && row_idx.last() == Some(&i) {
+                    *values.last_mut().expect("a value for the position") += v;
+                } else {
+                    row_idx.push(i);
+                    values.push(0.0 + v);
+                }
+            }
+            col_ptr.push(row_idx.len());
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         Self {
@@ -146,15 +182,18 @@ impl SymMatrix {
         }
     }
 
-    /// The diagonal.
+    /// The diagonal (read column by column where it is stored: the list of all entries is
+    /// not formed, which on a large model was hundreds of MB).
     pub fn diagonal(&self) -> Vec<f64> {
-        let mut d = vec![0.0; self.size()];
-        for (i, j, v) in self.entries() {
-            if i == j {
-                d[i] = v;
-            }
-        }
-        d
+        let a = self.inner.as_ref();
+        let (col_ptr, row_idx, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+        (0..self.size())
+            .map(|j| {
+                (col_ptr[j]..col_ptr[j + 1])
+                    .find(|&k| row_idx[k] == j)
+                    .map_or(0.0, |k| val[k])
+            })
+            .collect()
     }
 
     /// Whether every stored value is finite.
@@ -222,6 +261,42 @@ mod tests {
         let mut y = [0.0; 3];
         a.apply(&[1.0, 1.0, 0.0], &mut y);
         assert_eq!(y, [0.1 + 0.2 + 0.3 + 2.0, 2.0, 0.0]);
+    }
+
+    /// `from_lower` is `from_entries` of both triangles listed mirror first, bit for bit,
+    /// with duplicates of a position in the lower list, on the diagonal and off it.
+    #[test]
+    fn from_lower_is_bitwise_from_entries_of_both_triangles() {
+        let mut rng = crate::random::TrialRng::new(11, 0, 0);
+        let mut draw = || 0.5 * (rng.symmetric_unit() + 1.0);
+        let n = 7;
+        let mut lower = Vec::new();
+        for _ in 0..60 {
+            let (a, b) = ((draw() * 7.0) as usize, (draw() * 7.0) as usize);
+            lower.push((
+                a.max(b),
+                a.min(b),
+                (draw() - 0.5) * 10f64.powi((draw() * 30.0) as i32),
+            ));
+        }
+        let both: Vec<(usize, usize, f64)> = lower
+            .iter()
+            .flat_map(|&(i, j, v)| {
+                let mirror = (i != j).then_some((j, i, v));
+                mirror.into_iter().chain(Some((i, j, v)))
+            })
+            .collect();
+        let (a, b) = (
+            SymMatrix::from_lower(n, &lower),
+            SymMatrix::from_entries(n, &both),
+        );
+        let (a, b) = (a.as_faer(), b.as_faer());
+        assert_eq!(a.symbolic().col_ptr(), b.symbolic().col_ptr());
+        assert_eq!(a.symbolic().row_idx(), b.symbolic().row_idx());
+        let bits = |m: SparseColMatRef<'_, usize, f64>| -> Vec<u64> {
+            m.val().iter().map(|v| v.to_bits()).collect()
+        };
+        assert_eq!(bits(a), bits(b));
     }
 
     /// The merge of `plus` against the sort of `from_entries` on the concatenated entries:

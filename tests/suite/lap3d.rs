@@ -128,23 +128,17 @@ fn a_solid_lap_is_named_as_a_lap_by_the_users_beam_model() {
         eprintln!("{}", line(case, &r));
         // The lap, alone or with shear (a glued interface too: a lap at its stiff end, never
         // refused).
-        let (verdict, named) = lap_named(case, &r);
-        // It removes most of the point joint's frequency error: to 1% where shear comes with
-        // it or three sensors leave the frequencies their weight; with nine sensors and the
-        // lap alone, 1.5% (the bolted lap: its three patches and the beams' missing shear,
-        // 1.35% measured; lap and shear together reach 0.2% there, which against each model's
-        // own discrepancy on six frequencies is not a clearly better explanation).
+        let (verdict, _) = lap_named(case, &r);
+        // It removes most of the point joint's frequency error, to within 1%. The bolted lap
+        // on nine sensors needs shear beside it (0.46% measured; the lap alone left 1.35%):
+        // shear is found there because its flexibility is held non-negative, so its test is
+        // one-sided (p = 0.0007, 0.009 after the 12 hypotheses; two-sided it was 0.017).
         let (before, after) = (
             number(&r["before"]["frequency_rms_pct"]),
             number(&r["after"]["frequency_rms_pct"]),
         );
         assert!(after < 0.25 * before, "{case}: {before}% -> {after}%");
-        let limit = if named.len() > 1 || case.ends_with("-3") {
-            1.0
-        } else {
-            1.5
-        };
-        assert!(after <= limit, "{case}: after {after}%");
+        assert!(after <= 1.0, "{case}: after {after}%");
         if verdict == "partial" {
             let remaining = &r["remaining"];
             assert!(number(&remaining["removed"]) > 0.9, "{case}: {remaining}");

@@ -12,7 +12,7 @@
 
 use std::sync::Arc;
 
-use super::effect::judged;
+use super::effect::{bounded, judged};
 use super::layered_lap::{axial_pair, summary};
 use super::{CandidateError, Fit, Stage};
 use crate::diagnose::discrepancy;
@@ -126,7 +126,7 @@ pub fn combine(
             )
         }
     };
-    Ok(Fit::of_model(
+    let mut fit = Fit::of_model(
         measured,
         fitted,
         parameters,
@@ -134,5 +134,10 @@ pub fn combine(
         describe,
         added_unknowns,
         excluded,
-    ))
+    );
+    fit.bounded = match added {
+        Part::Effect(effect) => bounded(effect.as_ref(), &ctx),
+        Part::Lap => false,
+    };
+    Ok(fit)
 }

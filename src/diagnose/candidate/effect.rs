@@ -88,7 +88,7 @@ pub(super) fn fit_effect(
     let joints = stage.base.estimates.len();
     let parameters = fitted.estimates[joints..].to_vec();
     let (size, excluded) = judged(effect.as_ref(), ctx, &fitted, &parameters);
-    Ok(Fit::of_model(
+    let mut fit = Fit::of_model(
         measured,
         fitted,
         parameters,
@@ -96,7 +96,16 @@ pub(super) fn fit_effect(
         effect.describe().to_string(),
         effect.parameters(ctx).len(),
         excluded,
-    ))
+    );
+    fit.bounded = bounded(effect.as_ref(), ctx);
+    Ok(fit)
+}
+
+/// Whether every parameter of `effect` is held non-negative: its zero, the model without it,
+/// is on the edge of its range.
+pub(super) fn bounded(effect: &dyn Effect, ctx: &EffectContext) -> bool {
+    let parameters = effect.parameters(ctx);
+    !parameters.is_empty() && parameters.iter().all(|p| p.non_negative)
 }
 
 /// The size of `effect` at its fitted `parameters` in `fitted` (the size's standard error by

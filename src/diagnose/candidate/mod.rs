@@ -93,6 +93,10 @@ pub struct Fit {
     /// The model's unknowns besides the shape scales (joints and candidate): the lack of fit
     /// of the frequencies discounts them.
     pub unknowns: usize,
+    /// Whether every unknown it adds is held non-negative and is zero in the model it extends
+    /// (a mass, a spring, an Euler-Bernoulli beam's shear flexibility): its likelihood-ratio
+    /// test is then one-sided ([`crate::stats::lr_sf`]).
+    pub bounded: bool,
     /// The unweighted residuals of the model with the candidate.
     pub residuals: Residuals,
     /// The fitted model, for a candidate that has one (the "after" when it is selected).
@@ -126,6 +130,7 @@ impl Fit {
             dof: fitted.dof,
             added,
             unknowns: fitted.estimates.len(),
+            bounded: false,
             residuals: super::fit::residuals(&fitted, measured),
             excluded,
             parameters,

@@ -16,12 +16,10 @@
 //! [`RIGID_GAP`] times the next one (a clear gap: the way to state the count of a model whose
 //! elastic eigenvalues are below the tolerance).
 
-use faer::Side;
-
 use super::MatricesError;
 use super::config::{MatricesFile, ParameterFile};
 use super::dof_table;
-use crate::modal::{ModalSolution, lambda_to_hz};
+use crate::modal::{DENSE_MAX_DOFS, ModalError, ModalSolution, lambda_to_hz};
 use crate::model::matrix_market::{self, LowerEntries};
 use crate::structure::{
     Direction, DofMap, Matrices, Parameter, Sites, SparseSym, Structure, SymMatrix,
@@ -38,7 +36,7 @@ pub const MAX_DOFS: usize = 1_000_000;
 
 /// How many of the lowest eigenvalues are looked at for rigid-body modes (a free body in
 /// space has six).
-const RIGID_SEARCH: usize = 12;
+pub const RIGID_SEARCH: usize = 12;
 
 /// An external model's matrices and DOFs in memory (read from its files, or handed over by a
 /// caller that holds them, such as the Python package), before the checks of the module docs.
@@ -78,24 +76,45 @@ pub struct ParameterData {
 impl MatricesFile {
     /// Reads the files and builds the structure, with every check of the module docs.
     pub fn build(&self) -> Result<Structure, MatricesError> {
+        Ok(self.build_solved(0)?.0)
+    }
+
+    /// [`MatricesFile::build`], and the lowest pairs of the structure at its parameter values
+    /// that the rigid-body check computed, at least `elastic` beyond the declared rigid-body
+    /// modes ([`MatricesData::build_solved`]).
+    pub fn build_solved(
+        &self,
+        elastic: usize,
+    ) -> Result<(Structure, ModalSolution), MatricesError> {
         let read = |field: &str, path: &std::path::Path| {
             matrix_market::from_path(path).map_err(|problem| MatricesError::Matrix {
                 field: field.to_string(),
                 problem,
             })
         };
-        let k = read("stiffness", &self.stiffness)?;
+        // K on one thread, M and the derivatives on another (the 212,562-DOF lap's K is
+        // 250 MB of text); the errors in the order of the sequential reading.
+        let (k, (m, parameters)) = rayon::join(
+            || read("stiffness", &self.stiffness),
+            || {
+                let m = read("mass", &self.mass);
+                let parameters: Result<Vec<ParameterData>, MatricesError> = (self.parameters)
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| Self::parameter(i, p, &read))
+                    .collect();
+                (m, parameters)
+            },
+        );
+        let k = k?;
         let n = k.size;
         if n > MAX_DOFS {
             return Err(MatricesError::TooLarge { size: n });
         }
-        let m = read("mass", &self.mass)?;
+        let m = m?;
         let dofs = dof_table::from_path(&self.dofs, n)
             .map_err(|problem| MatricesError::Dofs { problem })?;
-        let mut parameters = Vec::with_capacity(self.parameters.len());
-        for (i, p) in self.parameters.iter().enumerate() {
-            parameters.push(Self::parameter(i, p, &read)?);
-        }
+        let parameters = parameters?;
         MatricesData {
             k,
             m,
@@ -104,13 +123,13 @@ impl MatricesFile {
             rigid_body_modes: self.rigid_body_modes,
             sensor_tolerance: self.sensor_tolerance,
         }
-        .build()
+        .build_solved(elastic)
     }
 
     fn parameter(
         i: usize,
         p: &ParameterFile,
-        read: &dyn Fn(&str, &std::path::Path) -> Result<LowerEntries, MatricesError>,
+        read: &(dyn Fn(&str, &std::path::Path) -> Result<LowerEntries, MatricesError> + Sync),
     ) -> Result<ParameterData, MatricesError> {
         let dk = read(&format!("parameter[{i}].dk"), &p.dk)?;
         let dm = match &p.dm {
@@ -131,6 +150,16 @@ impl MatricesFile {
 impl MatricesData {
     /// Builds the structure, with every check of the module docs (the sizes against K's first).
     pub fn build(self) -> Result<Structure, MatricesError> {
+        Ok(self.build_solved(0)?.0)
+    }
+
+    /// [`MatricesData::build`], and the solution its rigid-body check computed: the lowest
+    /// max([`RIGID_SEARCH`], r + `elastic`) pairs of K and M at the parameter values (r the
+    /// declared rigid-body count, 0 when none is declared; every pair of a model small
+    /// enough for the dense solution). A caller that will solve the same structure for
+    /// `elastic` modes takes them from here: one factorisation and one solve where there
+    /// were two (the 212,562-DOF lap: 13-15 s each).
+    pub fn build_solved(self, elastic: usize) -> Result<(Structure, ModalSolution), MatricesError> {
         let n = self.k.size;
         if n > MAX_DOFS {
             return Err(MatricesError::TooLarge { size: n });
@@ -150,10 +179,11 @@ impl MatricesData {
         let open_faces = open_faces(&self.dofs, &self.k, &parameters);
         let dofs = DofMap::new(self.dofs, Vec::new(), Vec::new())
             .with_sensor_tolerance(self.sensor_tolerance);
-        let base = Matrices {
-            k: SymMatrix::from_entries(n, &self.k.both_triangles()),
-            m: SymMatrix::from_entries(n, &self.m.both_triangles()),
-        };
+        let (k, m) = rayon::join(
+            || SymMatrix::from_lower(n, &self.k.entries),
+            || SymMatrix::from_lower(n, &self.m.entries),
+        );
+        let base = Matrices { k, m };
         let mut structure = Structure {
             base: base.into(),
             parameters,
@@ -166,10 +196,12 @@ impl MatricesData {
             reduced: None,
         };
         let assembled = structure.assemble();
-        check_mass(&assembled, &structure.dofs)?;
-        structure.rigid = rigid_body_modes(self.rigid_body_modes, &assembled)?;
+        check_mass_diagonal(&assembled, &structure.dofs)?;
+        let count = RIGID_SEARCH.max(self.rigid_body_modes.unwrap_or(0) + elastic);
+        let modal = lowest(&assembled, count)?;
+        structure.rigid = rigid_body_modes(self.rigid_body_modes, &assembled, &modal)?;
         structure.sites.beam_mass = translational_mass(&assembled.m, &structure.dofs);
-        Ok(structure)
+        Ok((structure, modal))
     }
 }
 
@@ -226,17 +258,38 @@ fn parameter(i: usize, p: &ParameterData, n: usize) -> Result<Parameter, Matrice
     })
 }
 
-/// The number of rigid-body modes: counted, and checked against the declared one.
-fn rigid_body_modes(declared: Option<usize>, mats: &Matrices) -> Result<usize, MatricesError> {
-    let n = mats.size();
-    let modal =
-        ModalSolution::lowest_of(mats, RIGID_SEARCH.min(n)).map_err(|e| MatricesError::Modal {
-            message: e.to_string(),
-        })?;
+/// The lowest `count` pairs (at most N) of `mats`: the solver checks that M is positive
+/// definite (its Cholesky factorisation, which the shift-invert solver needs anyway and
+/// keeps for the next solve of the same M, [`crate::modal::memo`]).
+fn lowest(mats: &Matrices, count: usize) -> Result<ModalSolution, MatricesError> {
+    ModalSolution::lowest_of(mats, count.min(mats.size())).map_err(|e| match e {
+        ModalError::MassNotPositiveDefinite => MatricesError::MassNotPositiveDefinite {
+            cause: "a pivot is not positive".into(),
+        },
+        other => MatricesError::Modal {
+            message: other.to_string(),
+        },
+    })
+}
+
+/// The number of rigid-body modes: counted on the lowest pairs `modal` (at least
+/// [`RIGID_SEARCH`] of them, or all), and checked against the declared one.
+fn rigid_body_modes(
+    declared: Option<usize>,
+    mats: &Matrices,
+    modal: &ModalSolution,
+) -> Result<usize, MatricesError> {
     let (kd, md) = (mats.k.diagonal(), mats.m.diagonal());
     let scale = kd.iter().zip(&md).map(|(k, m)| k / m).fold(0.0, f64::max);
     let tolerance = RIGID_TOLERANCE * scale;
-    let values = modal.values();
+    // Every pair of a dense solution, the first RIGID_SEARCH of a sparse one (of more, when
+    // a caller asked for more: the same check).
+    let searched = if mats.size() <= DENSE_MAX_DOFS {
+        modal.len()
+    } else {
+        RIGID_SEARCH.min(modal.len())
+    };
+    let values = &modal.values()[..searched];
     let lowest: Vec<f64> = values.iter().take(RIGID_SEARCH).copied().collect();
     if values[0] < -tolerance {
         return Err(MatricesError::StiffnessIndefinite {
@@ -260,31 +313,23 @@ fn rigid_body_modes(declared: Option<usize>, mats: &Matrices) -> Result<usize, M
     }
 }
 
-/// M must have a positive diagonal (every DOF carries mass) and a Cholesky factor.
-fn check_mass(mats: &Matrices, dofs: &DofMap) -> Result<(), MatricesError> {
-    if let Some((i, &v)) = mats
+/// M must have a positive diagonal (every DOF carries mass; its Cholesky factor is checked
+/// by the solve that counts the rigid-body modes).
+fn check_mass_diagonal(mats: &Matrices, dofs: &DofMap) -> Result<(), MatricesError> {
+    match mats
         .m
         .diagonal()
         .iter()
         .enumerate()
         .find(|(_, v)| **v <= 0.0)
     {
-        return Err(MatricesError::MassDiagonal {
+        Some((i, &v)) => Err(MatricesError::MassDiagonal {
             dof: i + 1,
             label: dofs.get(i).label.clone(),
             value: v,
-        });
+        }),
+        None => Ok(()),
     }
-    mats.m
-        .as_faer()
-        .sp_cholesky(Side::Lower)
-        .map(|_| ())
-        .map_err(|e| MatricesError::MassNotPositiveDefinite {
-            cause: match e {
-                faer::sparse::linalg::LltError::Numeric(_) => "a pivot is not positive".into(),
-                other => format!("{other:?}"),
-            },
-        })
 }
 
 /// The model's mass in its heaviest translation direction: u^T M u with u = 1 on every DOF of

@@ -42,11 +42,17 @@ pub fn untied<'a>(
         return Vec::new();
     }
     let wanted: HashSet<(usize, usize)> = pairs.iter().copied().collect();
+    // The first DOF of some pair: every other entry (nearly all of a large K) is passed over
+    // without hashing.
+    let mut paired = vec![false; dofs.len()];
+    for &(j, _) in &pairs {
+        paired[j] = true;
+    }
     let mut tied: HashSet<(usize, usize)> = HashSet::new();
     for entries in stiffness {
         for &(r, c, v) in entries {
             let key = (r.min(c), r.max(c));
-            if v != 0.0 && wanted.contains(&key) {
+            if v != 0.0 && paired.get(key.0).copied().unwrap_or(false) && wanted.contains(&key) {
                 tied.insert(key);
             }
         }

@@ -25,12 +25,14 @@
 //! The writer ([`write()`]) stores the lower triangle of a symmetric matrix with every value
 //! in Rust's shortest round-trip form (`{:e}`), so that reading back gives the same bits.
 
+mod line;
 mod write;
 
+pub use line::MAX_SIZE;
 pub use write::{write, write_entries};
 
 use std::collections::HashMap;
-use std::io::{self, BufRead};
+use std::io;
 use std::path::{Path, PathBuf};
 
 /// Relative tolerance of the symmetry of a `general` file, against the largest |a_ij|.
@@ -121,161 +123,196 @@ pub fn from_path(path: &Path) -> Result<LowerEntries, MatrixMarketError> {
     read(file, path)
 }
 
-/// What the header line may be.
-const HEADER_ALLOWED: &str = "the first line must be `%%MatrixMarket matrix coordinate real symmetric` (or `integer` for `real`, `general` for `symmetric`)";
-
-/// Whether the header line declares a `general` matrix (else `symmetric`); the message when
-/// it is not a header this reader takes.
-fn is_general(header: &str) -> Result<bool, String> {
-    let words: Vec<String> = header
-        .split_whitespace()
-        .map(str::to_ascii_lowercase)
-        .collect();
-    match words.iter().map(String::as_str).collect::<Vec<_>>()[..] {
-        [
-            "%%matrixmarket",
-            "matrix",
-            "coordinate",
-            "real" | "integer",
-            "symmetric",
-        ] => Ok(false),
-        [
-            "%%matrixmarket",
-            "matrix",
-            "coordinate",
-            "real" | "integer",
-            "general",
-        ] => Ok(true),
-        _ => Err(format!(
-            "header `{}` is invalid: {HEADER_ALLOWED}",
-            header.trim()
-        )),
-    }
-}
-
-/// The largest matrix read, in rows (a model far beyond what the solvers handle).
-pub const MAX_SIZE: usize = 10_000_000;
-
-/// The size N and the declared number of entries of the size line `t` (trimmed, not a
-/// comment); the message when it is not `N N entries`.
-fn size_line(t: &str) -> Result<(usize, usize), String> {
-    let fields: Vec<&str> = t.split_whitespace().collect();
-    let parsed: Vec<Option<usize>> = fields.iter().map(|f| f.parse().ok()).collect();
-    match parsed[..] {
-        [Some(r), Some(c), Some(_)] if r == c && r > MAX_SIZE => Err(format!(
-            "size `{t}` is invalid: the matrix is {r} x {c}; at most {MAX_SIZE} rows are read"
-        )),
-        [Some(r), Some(c), Some(nnz)] if r == c && r > 0 => Ok((r, nnz)),
-        [Some(r), Some(c), Some(_)] if r != c => Err(format!(
-            "size `{t}` is invalid: the matrix is {r} x {c}; it must be square"
-        )),
-        _ => Err(format!(
-            "size line `{t}` is invalid: it must be `rows columns entries`, three integers, rows = columns > 0"
-        )),
-    }
-}
-
-/// The entry (row, column, value), 0-based, of the entry line `t` of a matrix of size
-/// `size` (`general`: any triangle, else the lower one); the message when it is invalid.
-fn entry(t: &str, size: usize, general: bool) -> Result<(usize, usize, f64), String> {
-    let fields: Vec<&str> = t.split_whitespace().collect();
-    let [ri, ci, vi] = fields[..] else {
-        return Err(format!(
-            "entry `{t}` is invalid: it must be `row column value`"
-        ));
-    };
-    let index = |text: &str, name: &str| -> Result<usize, String> {
-        match text.parse::<usize>() {
-            Ok(k) if (1..=size).contains(&k) => Ok(k - 1),
-            _ => Err(format!(
-                "{name} = `{text}` is invalid: it must be an integer from 1 to {size}"
-            )),
-        }
-    };
-    let (i, j) = (index(ri, "row")?, index(ci, "column")?);
-    let value = match vi.parse::<f64>() {
-        Ok(v) if v.is_finite() => v,
-        _ => {
-            return Err(format!(
-                "value = `{vi}` at ({ri}, {ci}) is invalid: it must be a finite number"
-            ));
-        }
-    };
-    if !general && i < j {
-        return Err(format!(
-            "entry ({ri}, {ci}) is above the diagonal: a `symmetric` file stores the lower triangle only (row >= column)"
-        ));
-    }
-    Ok((i, j, value))
-}
+/// Bytes read at a time: the lines are read where they lie in this buffer, never copied
+/// (a line longer than it grows it, up to the line limit of the reader's bounds).
+const BLOCK: usize = 1 << 20;
 
 /// Reads Matrix Market text from `reader` (within [`crate::input::bounded::TABLE`]'s limits);
 /// `file` names it in errors.
 pub fn read(reader: impl io::Read, file: &Path) -> Result<LowerEntries, MatrixMarketError> {
-    let err = |line: usize, message: String| MatrixMarketError::Line {
-        file: file.to_path_buf(),
-        line,
-        message: crate::input::safe::clip_quotes(message),
-    };
-    let reader = io::BufReader::new(crate::input::bounded::Bounded::new(
-        reader,
-        crate::input::bounded::TABLE,
-    ));
-    let mut lines = reader.lines().enumerate().map(|(i, l)| (i + 1, l));
-    let mut next = || -> Result<Option<(usize, String)>, MatrixMarketError> {
-        match lines.next() {
-            None => Ok(None),
-            Some((n, Ok(text))) => Ok(Some((n, text))),
-            Some((_, Err(cause))) => Err(MatrixMarketError::Read {
-                file: file.to_path_buf(),
-                cause,
-            }),
+    read_in_blocks(reader, file, BLOCK)
+}
+
+/// [`read`] with a first buffer of `block` bytes (the tests make lines cross its ends).
+fn read_in_blocks(
+    reader: impl io::Read,
+    file: &Path,
+    block: usize,
+) -> Result<LowerEntries, MatrixMarketError> {
+    let mut reader = crate::input::bounded::Bounded::new(reader, crate::input::bounded::TABLE);
+    let mut reading = Reading::new(file);
+    let mut buf = vec![0u8; block.max(1)];
+    let mut filled = 0;
+    loop {
+        if filled == buf.len() {
+            buf.resize(2 * buf.len(), 0);
         }
-    };
-    let Some((_, header)) = next()? else {
-        return Err(err(1, format!("the file is empty: {HEADER_ALLOWED}")));
-    };
-    let general = is_general(&header).map_err(|message| err(1, message))?;
-    // Size line: the first line that is neither a comment nor blank.
-    let (size, declared) = loop {
-        let Some((n, text)) = next()? else {
-            return Err(err(
-                2,
-                "the file ends before the size line `rows columns entries`".into(),
-            ));
+        let n = match io::Read::read(&mut reader, &mut buf[filled..]) {
+            Ok(n) => n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(cause) => return Err(reading.read_error(cause)),
         };
+        let end = filled + n;
+        if n == 0 {
+            if end > 0 {
+                reading.line(&buf[..end])?;
+            }
+            return reading.finish();
+        }
+        // The complete lines: up to the last newline of the buffer.
+        let Some(last) = buf[filled..end].iter().rposition(|&b| b == b'\n') else {
+            filled = end;
+            continue;
+        };
+        let last = filled + last;
+        let mut start = 0;
+        while start <= last {
+            let stop = start
+                + buf[start..=last]
+                    .iter()
+                    .position(|&b| b == b'\n')
+                    .expect("a newline at `last`");
+            reading.line(&buf[start..stop])?;
+            start = stop + 1;
+        }
+        buf.copy_within(last + 1..end, 0);
+        filled = end - last - 1;
+    }
+}
+
+/// Where the reading of a file stands.
+enum Stage {
+    /// Before the header line.
+    Header,
+    /// Before the size line (comments and blank lines skipped).
+    Size,
+    /// The entry lines.
+    Entries,
+}
+
+/// A file being read, line by line.
+struct Reading<'a> {
+    file: &'a Path,
+    /// Lines so far (the 1-based number of the last one).
+    lines: usize,
+    stage: Stage,
+    general: bool,
+    size: usize,
+    declared: usize,
+    entries: Vec<(usize, usize, f64)>,
+    /// The line of each entry (`general` files: their symmetry error names it).
+    at_line: Vec<usize>,
+    /// Entry lines past the declared count.
+    excess: usize,
+}
+
+impl<'a> Reading<'a> {
+    fn new(file: &'a Path) -> Self {
+        Reading {
+            file,
+            lines: 0,
+            stage: Stage::Header,
+            general: false,
+            size: 0,
+            declared: 0,
+            entries: Vec::new(),
+            at_line: Vec::new(),
+            excess: 0,
+        }
+    }
+
+    fn error(&self, line: usize, message: String) -> MatrixMarketError {
+        MatrixMarketError::Line {
+            file: self.file.to_path_buf(),
+            line,
+            message: crate::input::safe::clip_quotes(message),
+        }
+    }
+
+    fn read_error(&self, cause: io::Error) -> MatrixMarketError {
+        MatrixMarketError::Read {
+            file: self.file.to_path_buf(),
+            cause,
+        }
+    }
+
+    /// The next line, `bytes` without its newline.
+    fn line(&mut self, bytes: &[u8]) -> Result<(), MatrixMarketError> {
+        self.lines += 1;
+        if matches!(self.stage, Stage::Entries) && self.entries.len() < self.declared {
+            if let Some(e) = line::fast_entry(bytes, self.size, self.general) {
+                self.push(e);
+                return Ok(());
+            }
+        }
+        let text = std::str::from_utf8(bytes).map_err(|_| {
+            self.read_error(io::Error::new(
+                io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            ))
+        })?;
         let t = text.trim();
-        if t.is_empty() || t.starts_with('%') {
-            continue;
+        match self.stage {
+            Stage::Header => {
+                self.general = line::is_general(text).map_err(|m| self.error(self.lines, m))?;
+                self.stage = Stage::Size;
+            }
+            _ if t.is_empty() || t.starts_with('%') => {}
+            Stage::Size => {
+                (self.size, self.declared) =
+                    line::size_line(t).map_err(|m| self.error(self.lines, m))?;
+                self.entries = Vec::with_capacity(self.declared.min(1 << 24));
+                self.stage = Stage::Entries;
+            }
+            Stage::Entries if self.entries.len() == self.declared => self.excess += 1,
+            Stage::Entries => {
+                let e = line::entry(t, self.size, self.general)
+                    .map_err(|m| self.error(self.lines, m))?;
+                self.push(e);
+            }
         }
-        break size_line(t).map_err(|message| err(n, message))?;
-    };
-    let mut entries = Vec::with_capacity(declared.min(1 << 24));
-    let mut at_line = Vec::with_capacity(declared.min(1 << 24));
-    let mut excess = 0;
-    while let Some((n, text)) = next()? {
-        let t = text.trim();
-        if t.is_empty() || t.starts_with('%') {
-            continue;
+        Ok(())
+    }
+
+    fn push(&mut self, e: (usize, usize, f64)) {
+        self.entries.push(e);
+        if self.general {
+            self.at_line.push(self.lines);
         }
-        if entries.len() == declared {
-            excess += 1;
-            continue;
+    }
+
+    /// The matrix, once every line is read.
+    fn finish(self) -> Result<LowerEntries, MatrixMarketError> {
+        match self.stage {
+            Stage::Header => {
+                return Err(self.error(1, format!("the file is empty: {}", line::HEADER_ALLOWED)));
+            }
+            Stage::Size => {
+                return Err(self.error(
+                    2,
+                    "the file ends before the size line `rows columns entries`".into(),
+                ));
+            }
+            Stage::Entries => {}
         }
-        entries.push(entry(t, size, general).map_err(|message| err(n, message))?);
-        at_line.push(n);
+        let found = self.entries.len() + self.excess;
+        if found != self.declared {
+            return Err(MatrixMarketError::Count {
+                file: self.file.to_path_buf(),
+                declared: self.declared,
+                found,
+            });
+        }
+        let entries = if self.general {
+            symmetric_part(&self.entries, &self.at_line, self.file)?
+        } else {
+            self.entries
+        };
+        Ok(LowerEntries {
+            size: self.size,
+            entries,
+        })
     }
-    if entries.len() + excess != declared {
-        return Err(MatrixMarketError::Count {
-            file: file.to_path_buf(),
-            declared,
-            found: entries.len() + excess,
-        });
-    }
-    if general {
-        entries = symmetric_part(&entries, &at_line, file)?;
-    }
-    Ok(LowerEntries { size, entries })
 }
 
 /// A symmetric matrix given by its coordinates in memory, both triangles (as a `general`
@@ -408,6 +445,55 @@ mod tests {
         )
         .unwrap();
         assert_eq!(m.entries[1], (1, 0, 0.5 * (-1.0 + -1.0000000000002)));
+    }
+
+    /// Lines that cross the ends of the read buffer, CRLF line ends, a last line without its
+    /// newline, comments between entries, exponents in every form: the same matrix whatever
+    /// the buffer's size, and an error on the same line.
+    #[test]
+    fn lines_across_the_buffer_read_the_same_at_every_block_size() {
+        let text = "%%MatrixMarket matrix coordinate real symmetric\r\n% K\r\n  \r\n3 3 6\r\n1 1 1.5E+04\r\n% between\r\n2 1 -2.5e-3\r\n2 2 7\r\n3 2 +1e0\r\n3   3\t.25\r\n3 3 1.0000000000000002";
+        let whole = read_str(text).unwrap();
+        assert_eq!(whole.size, 3);
+        assert_eq!(
+            whole.entries,
+            vec![
+                (0, 0, 1.5e4),
+                (1, 0, -2.5e-3),
+                (1, 1, 7.0),
+                (2, 1, 1.0),
+                (2, 2, 0.25),
+                (2, 2, 1.0000000000000002)
+            ]
+        );
+        let bad = text.replace("2 2 7", "2 2 7e");
+        for block in [1, 2, 3, 5, 7, 16, 64, 1 << 20] {
+            let m = read_in_blocks(text.as_bytes(), Path::new("K.mtx"), block).unwrap();
+            assert_eq!(m, whole, "block {block}");
+            let e = read_in_blocks(bad.as_bytes(), Path::new("K.mtx"), block).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                "K.mtx:8: value = `7e` at (2, 2) is invalid: it must be a finite number",
+                "block {block}"
+            );
+        }
+    }
+
+    #[test]
+    fn integer_and_pattern_headers() {
+        let m = read_str("%%MatrixMarket matrix coordinate integer symmetric\n1 1 1\n1 1 3\n");
+        assert_eq!(m.unwrap().entries, vec![(0, 0, 3.0)]);
+        let e = read_str("%%MatrixMarket matrix coordinate pattern symmetric\n1 1 1\n1 1\n");
+        assert_eq!(
+            e.unwrap_err().to_string(),
+            "K.mtx:1: header `%%MatrixMarket matrix coordinate pattern symmetric` is invalid: a `pattern` file has no values (a stiffness or mass matrix needs them); the first line must be `%%MatrixMarket matrix coordinate real symmetric` (or `integer` for `real`, `general` for `symmetric`)"
+        );
+        let bytes = b"%%MatrixMarket matrix coordinate real symmetric\n2 2 1\n2 1 1\xff\n";
+        let e = read(&bytes[..], Path::new("K.mtx"));
+        assert_eq!(
+            e.unwrap_err().to_string(),
+            "K.mtx: cannot read the file: stream did not contain valid UTF-8"
+        );
     }
 
     #[test]

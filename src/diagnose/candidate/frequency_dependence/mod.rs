@@ -79,7 +79,10 @@ impl Candidate for FrequencyDependence {
             .and_then(Result::ok);
         let comparison = per.as_ref().map(|p| {
             let lrt = (shared.fitted.deviance - p.fitted.deviance).max(0.0);
-            (lrt, lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof))
+            (
+                lrt,
+                lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof, false),
+            )
         });
         let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
         let words = match comparison {
