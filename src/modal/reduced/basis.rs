@@ -151,6 +151,9 @@ fn relieve(loads: &mut Mat<f64>, nominal: &ModalSolution, m: &crate::structure::
 /// ([`DEPENDENT`]), the projections of the base matrices and of every parameter's derivative
 /// matrices grown by them. Returns the number of columns added.
 pub(super) fn extend(reduced: &mut Reduced, structure: &Structure, w: MatRef<'_, f64>) -> usize {
+    if w.ncols() == 0 {
+        return 0;
+    }
     let r = reduced.dimension();
     let (kb, mb) = (reduced.base.k.as_faer(), reduced.base.m.as_faer());
     let mut w = w.to_owned();
