@@ -194,3 +194,91 @@ fn a_reduced_solve_is_the_same_bits_on_any_number_of_threads() {
     assert_eq!(bits(&one), bits(&two));
     assert!(lambda_to_hz(one.values()[RIGID]) > 0.0);
 }
+
+/// A lap of about 3,000 DOFs (above `jointid::modal::reduced::MIN_DOFS`), its normal spring
+/// halved in the data, diagnosed through the command: on the reduced model, the verdict
+/// `none`, the spring calibrated back within three standard errors, and the reduced model's
+/// check against one full solve in the report, every frequency within 1e-6.
+#[test]
+#[ignore = "seconds in release, a minute unoptimised: .ci/run runs it in release"]
+fn a_solid_lap_is_diagnosed_on_its_reduced_model_and_checked_by_a_full_solve() {
+    use crate::common::{jointid_ok, s};
+    let dir = scratch("reduced", "diagnose");
+    let config = dir.join("lap.toml");
+    std::fs::write(
+        &config,
+        LAP.replace("size = 0.01\nlayers = 1", "size = 0.005\nlayers = 2"),
+    )
+    .unwrap();
+    let model = dir.join("model");
+    jointid_ok(&["solid", s(&config), "--out", s(&model)]);
+    let text = std::fs::read_to_string(model.join("model.toml")).unwrap();
+    let at = text.find("name = \"k_normal\"").unwrap();
+    let line = at + text[at..].find("value = ").unwrap();
+    let end = line + text[line..].find('\n').unwrap();
+    let nominal: f64 = text[line + 8..end].trim().parse().unwrap();
+    let truth = format!(
+        "{}value = {:e}{}",
+        &text[..line],
+        nominal / 2.0,
+        &text[end..]
+    );
+    std::fs::write(model.join("truth.toml"), truth).unwrap();
+    let measured = dir.join("measured.csv");
+    jointid_ok(&[
+        "simulate",
+        "--model",
+        s(&model.join("truth.toml")),
+        "--modes",
+        "6",
+        "--measure",
+        "w",
+        "--shape-noise",
+        "0.01",
+        "--frequency-noise",
+        "0.001",
+        "--seed",
+        "1",
+        "--out",
+        s(&measured),
+    ]);
+    let json = dir.join("diagnose.json");
+    jointid_ok(&[
+        "diagnose",
+        "--model",
+        s(&model.join("model.toml")),
+        "--measured",
+        s(&measured),
+        "--frequency-noise",
+        "0.001",
+        "--shape-noise",
+        "0.01",
+        "--json",
+        s(&json),
+        "--quiet",
+        "--n",
+        "16",
+        "--m",
+        "6",
+    ]);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(r["verdict"], "none", "{}", r["verdict"]);
+    let check = &r["reduction"];
+    assert_eq!(check["verified"], true, "{check}");
+    assert!(check["largest_frequency_difference"].as_f64().unwrap() < 1e-6);
+    assert_eq!(check["modes"].as_array().unwrap().len(), 6);
+    let k = r["after"]["parameters"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "k_normal")
+        .unwrap();
+    let (value, se) = (k["value"].as_f64().unwrap(), k["se"].as_f64().unwrap());
+    assert!(
+        (value - nominal / 2.0).abs() < 3.0 * se,
+        "k_normal {value:e} +- {se:e} against {:e}",
+        nominal / 2.0
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
