@@ -25,6 +25,12 @@
 //!   yardstick: module `yardstick`), its frequencies alone and the whiteness of its shape
 //!   residuals all pass at [`FIT_ALPHA`], the noise estimated within `noise::LARGEST_FACTOR`
 //!   of the stated.
+//! - **Pairs** (module `search`): where the causes added one after another leave a misfit
+//!   beyond the measurement error (or none was significant and the joint-only fit leaves
+//!   one), every pair of causes not yet fitted together is, each one more hypothesis; a pair
+//!   clearly best among them, the path's end and the additions tried at its last step
+//!   replaces the path. One cause at a time misses two that only act together: a lap and an
+//!   end mass, neither significant alone beside a frequency-dependent joint that mimics both.
 //! - **Verdict** ([`decide`]): no significant cause, and the joint-only fit adequate: `none`;
 //!   no significant cause otherwise: `unexplained`. A clearly best cause, extended by the
 //!   search with every further cause clearly best at its step: `effect` (or
@@ -253,7 +259,7 @@ pub fn criterion(estimate: &NoiseEstimate, tried: usize, candidates: usize) -> S
         )
     };
     format!(
-        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated; one-sided for a mass, a spring or a shear flexibility added from zero) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
+        "each model with its own discrepancy, a cause is significant when its likelihood-ratio p-value (F where a discrepancy was estimated; one-sided for a mass, a spring or a shear flexibility added from zero) times {count} is below {ALPHA}, and named alone when every other significant one is {AMBIGUITY_MARGIN} or more behind it in AIC; causes are added while one is, and where they leave a misfit every other pair of causes is tried together; a model explains the data when, under {yardstick}, its chi^2, its frequencies alone and the whiteness of its shape residuals along the structure all pass at {FIT_ALPHA}"
     )
 }
 

@@ -70,6 +70,9 @@ pub struct NoiseEstimate {
     pub working_floor: f64,
     /// a / sigma_s (stated): how far the shape statement was off.
     pub shape_factor: f64,
+    /// The level of the estimated shape noise against the stated, floor included
+    /// ([`level_factor`]); with the data's standard errors, `shape_factor`.
+    pub level_factor: f64,
     /// s_f / sigma_f (stated).
     pub frequency_factor: f64,
     /// Pseudo-residuals of dense sensor sequences used ([`pseudo_residuals`]).
@@ -148,6 +151,7 @@ pub fn from_data(
         frequency_estimated: false,
         working_floor: SHAPE_FLOOR,
         shape_factor,
+        level_factor: shape_factor,
         frequency_factor,
         from_differences: 0,
         from_levels: res.shape.len(),
@@ -203,6 +207,7 @@ pub fn estimate(
     let dof_f = (n_f - p_f).max(1.0);
     let frequency_check = (res.frequency.iter().map(|e| e * e).sum::<f64>() / dof_f).sqrt();
     let shape_factor = a / stated.shape;
+    let level_factor = level_factor(&res.shape, (a, b), stated.shape, stated_floor);
     NoiseEstimate {
         from_model: from_model.to_string(),
         shape: a,
@@ -216,6 +221,7 @@ pub fn estimate(
         frequency_estimated: shape_factor > 1.0,
         working_floor: (b / a).max(stated_floor),
         shape_factor,
+        level_factor,
         frequency_factor: frequency_check / stated.frequency,
         from_differences,
         from_levels,
@@ -223,6 +229,27 @@ pub fn estimate(
         from_data: false,
         stated_kept: false,
         frequency_sigmas: None,
+    }
+}
+
+/// The root of the mean estimated shape variance over the mean stated one, at the shape
+/// components `shape` ((u, e) as fractions of their mode's peak): the variance function
+/// (a, b) estimated, a^2 u^2 + b^2, against the stated (sigma_s max(|u|, floor))^2.
+/// `shape_factor` (a over sigma_s) alone misses a noise carried by the floor: on three
+/// sensors the variance function may put a model's whole shape misfit into b (13% of the
+/// peak on a solid lap with an end mass its model lacks, against a stated 1% noise), with a
+/// at its smallest.
+pub fn level_factor(shape: &[(f64, f64)], (a, b): (f64, f64), stated: f64, floor: f64) -> f64 {
+    let (estimated, of_stated) = shape.iter().fold((0.0, 0.0), |(e, s), &(u, _)| {
+        (
+            e + a * a * u * u + b * b,
+            s + (stated * u.abs().max(floor)).powi(2),
+        )
+    });
+    if of_stated > 0.0 {
+        (estimated / of_stated).sqrt()
+    } else {
+        a / stated
     }
 }
 
@@ -472,7 +499,7 @@ impl NoiseEstimate {
     /// largest model's, the smallest residual any model reaches: beyond the factor, no model
     /// explains the data.
     pub fn plausible(&self) -> bool {
-        self.shape_factor <= LARGEST_FACTOR
+        self.shape_factor <= LARGEST_FACTOR && self.level_factor <= LARGEST_FACTOR
     }
 
     /// P(F(dof, nu) > chi^2 / dof): the goodness of fit of a chi^2 computed under the working
@@ -715,6 +742,30 @@ mod tests {
     }
 
     /// Residuals of a pure relative noise (b = 0): the floor is clamped at zero, not negative.
+    #[test]
+    fn the_level_factor_weighs_the_floor_with_the_relative_part() {
+        let shape: Vec<(f64, f64)> = [1.0, -0.6, 0.3, 0.01, -0.9, 0.45]
+            .iter()
+            .map(|&u| (u, 0.0))
+            .collect();
+        let (stated, floor) = (0.01, 0.02);
+        // The stated noise itself: 1, whatever the components.
+        let own = level_factor(&shape, (stated, stated * floor), stated, floor);
+        assert!((own - 1.0).abs() < 1e-2, "{own}");
+        // Twice the stated relative part, no floor: about 2 (the floor's share is small).
+        let twice = level_factor(&shape, (2.0 * stated, 0.0), stated, floor);
+        assert!((twice - 2.0).abs() < 1e-3, "{twice}");
+        // The relative part at its smallest and a floor of 13% of the peak: the shape factor
+        // (0.25) says nothing; the level is 13 / 1 over the RMS component, about 20.
+        let u2 = shape.iter().map(|(u, _)| u * u).sum::<f64>() / shape.len() as f64;
+        let hidden = level_factor(&shape, (0.25 * stated, 0.13), stated, floor);
+        let expect = ((0.0025f64.powi(2) * u2 + 0.13f64.powi(2)) / (stated * stated * u2)).sqrt();
+        assert!(
+            hidden > LARGEST_FACTOR && (hidden / expect - 1.0).abs() < 1e-3,
+            "{hidden}"
+        );
+    }
+
     #[test]
     fn floor_stays_non_negative() {
         let pairs: Vec<(f64, f64)> = (1..30)

@@ -4,6 +4,10 @@
 //! candidate that combines (module `candidate`'s `combined`), each fitted once, the clearly
 //! best significant addition kept, until the model fits within the measurement error (module
 //! `yardstick`'s adequacy), none is significant, two contend, or [`MAX_CAUSES`] are together.
+//! Where that ends in a misfit beyond the measurement error, every pair of candidates that
+//! combine and were not yet fitted together is, from the fit of the one of smaller deviance
+//! alone; a pair clearly best among them and the path's models replaces the path
+//! ([`with_pairs`]).
 //!
 //! Multiple testing is counted honestly: the p-value of an addition is adjusted for every
 //! hypothesis tried up to its step (the candidates, the members of scans, every addition tried
@@ -81,6 +85,10 @@ pub struct Search {
     pub hypotheses: usize,
     /// Hypotheses of the candidates alone.
     pub candidates_hypotheses: usize,
+    /// Where the pairs tried after the causes added one by one begin among the models (their
+    /// count when none was tried): a pair the path does not end in was tried, not found, and
+    /// gives no yardstick ([`Search::largest`]).
+    pub pairs_from: usize,
 }
 
 /// The search on `stage` over `library` (module docs); `hypotheses` the count of the
@@ -117,7 +125,7 @@ pub fn search(
         .and_then(|i| singles[i].fitted().cloned());
     let combinations: Vec<Model> = given
         .par_iter()
-        .map(|parts| together(library, &singles, parts, stage, lap.as_ref()))
+        .map(|parts| together(library, &singles, parts, stage, lap.as_ref(), ASKED))
         .collect();
     let mut models = singles;
     models.extend(combinations);
@@ -126,22 +134,16 @@ pub fn search(
         judge(m, stage.base, tried, stage);
     }
     let rivals: Vec<Rival> = models.iter().map(rival).collect();
-    let Some((first, contenders)) = select(&rivals) else {
-        return Search {
-            models,
-            path: Path::default(),
-            hypotheses: tried,
-            candidates_hypotheses: hypotheses,
-        };
-    };
-    let mut path = Path {
+    let mut path = select(&rivals).map_or_else(Path::default, |(first, contenders)| Path {
         models: vec![first],
         contenders,
-    };
+    });
     // Causes added one after another while the first stands clearly alone and the model of
     // the causes so far does not fit within the measurement error.
-    while path.contenders.is_empty() && path.models.len() < MAX_CAUSES {
-        let &last = path.models.last().expect("the path has a first cause");
+    while let Some(&last) = path.models.last() {
+        if !path.contenders.is_empty() || path.models.len() >= MAX_CAUSES {
+            break;
+        }
         let fits = models[last].fitted().is_some_and(|f| {
             yardstick::adequate(&models[last].name, f, stage.measured, stage.calibration)
         });
@@ -196,18 +198,38 @@ pub fn search(
             _ => break,
         }
     }
+    let pairs_from = models.len();
+    if !ends_adequate(&path, &models, stage) {
+        let pairs = untried_pairs(library, &models);
+        if !pairs.is_empty() {
+            let singles = &models[..library.len()];
+            let fitted: Vec<Model> = pairs
+                .par_iter()
+                .map(|parts| together(library, singles, parts, stage, lap.as_ref(), PAIRED))
+                .collect();
+            tried += fitted.len();
+            let at = models.len();
+            models.extend(fitted);
+            for m in &mut models[at..] {
+                judge(m, stage.base, tried, stage);
+            }
+            path = with_pairs(path, &models, at);
+        }
+    }
     Search {
         models,
         path,
         hypotheses: tried,
         candidates_hypotheses: hypotheses,
+        pairs_from,
     }
 }
 
 impl Search {
     /// The largest physical model (module `yardstick`): the last model of the path when it is
-    /// static, else the static candidate of least deviance when below the joint-only fit
-    /// `base`'s by more than [`TIE`] of it, else `base` (named `joint only`); with its name.
+    /// static, else the static model of least deviance, the pairs tried after the path left
+    /// out, when below the joint-only fit `base`'s by more than [`TIE`] of it, else `base`
+    /// (named `joint only`); with its name.
     pub fn largest<'a>(&'a self, base: &'a Fitted) -> (&'a str, &'a Fitted) {
         let stands = |i: usize| self.models[i].verdict != Verdict::FrequencyDependent;
         let usable = |i: usize| {
@@ -224,7 +246,7 @@ impl Search {
         {
             return found;
         }
-        (0..self.models.len())
+        (0..self.pairs_from)
             .filter(|&i| stands(i))
             .filter_map(usable)
             .filter(|(_, f)| f.deviance < base.deviance - TIE * base.deviance.abs())
@@ -242,15 +264,98 @@ pub const TIE: f64 = 1e-6;
 /// The name of the joint-only fit among the models.
 pub const JOINT_ONLY: &str = "joint only";
 
+/// Why a combination fitted from the start was tried: the user asked for it.
+const ASKED: &str = "asked for (--causes)";
+/// Why a combination fitted from the start was tried: the pair search.
+const PAIRED: &str = "a pair tried where the causes added one by one left a misfit";
+
+/// Whether the search's path ends in a model that fits within the measurement error: its last
+/// model, or the joint-only fit when the path is empty; a path with contenders does not.
+fn ends_adequate(path: &Path, models: &[Model], stage: &Stage) -> bool {
+    if !path.contenders.is_empty() {
+        return false;
+    }
+    let (name, fitted) = match path.models.last() {
+        Some(&i) => match models[i].fitted() {
+            Some(f) => (models[i].name.as_str(), f),
+            None => return false,
+        },
+        None => (JOINT_ONLY, stage.base),
+    };
+    yardstick::adequate(name, fitted, stage.measured, stage.calibration)
+}
+
+/// Every pair of candidates that combine, each fitted alone, not yet fitted together (by the
+/// causes added one after another or the user's combinations): indices into `library`, the
+/// one of smaller deviance alone first (the fit of the pair starts from its fit).
+fn untried_pairs(library: &[Arc<dyn Candidate>], models: &[Model]) -> Vec<Vec<usize>> {
+    let usable: Vec<usize> = (0..library.len())
+        .filter(|&i| library[i].part().is_some())
+        .filter(|&i| models[i].fitted().is_some())
+        .collect();
+    let done: Vec<Vec<usize>> = (0..models.len())
+        .filter_map(|m| parts_of(&[m], models, library))
+        .map(|mut parts| {
+            parts.sort_unstable();
+            parts
+        })
+        .collect();
+    let deviance = |i: usize| models[i].fit().map_or(f64::INFINITY, |f| f.deviance);
+    let mut pairs = Vec::new();
+    for (n, &a) in usable.iter().enumerate() {
+        for &b in &usable[n + 1..] {
+            if done.iter().any(|d| d[..] == [a, b]) {
+                continue;
+            }
+            pairs.push(if deviance(b) < deviance(a) {
+                vec![b, a]
+            } else {
+                vec![a, b]
+            });
+        }
+    }
+    pairs
+}
+
+/// The path once the pairs `models[at..]` are judged. The pairs stand beside the path's end
+/// (or its first cause and contenders) and the models that extended it at the step that
+/// stopped; a pair clearly best of them by the relative rules ([`select`]) replaces the path,
+/// every model within the margin of it contending; else the path stands as it is.
+fn with_pairs(path: Path, models: &[Model], at: usize) -> Path {
+    let mut standing: Vec<usize> = if path.contenders.is_empty() {
+        path.models.last().copied().into_iter().collect()
+    } else {
+        path.models
+            .first()
+            .copied()
+            .into_iter()
+            .chain(path.contenders.iter().copied())
+            .collect()
+    };
+    if let Some(&end) = path.models.last() {
+        standing.extend((0..at).filter(|&i| models[i].extends == Some(end)));
+    }
+    standing.extend(at..models.len());
+    let rivals: Vec<Rival> = standing.iter().map(|&i| rival(&models[i])).collect();
+    match select(&rivals) {
+        Some((best, close)) if standing[best] >= at => Path {
+            models: vec![standing[best]],
+            contenders: close.iter().map(|&c| standing[c]).collect(),
+        },
+        _ => path,
+    }
+}
+
 /// The causes `parts` (indices into `library`) fitted together, from the first one's own fit
 /// (`singles`), each further one added to the model of those before it; named by their names
-/// joined by " + ", a model that extends the joint-only fit.
+/// joined by " + ", a model that extends the joint-only fit; `why` it was tried.
 fn together(
     library: &[Arc<dyn Candidate>],
     singles: &[Model],
     parts: &[usize],
     stage: &Stage,
     lap: Option<&Fitted>,
+    why: &str,
 ) -> Model {
     let name = parts
         .iter()
@@ -281,7 +386,7 @@ fn together(
         fit.bounded = parts
             .iter()
             .all(|&i| singles[i].fit().is_some_and(|f| f.bounded));
-        fit.describe = format!("the causes {name} together, asked for (--causes)");
+        fit.describe = format!("the causes {name} together, {why}");
     }
     tell_fitted(&watch, &name, &outcome);
     Model {

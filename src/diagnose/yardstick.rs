@@ -12,7 +12,8 @@
 //! - its frequency residuals against the frequency noise its own shape residuals imply (the
 //!   stated frequency noise times the factor by which the shape statement was off: one
 //!   misstatement of the instrument's quality affects both alike);
-//! - a residual scale within [`LARGEST_FACTOR`] of the stated.
+//! - a residual scale within [`LARGEST_FACTOR`] of the stated, its floor included
+//!   ([`NoiseEstimate::plausible`]).
 //!
 //! Its residual scale is the smallest any model reaches: a smaller model's, larger, would make
 //! every model look better than the largest one does at its own scale. When it does not pass,
@@ -55,7 +56,7 @@ pub fn of_model(
     );
     let frequency = e.frequency_lack_of_fit(&res, fitted.estimates.len()).2;
     let white = whiteness::of_residuals(&res, measured, e.working, e.working_floor).p_value;
-    if e.shape_factor <= LARGEST_FACTOR && frequency >= FIT_ALPHA && white >= FIT_ALPHA {
+    if e.plausible() && frequency >= FIT_ALPHA && white >= FIT_ALPHA {
         e
     } else {
         stated_yardstick(e, stated)
@@ -99,12 +100,20 @@ pub fn adequate(
 /// check. The statement is taken as known to the precision the data could have checked it:
 /// the tests stay F tests on the check's degrees of freedom. The scale is the stated; the
 /// shape of the variance function (the floor relative to the relative part, b / a) is kept
-/// from the check, whose misfit inflates a and b alike.
+/// from the check, whose misfit inflates a and b alike, unless the check's level, floor
+/// included, is beyond [`LARGEST_FACTOR`] of the stated: a floor that large is misfit the
+/// variance function put into b (a at its smallest), and the stated floor is kept.
 fn stated_yardstick(check: NoiseEstimate, stated: Noise) -> NoiseEstimate {
+    let working_floor = if check.level_factor > LARGEST_FACTOR {
+        SHAPE_FLOOR
+    } else {
+        check.working_floor
+    };
     NoiseEstimate {
         working: stated,
         frequency_estimated: false,
         stated_kept: true,
+        working_floor,
         ..check
     }
 }

@@ -168,20 +168,16 @@ fn a_monolithic_bar_and_an_unmodelled_end_mass_are_answered_not_refused() {
     for case in ["tipmass-3", "tipmass-9"] {
         let r = diagnose(case, &dir);
         eprintln!("{}", line(case, &r));
-        // A 20 g mass on one end that the model lacks: never `none`, never an error; a named
-        // explanation says what remains beyond the noise.
+        // A 20 g mass on one end that the model lacks: the lap, with a mass at the sensors
+        // (the end one among them), and a misfit beyond the noise said to remain: the
+        // library's sensor mass loads every sensor alike, so the shapes miss. On three
+        // sensors neither the lap nor the mass is significant alone (a frequency-dependent
+        // joint mimics both, 0.62% RMS); the pair is (0.13%).
         let verdict = r["verdict"].as_str().unwrap();
-        assert!(
-            verdict == "partial" || verdict == "unexplained" || verdict == "effect",
-            "{case}: {verdict}"
-        );
-        if verdict == "partial" {
-            assert!(r["remaining"].is_object(), "{case}");
-        }
-        if case.ends_with("-9") {
-            // Nine sensors: the lap, and a mass at the sensors (the end one among them).
-            assert_eq!(causes(&r), ["layered_lap", "sensor_mass"], "{case}");
-        }
+        assert_eq!(verdict, "partial", "{case}");
+        assert!(r["remaining"].is_object(), "{case}");
+        assert_eq!(causes(&r), ["layered_lap", "sensor_mass"], "{case}");
+        assert!(number(&r["after"]["frequency_rms_pct"]) < 0.2, "{case}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
