@@ -22,12 +22,13 @@ use std::sync::Arc;
 use rayon::prelude::*;
 
 use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
-use super::decide::{MAX_CAUSES, Path, Rival, adjusted, lr_p_value, select};
+use super::decide::{MAX_CAUSES, Path, Rival, adjusted, select};
 use super::fit::{Fitted, refitted_chi2, residuals};
 use super::progress::Pass;
 use super::report::Verdict;
 use super::yardstick;
 use crate::model::chain::assembly::LAYERED_LAP;
+use crate::stats::lr_sf;
 
 /// One model the search fitted: a candidate alone, or a combination of causes.
 #[derive(Debug)]
@@ -437,7 +438,7 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
             let lrt = (from.deviance - fit.deviance).max(0.0);
             (
                 lrt,
-                lr_p_value(lrt, fit.added, fit.discrepancy_dof, fit.bounded),
+                lr_sf(lrt, fit.added, fit.discrepancy_dof, fit.bounded),
                 Test::Discrepancy,
             )
         }
@@ -449,11 +450,10 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
 
 /// What the relative rules read of `m`.
 fn rival(m: &Model) -> Rival {
-    match (&m.outcome, m.lrt, m.adjusted) {
-        (Ok(fit), Some(lrt), Some(adjusted)) => Rival {
+    match (&m.outcome, m.adjusted) {
+        (Ok(fit), Some(adjusted)) => Rival {
             deviance: fit.deviance,
             parameters: fit.parameters.len(),
-            lrt,
             adjusted,
             usable: fit.excluded.is_none(),
             dependent: m.verdict == Verdict::FrequencyDependent,
@@ -461,7 +461,6 @@ fn rival(m: &Model) -> Rival {
         _ => Rival {
             deviance: f64::INFINITY,
             parameters: 0,
-            lrt: 0.0,
             adjusted: 1.0,
             usable: false,
             dependent: false,

@@ -29,7 +29,7 @@ mod problem;
 pub use problem::ALPHA_MAX;
 
 use super::{Candidate, CandidateError, Fit, Stage, Tier};
-use crate::diagnose::decide::{ALPHA, lr_p_value};
+use crate::diagnose::decide::ALPHA;
 use crate::diagnose::discrepancy;
 use crate::diagnose::fit::{self, Calibration, Discrepancy, Estimate, FitError, Fitted, OwnModel};
 use crate::diagnose::progress::Iterations;
@@ -37,6 +37,7 @@ use crate::diagnose::report::Verdict;
 use crate::modal::reduced;
 use crate::model::effects::{Configured, EffectContext};
 use crate::optim::Termination;
+use crate::stats::lr_sf;
 use problem::{Problem, State};
 
 /// Name of the frequency-dependent joint among the candidates.
@@ -79,10 +80,7 @@ impl Candidate for FrequencyDependence {
             .and_then(Result::ok);
         let comparison = per.as_ref().map(|p| {
             let lrt = (shared.fitted.deviance - p.fitted.deviance).max(0.0);
-            (
-                lrt,
-                lr_p_value(lrt, joints - 1, p.fitted.discrepancy_dof, false),
-            )
+            (lrt, lr_sf(lrt, joints - 1, p.fitted.discrepancy_dof, false))
         });
         let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
         let words = match comparison {
