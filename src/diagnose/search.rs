@@ -271,11 +271,9 @@ const ASKED: &str = "asked for (--causes)";
 const PAIRED: &str = "a pair tried where the causes added one by one left a misfit";
 
 /// Whether the search's path ends in a model that fits within the measurement error: its last
-/// model, or the joint-only fit when the path is empty; a path with contenders does not.
+/// model (with contenders, its first: several explanations that fit, not a misfit), or the
+/// joint-only fit when the path is empty.
 fn ends_adequate(path: &Path, models: &[Model], stage: &Stage) -> bool {
-    if !path.contenders.is_empty() {
-        return false;
-    }
     let (name, fitted) = match path.models.last() {
         Some(&i) => match models[i].fitted() {
             Some(f) => (models[i].name.as_str(), f),
