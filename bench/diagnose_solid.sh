@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `jointid simulate`, `identify` and `diagnose` on the free-free 3D lap of bench/lap-solid.toml
 # (23,958 DOFs, six rigid-body modes, three interface springs) or of another solid
-# configuration of the same specimen (bench/lap-solid-212k.toml: 212,562 DOFs). The data: the lap
+# configuration of the same specimen (bench/lap-solid-212k.toml: 212,562 DOFs;
+# bench/lap-solid-5e5.toml: 516,516 DOFs, about 10 GB for simulate). The data: the lap
 # with its normal interface spring halved ("truth"), 8 elastic modes simulated with 0.1%
 # frequency and 1% shape noise, read at 24 sensors (z translations on both long edges, every
 # 50 mm along the outer faces of the two bars). diagnose starts from the nominal springs: it

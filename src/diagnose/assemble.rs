@@ -63,7 +63,12 @@ pub fn assemble(f: Findings) -> Report {
         noise
     };
     let per_mode_before = per_mode_corrections(f.base, measured, yardstick, f.per_mode);
-    let per_mode_after = per_mode_corrections(after, measured, yardstick, f.per_mode);
+    // No cause selected: the model after is the calibrated one, whose table is the same.
+    let per_mode_after = if std::ptr::eq(after, f.base) {
+        per_mode_before.clone()
+    } else {
+        per_mode_corrections(after, measured, yardstick, f.per_mode)
+    };
     let flatness_before = flatness(&per_mode_before);
     let (mut trend, mut pattern, mut remaining) = (Vec::new(), None, Vec::new());
     if decision.verdict == Verdict::Unexplained {

@@ -26,12 +26,14 @@ use crate::structure::Structure;
 
 /// The effects' context of `model` measured as `measured`, after checking that the model has
 /// joint parameters to calibrate and at most as many as measured modes, an elastic nominal
-/// eigensolution, and a per-mode basis (when given) that reaches every measured mode.
+/// eigensolution, and a per-mode basis (when given) that reaches every measured mode; with
+/// that nominal eigensolution, which holds the pairs the reduced model is built on when one
+/// applies ([`super::reduce::nominal_pairs`]): the nominal model is solved once.
 pub fn prepare(
     model: &Structure,
     measured: &MeasuredModes,
     settings: &DiagnoseSettings,
-) -> Result<Arc<EffectContext>, DiagnoseError> {
+) -> Result<(Arc<EffectContext>, ModalSolution), DiagnoseError> {
     let rigid = model.rigid;
     let joint_parameters = model.identified().len();
     if joint_parameters == 0 {
@@ -44,13 +46,14 @@ pub fn prepare(
         });
     }
     let matrices = model.assemble();
-    // The lowest pairs the checks and the per-mode basis need (all of them up to
-    // DENSE_MAX_DOFS).
+    // The lowest pairs the checks, the per-mode basis and the reduced model need (all of
+    // them up to DENSE_MAX_DOFS).
     let wanted = settings
         .per_mode
         .as_ref()
         .map_or(0, |s| s.n)
         .max(rigid + 1)
+        .max(super::reduce::nominal_pairs(model, measured).unwrap_or(0))
         .min(matrices.size());
     let nominal = ModalSolution::lowest_of(&matrices, wanted)?;
     check_elastic(&matrices, &nominal, rigid)?;
@@ -59,11 +62,12 @@ pub fn prepare(
         let highest = measured.modes().iter().map(|m| m.mode).max().unwrap_or(1);
         identifier.basis_index(highest)?;
     }
-    Ok(Arc::new(EffectContext::new(
+    let ctx = Arc::new(EffectContext::new(
         model.clone(),
         &measured.points(),
         nominal.frequency_hz(rigid),
-    )))
+    ));
+    Ok((ctx, nominal))
 }
 
 /// The model as given and the invariant joint calibrated, on the modes kept.

@@ -145,8 +145,9 @@ pub fn diagnose_watched(
     watch: Watch,
 ) -> Result<Report, DiagnoseError> {
     settings.check()?;
-    let ctx = calibrate::prepare(model, measured, &settings)?;
-    let reduced = reduce::attach(Arc::clone(&ctx), measured, settings.extended)?;
+    let (ctx, nominal) = calibrate::prepare(model, measured, &settings)?;
+    let reduced = reduce::attach(Arc::clone(&ctx), &nominal, measured, settings.extended)?;
+    drop(nominal);
     if Arc::ptr_eq(&reduced, &ctx) {
         return Ok(diagnose_on(&ctx, model, measured, settings, watch)?.0);
     }

@@ -19,30 +19,46 @@ use crate::measured::MeasuredModes;
 use crate::modal::reduced;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{EffectContext, Tier, registry};
-use crate::structure::SparseSym;
+use crate::structure::{SparseSym, Structure};
 
 /// Largest relative frequency difference between the reduced and the full model at the final
 /// parameters accepted without solving the diagnosis again in full.
 pub const FREQUENCY_TOLERANCE: f64 = 1e-6;
 
+/// How many of the nominal model's lowest pairs the reduced model of `structure` is built on
+/// (module docs), when one applies.
+pub fn nominal_pairs(structure: &Structure, measured: &MeasuredModes) -> Option<usize> {
+    reduced::applies(structure)
+        .then(|| (structure.rigid + 2 * measured.modes().len() + 2).min(structure.dof_count()))
+}
+
 /// `ctx` with its structure carrying the reduced model of the module docs, when it applies;
-/// `ctx` itself otherwise. `extended`: the library's extended tier is searched too, and its
-/// effects' directions join the basis.
+/// `ctx` itself otherwise. `nominal`: the nominal model's lowest pairs, solved again only when
+/// it holds fewer than [`nominal_pairs`]. `extended`: the library's extended tier is searched
+/// too, and its effects' directions join the basis.
 pub fn attach(
     ctx: Arc<EffectContext>,
+    nominal: &ModalSolution,
     measured: &MeasuredModes,
     extended: bool,
 ) -> Result<Arc<EffectContext>, ModalError> {
     let structure = &ctx.structure;
-    if !reduced::applies(structure) {
+    let Some(wanted) = nominal_pairs(structure, measured) else {
         return Ok(ctx);
-    }
-    let (rigid, m, n) = (
-        structure.rigid,
-        measured.modes().len(),
-        structure.dof_count(),
-    );
-    let nominal = ModalSolution::lowest_of(&structure.assemble(), (rigid + 2 * m + 2).min(n))?;
+    };
+    let (rigid, m) = (structure.rigid, measured.modes().len());
+    // A sparse solution's first `wanted` pairs (a dense one holds every pair, as before).
+    let solved;
+    let nominal = if nominal.len() == wanted || nominal.len() == structure.dof_count() {
+        nominal
+    } else if nominal.len() > wanted {
+        let (vectors, values) = nominal.sub_basis(wanted);
+        solved = ModalSolution::from_parts(values, vectors, None);
+        &solved
+    } else {
+        solved = ModalSolution::lowest_of(&structure.assemble(), wanted)?;
+        &solved
+    };
     let effects: Vec<(SparseSym, SparseSym)> = registry()
         .into_iter()
         .filter(|e| e.tier() == Tier::Default || (extended && e.tier() == Tier::Extended))
@@ -60,7 +76,7 @@ pub fn attach(
         .collect();
     let attached = reduced::attach(
         structure,
-        &nominal,
+        nominal,
         &directions,
         rigid..(rigid + m + 2).min(nominal.len()),
     )?;

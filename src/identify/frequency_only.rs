@@ -56,8 +56,7 @@ pub enum Fallback {
     RankDeficient(super::ModeOutcome),
 }
 
-/// Widest factor on the parameter the search allows, each way.
-pub const REACH: f64 = 1e4;
+pub use super::reach::REACH;
 
 /// Which parameter a mode's frequency identifies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -226,14 +225,16 @@ pub fn identify_within(
     let target = hz_to_lambda(f_hz).ln();
     let span = REACH.ln();
     let ends = ends.filter(|_| reduced::usable(structure).is_some());
-    let mut end = |high: bool| -> Result<f64, ModalError> {
-        let factor = if high { span.exp() } else { (-span).exp() };
-        match ends.and_then(|e| e.eigenvalue(param, high, factor, t)) {
-            Some(lambda) => Ok(lambda?.ln()),
-            None => Ok(probe.at_value(p0 * factor)?.0),
+    let (g_lo, g_hi) = match ends.and_then(|e| e.bracket(param, t, target)) {
+        Some(bracket) => {
+            let b = bracket?;
+            (b.low, b.high)
         }
+        None => (
+            probe.at_value(p0 * (-span).exp())?.0,
+            probe.at_value(p0 * span.exp())?.0,
+        ),
     };
-    let (g_lo, g_hi) = (end(false)?, end(true)?);
     let (g_lo, g_hi) = (g_lo - target, g_hi - target);
     let name = identified[param].name.clone();
     if (g_hi - g_lo).abs() < 1e-6 {

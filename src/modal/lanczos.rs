@@ -233,7 +233,9 @@ pub fn lowest_modes(
     let factorisation = started.elapsed().as_secs_f64();
     let norms = (norm_1(k), norm_1(m));
     let mut krylov = Krylov::new(n, size, m, llt);
-    let keep = (count + (size - count) / 2).clamp(count, size - 1);
+    // The Ritz vectors kept by a restart: half the room above the wanted pairs. A basis of N
+    // vectors (count = N among them) spans the space and is never restarted.
+    let keep = (count + (size - count) / 2).min(size - 1);
     let tol = settings.tolerance;
     for restart in 0..=settings.max_restarts {
         krylov.expand();
@@ -442,6 +444,26 @@ mod tests {
         }
         assert!(sparse.backward_errors.iter().all(|&e| e <= 1e-10));
         assert!(sparse.shift < 0.0);
+    }
+
+    #[test]
+    fn every_pair_of_the_model_is_answered() {
+        // count = N: the Krylov space is the whole space after one expansion (this panicked
+        // in the choice of the restart's kept vectors before).
+        let mats = paper_model(1e7, 1e4).assemble();
+        let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
+        let n = mats.size();
+        let sparse = lowest_modes(k, m, n, &LanczosSettings::default()).unwrap();
+        let dense = ModalSolution::solve(&mats).unwrap();
+        assert_eq!(sparse.values.len(), n);
+        let lambda_max = dense.values()[n - 1];
+        for i in 2..n {
+            let (s, d) = (sparse.values[i], dense.values()[i]);
+            assert!(
+                (s - d).abs() < 1e-10 * d.max(1e-4 * lambda_max),
+                "pair {i}: {s} vs {d}"
+            );
+        }
     }
 
     #[test]

@@ -179,6 +179,25 @@ pub fn lowest_checking(
     Ok((full(structure, extra, count)?, None))
 }
 
+/// The lowest `count` pairs of `structure` plus `extra` from one solve on its reduction as it
+/// is, neither enriched nor replaced by the full solve whatever their error estimates
+/// ([`residuals`]: every pair's), for a caller that needs less than [`TOLERANCE`] and judges
+/// them itself; none when the structure carries no usable reduction or `count` exceeds its
+/// dimension. The reduced eigenvalues are Rayleigh-Ritz values: each lies at or above the
+/// full model's of the same index.
+pub fn estimated(
+    structure: &Structure,
+    extra: &Extra,
+    count: usize,
+) -> Result<Option<ModalSolution>, ModalError> {
+    match usable(structure) {
+        Some(reduced) if count <= reduced.dimension() => Ok(Some(
+            solve::solve(reduced, structure, extra, count, None)?.modal,
+        )),
+        _ => Ok(None),
+    }
+}
+
 /// The lowest pairs up to `f_max_hz`, at least `count` of them (as
 /// [`ModalSolution::covering`]), on the reduction when it reaches that far, with the enriched
 /// reduction as [`lowest_keeping`]; the first `checked` pairs checked (the others are the
