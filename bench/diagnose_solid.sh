@@ -22,7 +22,7 @@ else
     trap 'rm -rf "$dir"' EXIT
 fi
 cargo build --release --locked --bin jointid >&2
-j=./target/release/jointid
+j=${CARGO_TARGET_DIR:-./target}/release/jointid
 $j solid "$config" --out "$dir/model" >&2
 nominal=$(awk '/^name = "k_normal"/ {found = 1} found && /^value = / {print $3; exit}' \
     "$dir/model/model.toml")
