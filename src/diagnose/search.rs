@@ -135,12 +135,33 @@ pub fn search(
         judge(m, stage.base, tried, stage);
     }
     let rivals: Vec<Rival> = models.iter().map(rival).collect();
-    let mut path = select(&rivals).map_or_else(Path::default, |(first, contenders)| Path {
+    let path = select(&rivals).map_or_else(Path::default, |(first, contenders)| Path {
         models: vec![first],
         contenders,
     });
-    // Causes added one after another while the first stands clearly alone and the model of
-    // the causes so far does not fit within the measurement error.
+    let path = add_causes(library, stage, lap.as_ref(), &mut models, &mut tried, path);
+    let pairs_from = models.len();
+    let path = pair_up(library, stage, lap.as_ref(), &mut models, &mut tried, path);
+    Search {
+        models,
+        path,
+        hypotheses: tried,
+        candidates_hypotheses: hypotheses,
+        pairs_from,
+    }
+}
+
+/// The path `path` with causes added one after another while its first stands clearly alone
+/// and the model of the causes so far does not fit within the measurement error (module
+/// docs); every model fitted on the way appended to `models`, `tried` counting them.
+fn add_causes(
+    library: &[Arc<dyn Candidate>],
+    stage: &Stage,
+    lap: Option<&Fitted>,
+    models: &mut Vec<Model>,
+    tried: &mut usize,
+    mut path: Path,
+) -> Path {
     while let Some(&last) = path.models.last() {
         if !path.contenders.is_empty() || path.models.len() >= MAX_CAUSES {
             break;
@@ -151,7 +172,7 @@ pub fn search(
         if fits {
             break;
         }
-        let Some(parts) = parts_of(&path.models, &models, library) else {
+        let Some(parts) = parts_of(&path.models, models, library) else {
             break;
         };
         let additions: Vec<(usize, Part)> = library
@@ -173,7 +194,7 @@ pub fn search(
             .par_iter()
             .map(|(i, part)| {
                 let name = format!("{} + {}", models[last].name, library[*i].name());
-                let outcome = combine(&Stage { watch, ..*stage }, &from, part, lap.as_ref(), &name);
+                let outcome = combine(&Stage { watch, ..*stage }, &from, part, lap, &name);
                 tell_fitted(&watch, &name, &outcome);
                 Model {
                     name,
@@ -187,43 +208,59 @@ pub fn search(
                 }
             })
             .collect();
-        tried += fitted.len();
-        let at = models.len();
-        models.extend(fitted);
-        for m in &mut models[at..] {
-            judge(m, &from, tried, stage);
-        }
+        let at = append_judged(models, fitted, &from, tried, stage);
         let rivals: Vec<Rival> = models[at..].iter().map(rival).collect();
         match select(&rivals) {
             Some((best, close)) if close.is_empty() => path.models.push(at + best),
             _ => break,
         }
     }
-    let pairs_from = models.len();
-    if !ends_adequate(&path, &models, stage) {
-        let pairs = untried_pairs(library, &models);
-        if !pairs.is_empty() {
-            let singles = &models[..library.len()];
-            let fitted: Vec<Model> = pairs
-                .par_iter()
-                .map(|parts| together(library, singles, parts, stage, lap.as_ref(), PAIRED))
-                .collect();
-            tried += fitted.len();
-            let at = models.len();
-            models.extend(fitted);
-            for m in &mut models[at..] {
-                judge(m, stage.base, tried, stage);
-            }
-            path = with_pairs(path, &models, at);
-        }
+    path
+}
+
+/// The path `path`, or a pair of causes that replaces it, where the path leaves a misfit
+/// beyond the measurement error (module docs, [`with_pairs`]); the pairs appended to
+/// `models`, `tried` counting them.
+fn pair_up(
+    library: &[Arc<dyn Candidate>],
+    stage: &Stage,
+    lap: Option<&Fitted>,
+    models: &mut Vec<Model>,
+    tried: &mut usize,
+    path: Path,
+) -> Path {
+    if ends_adequate(&path, models, stage) {
+        return path;
     }
-    Search {
-        models,
-        path,
-        hypotheses: tried,
-        candidates_hypotheses: hypotheses,
-        pairs_from,
+    let pairs = untried_pairs(library, models);
+    if pairs.is_empty() {
+        return path;
     }
+    let singles = &models[..library.len()];
+    let fitted: Vec<Model> = pairs
+        .par_iter()
+        .map(|parts| together(library, singles, parts, stage, lap, PAIRED))
+        .collect();
+    let at = append_judged(models, fitted, stage.base, tried, stage);
+    with_pairs(path, models, at)
+}
+
+/// Appends `fitted` to `models`, `tried` counting them, each judged against `from` (the model
+/// it extends) for the hypotheses tried so far; where they begin among the models.
+fn append_judged(
+    models: &mut Vec<Model>,
+    fitted: Vec<Model>,
+    from: &Fitted,
+    tried: &mut usize,
+    stage: &Stage,
+) -> usize {
+    *tried += fitted.len();
+    let at = models.len();
+    models.extend(fitted);
+    for m in &mut models[at..] {
+        judge(m, from, *tried, stage);
+    }
+    at
 }
 
 impl Search {
