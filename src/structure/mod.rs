@@ -14,11 +14,13 @@
 //! - [`nearest`]: a sensor given by coordinates in space, resolved to the nearest DOF;
 //! - [`sites`]: joints, elements and free ends, for the effects;
 //! - [`reduced`]: a reduction basis with the matrices projected on it, which a structure may
-//!   carry to every solve of its eigenproblem.
+//!   carry to every solve of its eigenproblem;
+//! - [`columns`]: a tall matrix in blocks of columns that copies share (the reduction's basis).
 //!
 //! Layer 1 (foundations; see the crate docs): may import, without a circle, the other foundations:
 //! [`crate::stats`], [`crate::input`], [`crate::random`], [`crate::uff`].
 
+pub mod columns;
 pub mod dofs;
 pub mod matrix;
 pub mod nearest;

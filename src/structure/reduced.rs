@@ -19,6 +19,7 @@ use std::sync::Arc;
 use faer::{Mat, MatMut};
 
 use super::Matrices;
+use super::columns::Columns;
 
 /// The preconditioner of the enrichment: (K - sigma M)^-1 of the nominal model applied to the
 /// columns of a block, in place.
@@ -32,12 +33,14 @@ pub struct Reduced {
     pub base: Arc<Matrices>,
     /// How many parameters the structure has (each one's projections below).
     pub parameter_count: usize,
-    /// V, N x r, orthonormal in the base mass matrix: V^T M_base V = I.
-    pub basis: Mat<f64>,
+    /// V, N x r, orthonormal in the base mass matrix: V^T M_base V = I. Its columns, and
+    /// those of the two products below, are in blocks that the enriched copies of a
+    /// reduction share ([`Columns`]).
+    pub basis: Columns,
     /// K_base V.
-    pub k_basis: Mat<f64>,
+    pub k_basis: Columns,
     /// M_base V.
-    pub m_basis: Mat<f64>,
+    pub m_basis: Columns,
     /// V^T K_base V.
     pub k: Mat<f64>,
     /// V^T M_base V.

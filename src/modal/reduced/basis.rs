@@ -28,6 +28,7 @@ use faer::{Accum, Mat, MatRef, Par, Side};
 
 use super::super::shift::factor_shifted;
 use super::super::{ModalError, ModalSolution, sparse_mul};
+use crate::structure::columns::Columns;
 use crate::structure::reduced::{Precondition, Reduced};
 use crate::structure::{SparseSym, Structure};
 
@@ -58,9 +59,9 @@ pub fn build(
     let mut reduced = Reduced {
         base: Arc::clone(&structure.base),
         parameter_count: structure.parameters.len(),
-        basis: Mat::zeros(n, 0),
-        k_basis: Mat::zeros(n, 0),
-        m_basis: Mat::zeros(n, 0),
+        basis: Columns::empty(n),
+        k_basis: Columns::empty(n),
+        m_basis: Columns::empty(n),
         k: Mat::zeros(0, 0),
         m: Mat::zeros(0, 0),
         parameters: vec![(Mat::zeros(0, 0), Mat::zeros(0, 0)); structure.parameters.len()],
@@ -154,28 +155,14 @@ pub(super) fn extend(reduced: &mut Reduced, structure: &Structure, w: MatRef<'_,
     if w.ncols() == 0 {
         return 0;
     }
-    let r = reduced.dimension();
     let (kb, mb) = (reduced.base.k.as_faer(), reduced.base.m.as_faer());
     let mut w = w.to_owned();
     let before = mass_norms(mb, &w);
     for _ in 0..2 {
-        let mut c = Mat::<f64>::zeros(r, w.ncols());
-        matmul(
-            c.as_mut(),
-            Accum::Replace,
-            reduced.m_basis.transpose(),
-            w.as_ref(),
-            1.0,
-            Par::Seq,
-        );
-        matmul(
-            w.as_mut(),
-            Accum::Add,
-            reduced.basis.as_ref(),
-            c.as_ref(),
-            -1.0,
-            Par::Seq,
-        );
+        let c = reduced.m_basis.transpose_times(w.as_ref());
+        reduced
+            .basis
+            .times_into(w.as_mut(), Accum::Add, c.as_ref(), -1.0);
     }
     let w = independent(mb, &w, &before);
     let added = w.ncols();
@@ -184,28 +171,20 @@ pub(super) fn extend(reduced: &mut Reduced, structure: &Structure, w: MatRef<'_,
     }
     let mw = apply(mb, &w);
     let kw = apply(kb, &w);
-    let basis = join(&reduced.basis, &w);
+    let basis = reduced.basis.joined(w);
+    let w = basis.last_block();
     let grow = |old: &Mat<f64>, bw: &Mat<f64>| {
         // [V W]^T B W: the new columns (and, by symmetry, rows) of the projection.
-        let mut cols = Mat::<f64>::zeros(r + added, added);
-        matmul(
-            cols.as_mut(),
-            Accum::Replace,
-            basis.transpose(),
-            bw.as_ref(),
-            1.0,
-            Par::Seq,
-        );
-        grown(old, &cols)
+        grown(old, &basis.transpose_times(bw.as_ref()))
     };
     reduced.k = grow(&reduced.k, &kw);
     reduced.m = grow(&reduced.m, &mw);
     for (p, (dk, dm)) in structure.parameters.iter().zip(&mut reduced.parameters) {
-        *dk = grown(dk, &project_columns(&p.stiffness, &basis, &w));
-        *dm = grown(dm, &project_columns(&p.mass, &basis, &w));
+        *dk = grown(dk, &project_columns(&p.stiffness, &basis, w));
+        *dm = grown(dm, &project_columns(&p.mass, &basis, w));
     }
-    reduced.k_basis = join(&reduced.k_basis, &kw);
-    reduced.m_basis = join(&reduced.m_basis, &mw);
+    reduced.k_basis = reduced.k_basis.joined(kw);
+    reduced.m_basis = reduced.m_basis.joined(mw);
     reduced.basis = basis;
     added
 }
@@ -276,14 +255,20 @@ pub(super) fn apply(a: faer::sparse::SparseColMatRef<'_, usize, f64>, x: &Mat<f6
 }
 
 /// [V W]^T S W for a derivative matrix S given by its entries.
-fn project_columns(s: &SparseSym, basis: &Mat<f64>, w: &Mat<f64>) -> Mat<f64> {
+fn project_columns(s: &SparseSym, basis: &Columns, w: &Mat<f64>) -> Mat<f64> {
     let mut out = Mat::<f64>::zeros(basis.ncols(), w.ncols());
+    let mut row = vec![0.0; basis.ncols()];
     for &(i, j, v) in s.entries() {
+        let mut read = false;
         for c in 0..w.ncols() {
             let t = v * w[(j, c)];
             if t != 0.0 {
-                for q in 0..basis.ncols() {
-                    out[(q, c)] += basis[(i, q)] * t;
+                if !read {
+                    basis.row_into(i, &mut row);
+                    read = true;
+                }
+                for (q, b) in row.iter().enumerate() {
+                    out[(q, c)] += b * t;
                 }
             }
         }
@@ -299,14 +284,6 @@ fn grown(old: &Mat<f64>, cols: &Mat<f64>) -> Mat<f64> {
         (true, true) => old[(i, j)],
         (_, false) => cols[(i, j - r)],
         (false, true) => cols[(j, i - r)],
-    })
-}
-
-/// [a, b], the columns of b after those of a.
-fn join(a: &Mat<f64>, b: &Mat<f64>) -> Mat<f64> {
-    let r = a.ncols();
-    Mat::from_fn(a.nrows(), r + b.ncols(), |i, j| {
-        if j < r { a[(i, j)] } else { b[(i, j - r)] }
     })
 }
 

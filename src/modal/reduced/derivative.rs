@@ -12,8 +12,7 @@
 //! vector's derivative: the basis holds the static corrections of the wanted modes in every
 //! direction the model moves in ([`super::basis`]), which is the part the lowest modes miss.
 
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, Par};
+use faer::Mat;
 
 use super::super::deflated::SIMPLE_GAP;
 use super::super::{ModalError, ModalSolution};
@@ -34,10 +33,12 @@ pub fn derivative(
     let x = modal.vectors().col_as_slice(s);
     let lambda = pairs.values[s];
     let mut h = vec![0.0; r];
+    let mut row = vec![0.0; r];
     let mut add = |i: usize, t: f64| {
         if t != 0.0 {
-            for (q, hq) in h.iter_mut().enumerate() {
-                *hq += basis[(i, q)] * t;
+            basis.row_into(i, &mut row);
+            for (hq, b) in h.iter_mut().zip(&row) {
+                *hq += b * t;
             }
         }
     };
@@ -65,14 +66,6 @@ pub fn derivative(
         }
     }
     let dy = Mat::from_fn(r, 1, |q, _| dy[q]);
-    let mut dx = Mat::<f64>::zeros(basis.nrows(), 1);
-    matmul(
-        dx.as_mut(),
-        Accum::Replace,
-        basis.as_ref(),
-        dy.as_ref(),
-        1.0,
-        Par::Seq,
-    );
+    let dx = basis.times(dy.as_ref());
     Ok((a[s], dx.col_as_slice(0).to_vec()))
 }

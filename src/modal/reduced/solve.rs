@@ -18,12 +18,12 @@
 
 use std::sync::Arc;
 
-use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, Par};
+use faer::Mat;
 
 use super::super::pencil::dense_pencil;
 use super::super::{ModalError, ModalSolution};
 use super::ReducedPairs;
+use crate::structure::columns::Columns;
 use crate::structure::reduced::Reduced;
 use crate::structure::{SparseSym, Structure};
 
@@ -57,16 +57,7 @@ pub(super) fn solve(
     if c == 0 {
         return Err(ModalError::NoConvergence);
     }
-    let n = reduced.dof_count();
-    let mut x = Mat::<f64>::zeros(n, c);
-    matmul(
-        x.as_mut(),
-        Accum::Replace,
-        reduced.basis.as_ref(),
-        vectors.subcols(0, c),
-        1.0,
-        Par::Seq,
-    );
+    let mut x = reduced.basis.times(vectors.subcols(0, c));
     for j in 0..c {
         if largest_is_negative(x.col_as_slice(j)) {
             x.col_mut(j).iter_mut().for_each(|v| *v = -*v);
@@ -134,11 +125,12 @@ fn projected(
 }
 
 /// target += a V^T S V, entry by entry of S.
-fn add_projection(target: &mut Mat<f64>, s: &SparseSym, basis: &Mat<f64>, a: f64) {
+fn add_projection(target: &mut Mat<f64>, s: &SparseSym, basis: &Columns, a: f64) {
     let r = basis.ncols();
-    let row = |i: usize| -> Vec<f64> { (0..r).map(|q| basis[(i, q)]).collect() };
+    let (mut vi, mut vj) = (vec![0.0; r], vec![0.0; r]);
     for &(i, j, v) in s.entries() {
-        let (vi, vj) = (row(i), row(j));
+        basis.row_into(i, &mut vi);
+        basis.row_into(j, &mut vj);
         for (q, &b) in vj.iter().enumerate() {
             let t = a * v * b;
             for (p, &u) in vi.iter().enumerate() {
@@ -159,26 +151,10 @@ fn residuals(
     pairs: std::ops::Range<usize>,
     lambda: &[f64],
 ) -> Mat<f64> {
-    let (n, c) = (x.nrows(), pairs.len());
+    let c = pairs.len();
     let y = vectors.subcols(pairs.start, c);
-    let mut residual = Mat::<f64>::zeros(n, c);
-    matmul(
-        residual.as_mut(),
-        Accum::Replace,
-        reduced.k_basis.as_ref(),
-        y,
-        1.0,
-        Par::Seq,
-    );
-    let mut my = Mat::<f64>::zeros(n, c);
-    matmul(
-        my.as_mut(),
-        Accum::Replace,
-        reduced.m_basis.as_ref(),
-        y,
-        1.0,
-        Par::Seq,
-    );
+    let mut residual = reduced.k_basis.times(y);
+    let my = reduced.m_basis.times(y);
     for (j, &l) in lambda.iter().enumerate() {
         let (r, mx) = (residual.col_as_slice_mut(j), my.col_as_slice(j));
         r.iter_mut().zip(mx).for_each(|(r, m)| *r -= l * m);
