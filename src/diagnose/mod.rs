@@ -217,8 +217,8 @@ fn diagnose_on(
     let names: Vec<Verdict> = scored.iter().map(|s| s.verdict).collect();
     let explains = |i: usize| decide::Judgement::of(&scored[i].report).explains(&estimate);
     let decision = decide::decide(&path, explains, base_explains, &names);
-    let after = decision.best.and_then(|b| scored[b].model.as_ref());
-    let check = reduce::check(after.unwrap_or(&calibrated.base), measured)?;
+    let after = decision.best.and_then(|b| scored[b].model.clone());
+    let after = after.unwrap_or_else(|| calibrated.base.clone());
     let report = assemble::assemble(Findings {
         measured,
         stated: settings.noise,
@@ -234,6 +234,8 @@ fn diagnose_on(
             .unwrap_or_else(|| report::default_settings(model, measured)),
         left_out: calibrated.left_out.clone(),
     });
+    // The last step: the check frees the factor the reduced solves kept.
+    let check = reduce::check(&after, measured)?;
     Ok((report, check))
 }
 

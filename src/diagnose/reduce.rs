@@ -140,11 +140,15 @@ pub struct CheckedMode {
 }
 
 /// The check of `fitted` by one full solve of its model (one per measured mode read from a
-/// model of its own); none when its pairs were not solved on a reduced model.
+/// model of its own); none when its pairs were not solved on a reduced model. The diagnosis's
+/// last step: it first frees the nominal factor that the reduced solves kept
+/// ([`reduced::release`]), so that the full model's factor is not held beside it (at half a
+/// million DOFs each takes gigabytes).
 pub fn check(
     fitted: &Fitted,
     measured: &MeasuredModes,
 ) -> Result<Option<ReductionCheck>, ModalError> {
+    reduced::release(&fitted.configured.structure);
     if fitted.modal.reduced().is_none() && fitted.own.iter().all(|o| o.modal.reduced().is_none()) {
         return Ok(None);
     }

@@ -14,16 +14,49 @@
 //!
 //! Layer 1 (foundations), like [`super`].
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use faer::{Mat, MatMut};
 
 use super::Matrices;
 use super::columns::Columns;
 
-/// The preconditioner of the enrichment: (K - sigma M)^-1 of the nominal model applied to the
-/// columns of a block, in place.
-pub type Precondition = Arc<dyn Fn(MatMut<'_, f64>) + Send + Sync>;
+/// The preconditioner of the enrichment and of the residual check: (K - sigma M)^-1 of the
+/// nominal model applied to the columns of a block, in place. Every copy of a reduction shares
+/// it, and it holds the factor until [`Precondition::release`]: a caller that has done its
+/// last reduced solve frees the factor before it solves the full model (the check of a
+/// diagnosis's final model), where both would otherwise be held at once. A reduction whose
+/// preconditioner is released serves no more solves ([`Reduced::serves`]).
+#[derive(Clone)]
+pub struct Precondition(Arc<Mutex<Option<Solve>>>);
+
+/// The factor's solve of a block in place.
+type Solve = Arc<dyn Fn(MatMut<'_, f64>) + Send + Sync>;
+
+impl Precondition {
+    /// The preconditioner applying `solve`.
+    pub fn new(solve: impl Fn(MatMut<'_, f64>) + Send + Sync + 'static) -> Self {
+        Self(Arc::new(Mutex::new(Some(Arc::new(solve)))))
+    }
+
+    /// Applies it to the columns of `x` in place; false (x untouched) once released.
+    pub fn apply(&self, x: MatMut<'_, f64>) -> bool {
+        let solve = self.0.lock().map(|s| s.clone()).unwrap_or(None);
+        solve.map(|f| f(x)).is_some()
+    }
+
+    /// Drops the factor, for every copy of the reduction.
+    pub fn release(&self) {
+        if let Ok(mut s) = self.0.lock() {
+            *s = None;
+        }
+    }
+
+    /// Whether it still holds the factor.
+    pub fn held(&self) -> bool {
+        self.0.lock().map(|s| s.is_some()).unwrap_or(false)
+    }
+}
 
 /// A reduction basis and the projected matrices (module docs).
 #[derive(Clone)]
@@ -70,9 +103,12 @@ impl Reduced {
         self.basis.nrows()
     }
 
-    /// Whether it serves a structure with base `base` and `parameters` parameters.
+    /// Whether it serves a structure with base `base` and `parameters` parameters: built for
+    /// them, its preconditioner still held.
     pub fn serves(&self, base: &Arc<Matrices>, parameters: usize) -> bool {
-        Arc::ptr_eq(&self.base, base) && self.parameter_count == parameters
+        Arc::ptr_eq(&self.base, base)
+            && self.parameter_count == parameters
+            && self.precondition.held()
     }
 }
 

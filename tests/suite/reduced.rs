@@ -124,6 +124,31 @@ fn a_basis_too_poor_is_enriched_until_its_pairs_are_the_full_ones() {
     assert!(dmac < 1e-6, "enriched: 1 - MAC {dmac:e}");
 }
 
+/// A diagnosis frees the nominal factor its reduced solves kept before it factors the full
+/// model for its check (`jointid::modal::reduced::release`): every copy of the reduction, the
+/// enriched ones too, lets it go, and a solve after it is the full model's.
+#[test]
+fn a_released_reduction_frees_its_factor_for_every_copy_and_solves_in_full() {
+    let structure = reduced_lap(&lap("release", LAP), COUNT + 2, false);
+    let at = scaled(&structure, [0.6, 1.5, 0.6]);
+    let (_, enriched) = reduced::lowest_keeping(&at, &[], COUNT).unwrap();
+    let enriched = enriched.expect("the poor basis is enriched");
+    assert!(enriched.precondition.held());
+    let mut on_enriched = at.clone();
+    on_enriched.reduced = Some(Arc::clone(&enriched));
+    assert!(reduced::usable(&on_enriched).is_some());
+    reduced::release(&structure);
+    assert!(
+        !enriched.precondition.held(),
+        "the enriched copy kept the factor"
+    );
+    assert!(reduced::usable(&at).is_none() && reduced::usable(&on_enriched).is_none());
+    let after = reduced::lowest(&on_enriched, &[], COUNT).unwrap();
+    assert!(after.reduced().is_none(), "solved on a released reduction");
+    let full = reduced::full(&at, &[], COUNT).unwrap();
+    assert_eq!(after.values(), full.values());
+}
+
 #[test]
 fn reduced_derivatives_match_central_differences_of_the_reduced_model() {
     let structure = reduced_lap(&lap("derivative", LAP), RIGID + 2 * 8 + 2, true);

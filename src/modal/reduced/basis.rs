@@ -53,7 +53,7 @@ pub fn build(
     let mats = structure.assemble();
     let (_, llt) = factor_shifted(mats.k.as_faer(), mats.m.as_faer(), None)?;
     let llt = Arc::new(llt);
-    let precondition: Precondition = Arc::new(move |x| llt.solve_block_in_place(x));
+    let precondition = Precondition::new(move |x| llt.solve_block_in_place(x));
     let n = structure.dof_count();
     let elastic = nominal.values().get(structure.rigid).copied();
     let mut reduced = Reduced {
@@ -73,7 +73,7 @@ pub fn build(
     extend(&mut reduced, structure, nominal.vectors().as_ref());
     let mut loads = corrections(nominal, directions, modes);
     relieve(&mut loads, nominal, &mats.m);
-    (reduced.precondition)(loads.as_mut());
+    reduced.precondition.apply(loads.as_mut());
     extend(&mut reduced, structure, loads.as_ref());
     Ok(reduced)
 }

@@ -113,6 +113,15 @@ pub fn usable(structure: &Structure) -> Option<&Arc<Reduced>> {
         .filter(|r| r.serves(&structure.base, structure.parameters.len()))
 }
 
+/// Frees the factor that `structure`'s reduction keeps for its checks, for every copy of the
+/// reduction ([`crate::structure::reduced::Precondition::release`]): solves after it are
+/// full ones. For a caller done with its reduced solves, before it solves the full model.
+pub fn release(structure: &Structure) {
+    if let Some(r) = &structure.reduced {
+        r.precondition.release();
+    }
+}
+
 /// The lowest `count` pairs of `structure` plus `extra`: on its reduction when it carries one
 /// (module docs), else in full.
 pub fn lowest(

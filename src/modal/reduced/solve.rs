@@ -76,11 +76,16 @@ pub(super) fn solve(
     let lambda = &values[first..last];
     let residual = residuals(reduced, structure, extra, &vectors, &x, first..last, lambda);
     let mut correction = residual.clone();
-    (reduced.precondition)(correction.as_mut());
+    // Released between the caller's check of the reduction and this solve: no estimate, and
+    // the caller solves in full (NaN is never accepted).
+    let checked = reduced.precondition.apply(correction.as_mut());
     let norms = (0..c)
         .map(|j| {
             if !(first..last).contains(&j) {
                 return 0.0;
+            }
+            if !checked {
+                return f64::NAN;
             }
             let k = j - first;
             let (r, d) = (residual.col_as_slice(k), correction.col_as_slice(k));

@@ -150,14 +150,24 @@ fn fit_variant(
         Discrepancy::default(),
         |calibration, earlier| {
             let x = earlier.map(|f| f.solution.clone()).or_else(|| from.clone());
-            let variant = fit_under(stage, calibration, per_parameter, x)?;
-            let fitted = variant.fitted.clone();
-            last = Some(variant);
+            // The fit is handed on, not copied: its solutions are N x pairs per mode.
+            let Variant {
+                fitted,
+                alphas,
+                size,
+                reference_hz,
+            } = fit_under(stage, calibration, per_parameter, x)?;
+            last = Some((alphas, size, reference_hz));
             Ok(fitted)
         },
     )?;
-    let variant = last.expect("a fit that succeeded made a variant");
-    Ok(Variant { fitted, ..variant })
+    let (alphas, size, reference_hz) = last.expect("a fit that succeeded made a variant");
+    Ok(Variant {
+        fitted,
+        alphas,
+        size,
+        reference_hz,
+    })
 }
 
 /// The variant fitted under `calibration` from `from`, or from the stage's calibrated joint
