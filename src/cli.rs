@@ -592,6 +592,11 @@ pub struct DiagnoseArgs {
     /// candidates alone, counted as one hypothesis each.
     #[arg(long)]
     pub causes: Vec<String>,
+    /// Solve every eigenproblem on the full model, never on the reduced model that large
+    /// external models (3D solids) are otherwise diagnosed on: a check of its results, at the
+    /// full model's cost.
+    #[arg(long)]
+    pub full_model: bool,
     /// No log of the diagnosis's steps on stderr (a run that ends within 2 s logs nothing
     /// anyway).
     #[arg(long)]

@@ -66,6 +66,7 @@ pub fn diagnose(
         },
         per_mode,
         extended,
+        full_model: false,
         causes: causes
             .iter()
             .map(|c| c.split('+').map(|n| n.trim().to_string()).collect())

@@ -30,6 +30,7 @@ pub fn run(args: &CalibrateArgs) -> anyhow::Result<()> {
         pairing: pairing.clone(),
         per_mode: None,
         extended: false,
+        full_model: false,
         causes: Vec::new(),
     }
     .check()

@@ -42,6 +42,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
         pairing: args.error.pairing(args.pair.clone()),
         per_mode,
         extended: args.extended,
+        full_model: args.full_model,
         causes: args
             .causes
             .iter()

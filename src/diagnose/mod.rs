@@ -146,7 +146,11 @@ pub fn diagnose_watched(
 ) -> Result<Report, DiagnoseError> {
     settings.check()?;
     let (ctx, nominal) = calibrate::prepare(model, measured, &settings)?;
-    let reduced = reduce::attach(Arc::clone(&ctx), &nominal, measured, settings.extended)?;
+    let reduced = if settings.full_model {
+        Arc::clone(&ctx)
+    } else {
+        reduce::attach(Arc::clone(&ctx), &nominal, measured, settings.extended)?
+    };
     drop(nominal);
     if Arc::ptr_eq(&reduced, &ctx) {
         return Ok(diagnose_on(&ctx, model, measured, settings, watch)?.0);

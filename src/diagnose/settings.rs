@@ -21,6 +21,9 @@ pub struct DiagnoseSettings {
     pub per_mode: Option<Settings>,
     /// Also search the richer candidates (the extended tier).
     pub extended: bool,
+    /// Solve every eigenproblem on the full model, never on a reduced one (a check of the
+    /// reduced model's results; module [`super::reduce`]).
+    pub full_model: bool,
     /// Combinations of causes to try from the start beside the candidates alone (each the
     /// names of candidates that combine, at least two, none twice).
     pub causes: Vec<Vec<String>>,
@@ -103,6 +106,7 @@ mod tests {
             },
             per_mode: None,
             extended: false,
+            full_model: false,
             causes: Vec::new(),
         }
     }

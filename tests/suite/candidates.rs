@@ -70,6 +70,7 @@ fn run_on(model: &jointid::structure::Structure, data: &MeasuredModes, extended:
             pairing: PairingRule::default(),
             per_mode: None,
             extended,
+            full_model: false,
             causes: Vec::new(),
         },
     )

@@ -51,6 +51,7 @@ fn run_at(data: &MeasuredModes, noise: Noise) -> Report {
             pairing: PairingRule::default(),
             per_mode: None,
             extended: false,
+            full_model: false,
             causes: Vec::new(),
         },
     )
@@ -333,6 +334,7 @@ fn a_joint_mass_heavier_than_the_beams_is_excluded_with_the_reason() {
             },
             per_mode: None,
             extended: false,
+            full_model: false,
             causes: Vec::new(),
         },
     )

@@ -162,6 +162,7 @@ fn verdict_word_with(
         pairing: PairingRule::default(),
         per_mode: None,
         extended: false,
+        full_model: false,
         causes: Vec::new(),
     };
     match diagnose(&model, &measured, settings) {

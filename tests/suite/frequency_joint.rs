@@ -104,6 +104,7 @@ fn run_on(model: &Structure, measured: &MeasuredModes) -> Report {
         pairing: PairingRule::default(),
         per_mode: None,
         extended: false,
+        full_model: false,
         causes: Vec::new(),
     };
     diagnose(model, measured, settings).unwrap()

@@ -416,6 +416,7 @@ fn diagnosed(model: &Structure, data: &MeasuredModes) -> Report {
             pairing: PairingRule::default(),
             per_mode: None,
             extended: false,
+            full_model: false,
             causes: Vec::new(),
         },
     )

@@ -223,7 +223,10 @@ fn a_reduced_solve_is_the_same_bits_on_any_number_of_threads() {
 /// A lap of about 3,000 DOFs (above `jointid::modal::reduced::MIN_DOFS`), its normal spring
 /// halved in the data, diagnosed through the command: on the reduced model, the verdict
 /// `none`, the spring calibrated back within three standard errors, and the reduced model's
-/// check against one full solve in the report, every frequency within 1e-6.
+/// check against one full solve in the report, every frequency within 1e-6. And again with
+/// `--full-model` (every solve on the full model, no check in the report): the same verdict,
+/// every parameter and its standard error within 0.05 of a standard error of the reduced
+/// run's.
 #[test]
 #[ignore = "seconds in release, a minute unoptimised: .ci/run runs it in release"]
 fn a_solid_lap_is_diagnosed_on_its_reduced_model_and_checked_by_a_full_solve() {
@@ -267,27 +270,32 @@ fn a_solid_lap_is_diagnosed_on_its_reduced_model_and_checked_by_a_full_solve() {
         "--out",
         s(&measured),
     ]);
-    let json = dir.join("diagnose.json");
-    jointid_ok(&[
-        "diagnose",
-        "--model",
-        s(&model.join("model.toml")),
-        "--measured",
-        s(&measured),
-        "--frequency-noise",
-        "0.001",
-        "--shape-noise",
-        "0.01",
-        "--json",
-        s(&json),
-        "--quiet",
-        "--n",
-        "16",
-        "--m",
-        "6",
-    ]);
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let diagnosed = |name: &str, extra: &[&str]| -> serde_json::Value {
+        let json = dir.join(name);
+        let model_file = model.join("model.toml");
+        let mut args = vec![
+            "diagnose",
+            "--model",
+            s(&model_file),
+            "--measured",
+            s(&measured),
+            "--frequency-noise",
+            "0.001",
+            "--shape-noise",
+            "0.01",
+            "--json",
+            s(&json),
+            "--quiet",
+            "--n",
+            "16",
+            "--m",
+            "6",
+        ];
+        args.extend(extra);
+        jointid_ok(&args);
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap()
+    };
+    let r = diagnosed("diagnose.json", &[]);
     assert_eq!(r["verdict"], "none", "{}", r["verdict"]);
     let check = &r["reduction"];
     assert_eq!(check["verified"], true, "{check}");
@@ -305,6 +313,32 @@ fn a_solid_lap_is_diagnosed_on_its_reduced_model_and_checked_by_a_full_solve() {
         "k_normal {value:e} +- {se:e} against {:e}",
         nominal / 2.0
     );
+    let full = diagnosed("full.json", &["--full-model"]);
+    assert_eq!(full["verdict"], r["verdict"]);
+    assert!(full["reduction"].is_null(), "{}", full["reduction"]);
+    let parameters = |r: &serde_json::Value| -> Vec<(String, f64, f64)> {
+        r["after"]["parameters"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                let name = p["name"].as_str().unwrap().to_string();
+                (
+                    name,
+                    p["value"].as_f64().unwrap(),
+                    p["se"].as_f64().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let (on_reduced, on_full) = (parameters(&r), parameters(&full));
+    assert_eq!(on_reduced.len(), on_full.len());
+    for ((name, value, se), (_, full_value, full_se)) in on_reduced.iter().zip(&on_full) {
+        assert!(
+            (value - full_value).abs() <= 0.05 * full_se && (se - full_se).abs() <= 0.05 * full_se,
+            "{name}: {value:e} +- {se:e} reduced, {full_value:e} +- {full_se:e} full"
+        );
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
