@@ -124,9 +124,11 @@ fn a_basis_too_poor_is_enriched_until_its_pairs_are_the_full_ones() {
     assert!(dmac < 1e-6, "enriched: 1 - MAC {dmac:e}");
 }
 
-/// A diagnosis frees the nominal factor its reduced solves kept before it factors the full
-/// model for its check (`jointid::modal::reduced::release`): every copy of the reduction, the
-/// enriched ones too, lets it go, and a solve after it is the full model's.
+/// An enriched copy of a reduction shares the blocks of the basis it grew from
+/// (`jointid::structure::columns`). A diagnosis frees the nominal factor its reduced solves
+/// kept before it factors the full model for its check (`jointid::modal::reduced::release`):
+/// every copy of the reduction, the enriched ones too, lets it go, and a solve after it is the
+/// full model's.
 #[test]
 fn a_released_reduction_frees_its_factor_for_every_copy_and_solves_in_full() {
     let structure = reduced_lap(&lap("release", LAP), COUNT + 2, false);
@@ -134,6 +136,12 @@ fn a_released_reduction_frees_its_factor_for_every_copy_and_solves_in_full() {
     let (_, enriched) = reduced::lowest_keeping(&at, &[], COUNT).unwrap();
     let enriched = enriched.expect("the poor basis is enriched");
     assert!(enriched.precondition.held());
+    // The enriched copy holds the basis it grew from by reference, its new columns alone.
+    let first = structure.reduced.as_ref().unwrap().basis.ncols();
+    assert!(enriched.basis.ncols() > first);
+    for columns in [&enriched.basis, &enriched.k_basis, &enriched.m_basis] {
+        assert!(columns.shared_blocks() >= 1, "the enriched copy copied its basis");
+    }
     let mut on_enriched = at.clone();
     on_enriched.reduced = Some(Arc::clone(&enriched));
     assert!(reduced::usable(&on_enriched).is_some());
