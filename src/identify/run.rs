@@ -142,9 +142,11 @@ pub fn identify_modes(
     // A large external model's frequency fallbacks solve on a reduced model (module
     // `crate::modal::reduced`) built on these pairs: as many again as the modes, and two.
     let basis = reduced::applies(model).then(|| (count + modes.len() + 2).min(matrices.size()));
-    let modal = match (basis, &settings) {
-        (Some(b), None) => ModalSolution::lowest_of(&matrices, b)?,
-        _ => ModalSolution::lowest_of(&matrices, count)?,
+    // The nominal solve's factor of K - sigma M, for the reduced model's basis (the same
+    // factor, not made twice).
+    let (modal, factor) = match (basis, &settings) {
+        (Some(b), None) => ModalSolution::lowest_of_factored(&matrices, b)?,
+        _ => (ModalSolution::lowest_of(&matrices, count)?, None),
     };
     check_elastic(&matrices, &modal, model.rigid)?;
     let identifier = settings
@@ -155,16 +157,25 @@ pub fn identify_modes(
     let falls_back = planned.iter().any(|(_, plan)| plan.is_err());
     let attached = match basis {
         Some(b) if falls_back => {
-            let nominal = if modal.len() >= b {
-                modal.clone()
+            let (nominal, factor) = if modal.len() >= b {
+                (modal.clone(), factor)
             } else {
-                ModalSolution::lowest_of(&matrices, b)?
+                ModalSolution::lowest_of_factored(&matrices, b)?
             };
             let directions: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
             let wanted = model.rigid..(reach.unwrap_or(count) + 2).min(nominal.len());
-            Some(reduced::attach(model, &nominal, &directions, wanted)?)
+            Some(reduced::attach(
+                model,
+                &nominal,
+                factor,
+                &directions,
+                wanted,
+            )?)
         }
-        _ => None,
+        _ => {
+            drop(factor);
+            None
+        }
     };
     let model = attached.as_ref().unwrap_or(model);
     let ends = Ends::new(model, reach.unwrap_or(count));

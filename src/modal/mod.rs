@@ -34,10 +34,13 @@ pub mod residual;
 mod shift;
 pub mod sparse_llt;
 
+use std::sync::Arc;
+
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, Side};
 
 use crate::structure::Matrices;
+use sparse_llt::SparseLlt;
 
 pub use elastic::{Mechanism, check_elastic};
 
@@ -305,6 +308,32 @@ impl ModalSolution {
             vectors: modes.vectors,
             reduced: None,
         })
+    }
+
+    /// As [`ModalSolution::lowest_of`], with the factor of K - sigma M the sparse solve made
+    /// (sigma the default shift, [`lanczos::default_shift`], moved away from the spectrum as
+    /// that solve moves it: the factor [`reduced::build`] would make of the same matrices);
+    /// none from the dense solution.
+    pub fn lowest_of_factored(
+        mats: &Matrices,
+        count: usize,
+    ) -> Result<(ModalSolution, Option<Arc<SparseLlt>>), ModalError> {
+        let n = mats.size();
+        if n <= DENSE_MAX_DOFS {
+            return Ok((Self::solve(mats)?, None));
+        }
+        if count == 0 || count > n {
+            return Err(ModalError::CountOutOfRange { count, dofs: n });
+        }
+        let settings = lanczos::LanczosSettings::default();
+        let (k, m) = (mats.k.as_faer(), mats.m.as_faer());
+        let (modes, llt) = lanczos::lowest_modes_factored(k, m, count, &settings)?;
+        let solution = ModalSolution {
+            values: modes.values,
+            vectors: modes.vectors,
+            reduced: None,
+        };
+        Ok((solution, Some(Arc::new(llt))))
     }
 
     /// Pairs solved elsewhere (a reduced model's, lifted): `values` ascending, `vectors` N x

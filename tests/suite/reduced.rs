@@ -45,7 +45,15 @@ fn reduced_lap(structure: &Structure, modes: usize, corrections: bool) -> Struct
         .map(|p| (&p.stiffness, &p.mass))
         .filter(|_| corrections)
         .collect();
-    let built = reduced::build(structure, &nominal, &directions, RIGID..COUNT, TOLERANCE).unwrap();
+    let built = reduced::build(
+        structure,
+        &nominal,
+        None,
+        &directions,
+        RIGID..COUNT,
+        TOLERANCE,
+    )
+    .unwrap();
     let mut out = structure.clone();
     out.reduced = Some(Arc::new(built));
     out
@@ -92,6 +100,56 @@ fn reduced_pairs_of_a_solid_are_the_full_ones_far_from_the_nominal_springs() {
         assert!(df < 1e-7, "{factors:?}: frequencies {df:e}");
         assert!(dmac < 1e-6, "{factors:?}: 1 - MAC {dmac:e}");
     }
+}
+
+/// The basis built on the nominal solve's factor of K - sigma M (identify's path,
+/// `ModalSolution::lowest_of_factored`) is the basis built on its own factorisation, bit for
+/// bit, and so are the pairs solved on it; a factor of another size is refused.
+#[test]
+fn a_basis_on_the_nominal_solves_factor_is_the_same_bits() {
+    let structure = lap("factor", LAP);
+    let (nominal, factor) =
+        ModalSolution::lowest_of_factored(&structure.assemble(), RIGID + 2 * 8 + 2).unwrap();
+    let factor = factor.expect("a sparse solve leaves its factor");
+    let alone = ModalSolution::lowest_of(&structure.assemble(), RIGID + 2 * 8 + 2).unwrap();
+    assert_eq!(nominal.values(), alone.values());
+    let params = structure.identified();
+    let directions: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
+    let build = |f| {
+        reduced::build(
+            &structure,
+            &nominal,
+            f,
+            &directions,
+            RIGID..COUNT,
+            TOLERANCE,
+        )
+    };
+    let (shared, own) = (
+        build(Some(Arc::clone(&factor))).unwrap(),
+        build(None).unwrap(),
+    );
+    assert_eq!(shared.k, own.k);
+    assert_eq!(shared.m, own.m);
+    let with = |r: Reduced| {
+        let mut s = scaled(&structure, [0.3, 2.0, 1.0]);
+        s.reduced = Some(Arc::new(r));
+        reduced::lowest(&s, &[], COUNT).unwrap()
+    };
+    let (a, b) = (with(shared), with(own));
+    assert!(a.reduced().is_some() && b.reduced().is_some());
+    assert_eq!(a.values(), b.values());
+    assert_eq!(a.vectors(), b.vectors());
+    let longer = lap("other", &LAP.replace("length = 0.12", "length = 0.16"));
+    assert_ne!(longer.dof_count(), structure.dof_count());
+    let other = ModalSolution::lowest_of_factored(&longer.assemble(), RIGID + 1)
+        .unwrap()
+        .1
+        .unwrap();
+    assert!(
+        build(Some(other)).is_err(),
+        "a factor of another model's size"
+    );
 }
 
 #[test]
