@@ -24,12 +24,12 @@
 //! for bit, without the two solves at the ends of the reach. On the 212k lap of bench/ these
 //! were the costly ones: far from the nominal model the reduced model does not serve, and the
 //! stiff end of k_shear_x was one full solve of 12 s which every mode waited for; no mode
-//! needs the ends there (identify's CSV the same bytes, 63 s -> 38 s with the factor shared
-//! as well, docs/benchmarks.md). What the ends' full solve also did, and Newton first no
-//! longer does where the iterates vouch for a root: refuse a mode out of the full model's
-//! reach that the reduced pairs at the iterates reach (a mode the basis misses: their
-//! eigenvalues then lie above the full model's). The root's value came from those reduced
-//! pairs before as well. One exception to the bits: with no shared ends
+//! needs the ends there (identify's CSV the same bytes; 63 s -> 38 s with the nominal solve
+//! and its factor shared as well, docs/benchmarks.md). What the ends' full solve also did,
+//! and Newton first no longer does where the iterates vouch for a root: refuse a mode out of
+//! the full model's reach that the reduced pairs at the iterates reach (a mode the basis
+//! misses: their eigenvalues then lie above the full model's). The root's value came from
+//! those reduced pairs before as well. One exception to the bits: with no shared ends
 //! ([`Ends`]) and a reduced model, an end solved in the middle of the iteration enriches the
 //! probe's basis there, not before the first iterate; the later iterates then differ in their
 //! last digits (the same root to the reduced model's tolerance).
