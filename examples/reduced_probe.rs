@@ -25,7 +25,7 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(reduced::TOLERANCE);
-    let built = reduced::build(&model, &nominal, &dirs, rigid..rigid + m + 2, tol).unwrap();
+    let built = reduced::build(&model, &nominal, None, &dirs, rigid..rigid + m + 2, tol).unwrap();
     eprintln!(
         "build {:.2}s, dimension {}",
         t.elapsed().as_secs_f64(),

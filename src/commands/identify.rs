@@ -7,11 +7,12 @@ use crate::cli::IdentifyArgs;
 use crate::commands::flagged;
 
 use jointid::identify::frequency_only::{self, Fallback};
-use jointid::identify::run::{Request, RunError, identify_modes};
+use jointid::identify::run::{Request, RunError, identify_modes_solved, nominal_count};
 use jointid::measured::MeasuredModes;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, identify as out, write_atomically};
 use jointid::structure::Parameter;
+use jointid::structure::Structure;
 
 /// The library's settings by their flags.
 const FLAGS: &[(&str, &str)] = &[
@@ -27,8 +28,6 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
     inputs.push(args.measured.clone());
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&outputs, &inputs)?;
-    let model = super::read_model(&args.model)?;
-    let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let request = Request {
         n: args.n,
         m: args.m,
@@ -37,7 +36,18 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         modes: args.modes.clone(),
         frequency_noise: args.frequency_noise,
     };
-    let identified = identify_modes(&model, &measured, &request).map_err(|e| {
+    // The check of an external model's rigid-body modes solves it: for the pairs the
+    // identification needs (the measured modes read on the model as read; on an error,
+    // none: it is said below, in its turn), one solve where there were two.
+    let elastic = |read: &Structure| {
+        MeasuredModes::from_path(&args.measured, read)
+            .ok()
+            .and_then(|measured| nominal_count(read, &measured, &request))
+            .map_or(0, |count| count.saturating_sub(read.rigid))
+    };
+    let (model, nominal) = super::read_model_solved(&args.model, &elastic)?;
+    let measured = MeasuredModes::from_path(&args.measured, &model)?;
+    let identified = identify_modes_solved(&model, &measured, &request, nominal).map_err(|e| {
         let (model, measured) = (args.model.display(), args.measured.display());
         match e {
             RunError::Setting(e) => flagged(e, FLAGS),

@@ -51,15 +51,15 @@ pub(crate) fn to_stdout(
 /// Reads and validates a model file. An external model's open faces (coincident DOFs that
 /// nothing ties) are accepted and said once on stderr.
 fn read_model(path: &std::path::Path) -> anyhow::Result<jointid::structure::Structure> {
-    Ok(read_model_solved(path, 0)?.0)
+    Ok(read_model_solved(path, &|_| 0)?.0)
 }
 
-/// [`read_model`], and an external model's lowest pairs, `elastic` beyond its declared
-/// rigid-body modes at least, from the check of its rigid-body modes
-/// ([`jointid::model::from_path_solved`]).
+/// [`read_model`], and an external model's lowest pairs, `elastic` of the structure beyond
+/// its declared rigid-body modes at least, from the check of its rigid-body modes, with the
+/// factor that solve made ([`jointid::model::from_path_solved`]).
 fn read_model_solved(
     path: &std::path::Path,
-    elastic: usize,
+    elastic: jointid::model::matrices::build::Elastic,
 ) -> anyhow::Result<(
     jointid::structure::Structure,
     Option<jointid::modal::ModalSolution>,

@@ -22,7 +22,12 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     let inputs = model_inputs(&args.model);
     let inputs: Vec<&std::path::Path> = inputs.iter().map(|p| p.as_path()).collect();
     check_outputs(&[&args.out], &inputs)?;
-    let (model, nominal) = super::read_model_solved(&args.model, args.modes)?;
+    let (model, nominal) = super::read_model_solved(&args.model, &|_| args.modes)?;
+    // the pairs alone: the factor of their solve is not needed here
+    let nominal = nominal.map(|mut n| {
+        n.take_factor();
+        n
+    });
     let modes = first_modes(&model, args.modes).map_err(|e| flagged(e, FLAGS))?;
     let kind: NoiseKind = args.noise.parse().map_err(|allowed: String| {
         flagged(SettingError::new("noise", &args.noise, allowed), FLAGS)

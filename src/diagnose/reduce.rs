@@ -77,6 +77,7 @@ pub fn attach(
     let attached = reduced::attach(
         structure,
         nominal,
+        None,
         &directions,
         rigid..(rigid + m + 2).min(nominal.len()),
     )?;

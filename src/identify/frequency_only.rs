@@ -12,8 +12,9 @@
 //! ```
 //!
 //! Solved exactly (not linearised): u = ln(p / p_0) on [ln 1e-4, ln 1e4] by Newton steps kept
-//! inside a bracket that bisection shrinks, the eigenproblem re-solved at every step, with the
-//! derivative of an M-normalised pair
+//! inside a bracket that bisection shrinks ([`super::root`]; for a stiffening parameter the
+//! ends of the reach are solved only when the search needs them), the eigenproblem re-solved
+//! at every step, with the derivative of an M-normalised pair
 //!
 //! ```text
 //!   d ln lambda / d ln p = p y^T (dK/dp - lambda dM/dp) y / lambda   (= s, the sensitivity).
@@ -31,8 +32,9 @@
 //! Layer 4 (identification): imports the structure and the modal solution.
 
 use super::reach::Ends;
-use crate::modal::{ModalError, ModalSolution, hz_to_lambda, lambda_to_hz, reduced};
-use crate::structure::{Parameter, Structure};
+use super::root::{Named, Order, Probe, Search, quadratic};
+use crate::modal::{ModalError, ModalSolution, hz_to_lambda, reduced};
+use crate::structure::Structure;
 
 /// What a per-mode correction of one parameter comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -129,39 +131,6 @@ pub enum FrequencyError {
     BeyondModel(#[from] crate::structure::ModeBeyondModel),
 }
 
-/// A mode's eigenvalue and its sensitivity to one parameter, at a value of that parameter.
-struct Probe<'a> {
-    structure: Structure,
-    at: usize,
-    param: &'a Parameter,
-    t: usize,
-}
-
-impl Probe<'_> {
-    /// (ln lambda_t, d ln lambda_t / d ln p) at p.
-    /// On the structure's reduced model when it carries one, kept as the solves enrich it.
-    fn at_value(&mut self, p: f64) -> Result<(f64, f64), ModalError> {
-        self.structure.parameters[self.at].value = p;
-        let (modal, enriched) =
-            reduced::lowest_checking(&self.structure, &[], self.t + 1, Some(self.t..self.t + 1))?;
-        if enriched.is_some() {
-            self.structure.reduced = enriched;
-        }
-        let lambda = modal.values()[self.t];
-        let y: Vec<f64> = modal.vectors().col(self.t).iter().copied().collect();
-        let dk = quadratic(&self.param.stiffness, &y);
-        let dm = quadratic(&self.param.mass, &y);
-        Ok((lambda.ln(), p * (dk - lambda * dm) / lambda))
-    }
-}
-
-/// y^T A y of a symmetric sparse A.
-fn quadratic(a: &crate::structure::SparseSym, y: &[f64]) -> f64 {
-    let mut ay = vec![0.0; y.len()];
-    a.apply(y, &mut ay);
-    y.iter().zip(&ay).map(|(u, v)| u * v).sum()
-}
-
 /// d ln lambda_t / d ln p_i of model mode `t` (0-based, rigid-body modes counted) for every
 /// identified parameter of `structure`, from its modal solution `modal`.
 pub fn sensitivities(structure: &Structure, modal: &ModalSolution, t: usize) -> Vec<f64> {
@@ -189,7 +158,8 @@ pub fn identify(
 }
 
 /// As [`identify`], the ends of the parameter's reach taken from `ends` (solved once for
-/// every mode, [`super::reach`]) when given and `structure` carries a reduced model.
+/// every mode, [`super::reach`]) when given and `structure` carries a reduced model, and
+/// solved only when the search needs them ([`Order::NewtonFirst`]).
 pub fn identify_within(
     structure: &Structure,
     t: usize,
@@ -199,6 +169,20 @@ pub fn identify_within(
     choice: Choice,
     ends: Option<&Ends>,
 ) -> Result<FrequencyOutcome, FrequencyError> {
+    let order = Order::NewtonFirst;
+    identify_ordered(structure, t, mode, (f_hz, f_rel_std), choice, ends, order).map(|o| o.0)
+}
+
+/// As [`identify_within`], the ends of the reach solved in `order`; whether they were.
+pub(super) fn identify_ordered(
+    structure: &Structure,
+    t: usize,
+    mode: usize,
+    (f_hz, f_rel_std): (f64, Option<f64>),
+    choice: Choice,
+    ends: Option<&Ends>,
+    order: Order,
+) -> Result<(FrequencyOutcome, bool), FrequencyError> {
     let identified = structure.identified();
     let at_all = structure.identified_indices();
     if identified.is_empty() {
@@ -215,83 +199,37 @@ pub fn identify_within(
                 .unwrap_or(0)
         }
     };
-    let p0 = identified[param].value;
-    let mut probe = Probe {
+    let probe = Probe {
         structure: structure.clone(),
         at: at_all[param],
         param: &identified[param],
         t,
     };
-    let target = hz_to_lambda(f_hz).ln();
-    let span = REACH.ln();
-    let ends = ends.filter(|_| reduced::usable(structure).is_some());
-    let (g_lo, g_hi) = match ends.and_then(|e| e.bracket(param, t, target)) {
-        Some(bracket) => {
-            let b = bracket?;
-            (b.low, b.high)
-        }
-        None => (
-            probe.at_value(p0 * (-span).exp())?.0,
-            probe.at_value(p0 * span.exp())?.0,
-        ),
+    let named = Named {
+        mode,
+        param: identified[param].name.clone(),
+        model_mode: t + 1 - structure.rigid,
+        measured_hz: f_hz,
     };
-    let (g_lo, g_hi) = (g_lo - target, g_hi - target);
-    let name = identified[param].name.clone();
-    if (g_hi - g_lo).abs() < 1e-6 {
-        return Err(FrequencyError::Insensitive {
-            mode,
-            param: name,
-            sensitivity: (g_hi - g_lo) / (2.0 * span),
-        });
-    }
-    if g_lo.signum() == g_hi.signum() {
-        return Err(FrequencyError::OutOfReach {
-            mode,
-            param: name,
-            model_mode: t + 1 - structure.rigid,
-            measured_hz: f_hz,
-            low_hz: lambda_to_hz((g_lo + target).exp()),
-            high_hz: lambda_to_hz((g_hi + target).exp()),
-        });
-    }
-    // the bracket [a, b] with g(a) of the sign of g_lo
-    let (mut a, mut b) = (-span, span);
-    let rising = g_hi > g_lo;
-    let mut u: f64 = 0.0;
-    let mut s = 0.0;
-    for _ in 0..100 {
-        let (g, slope) = probe.at_value(p0 * u.exp())?;
-        let g = g - target;
-        s = slope;
-        if g.abs() < 1e-12 || b - a < 1e-13 {
-            break;
-        }
-        if (g < 0.0) == rising {
-            a = u;
-        } else {
-            b = u;
-        }
-        let newton = u - g / slope;
-        u = if slope.is_finite() && slope != 0.0 && newton > a && newton < b {
-            newton
-        } else {
-            0.5 * (a + b)
-        };
-    }
+    let shared = ends.filter(|_| reduced::usable(structure).is_some());
+    let target = hz_to_lambda(f_hz).ln();
+    let root = Search::new(probe, shared, param, target, named).run(order)?;
+    let s = root.s;
     if s.abs() < 1e-12 {
         return Err(FrequencyError::Insensitive {
             mode,
-            param: name,
+            param: identified[param].name.clone(),
             sensitivity: s,
         });
     }
-    let ratio = u.exp();
-    Ok(FrequencyOutcome {
+    let ratio = root.u.exp();
+    let outcome = FrequencyOutcome {
         mode,
         param,
         relative: ratio - 1.0,
         std: f_rel_std.map(|sf| ratio * 2.0 * sf / s.abs()),
         sensitivity: s,
         frequency_model_hz,
-    })
+    };
+    Ok((outcome, root.ends_solved))
 }

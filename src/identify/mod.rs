@@ -24,6 +24,7 @@ pub mod identifiability;
 pub mod projection;
 pub mod propagation;
 pub mod reach;
+pub mod root;
 pub mod run;
 pub mod system;
 pub mod weighting;

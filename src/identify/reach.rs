@@ -6,7 +6,8 @@
 //! at all (insensitive): the Newton steps inside start from p_0 whatever the ends' values.
 //! Each end is solved once per parameter, with the pairs of every mode, and shared by the
 //! modes (each mode solved them itself before, 16 full solves for 8 modes of one parameter,
-//! now 2).
+//! now 2), and only when a mode's search needs them ([`super::root`]: for a stiffening
+//! parameter, where its Newton steps cannot vouch for a root).
 //!
 //! First on the structure's reduced model ([`crate::modal::reduced`]), as it is: at these
 //! ends the model is far from the nominal one, where the enrichment to the reduced model's

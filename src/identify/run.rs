@@ -104,6 +104,46 @@ pub fn identify_modes(
     measured: &MeasuredModes,
     request: &Request,
 ) -> Result<Identified, RunError> {
+    identify_modes_solved(model, measured, request, None)
+}
+
+/// How many of the nominal model's lowest pairs [`identify_modes`] solves for `request`
+/// (rigid-body modes included, `model`'s rigid-body count taken as it is): the paper's
+/// basis n, or every pair the modes pair with, and as many again as the modes and two for a
+/// reduced model's basis ([`reduced::applies`]); none when the request's modes are not
+/// among `measured`'s.
+pub fn nominal_count(
+    model: &Structure,
+    measured: &MeasuredModes,
+    request: &Request,
+) -> Option<usize> {
+    let modes = selected(request.modes.as_deref(), measured).ok()?;
+    let (count, basis) = counts(model, &modes, request.n);
+    let paper = request.n.is_some() && request.m.is_some() && request.weighting.is_some();
+    Some(basis.filter(|_| !paper).unwrap_or(count))
+}
+
+/// The pairs of the paper's basis or of the modes' frequencies, and of a reduced model's
+/// basis when one applies.
+fn counts(model: &Structure, modes: &[&MeasuredMode], n: Option<usize>) -> (usize, Option<usize>) {
+    let reach = modes.iter().map(|m| m.mode + model.rigid).max();
+    let count = n.or(reach).unwrap_or(model.rigid + 1);
+    // A large external model's frequency fallbacks solve on a reduced model (module
+    // `crate::modal::reduced`) built on these pairs: as many again as the modes, and two.
+    let size = model.dof_count();
+    let basis = reduced::applies(model).then(|| (count + modes.len() + 2).min(size));
+    (count, basis)
+}
+
+/// As [`identify_modes`], the nominal model's pairs taken from `nominal` (a solve of `model`
+/// as it is, [`crate::model::from_path_solved`], with its factor) when it holds as many as
+/// [`nominal_count`]: the same pairs, not solved twice.
+pub fn identify_modes_solved(
+    model: &Structure,
+    measured: &MeasuredModes,
+    request: &Request,
+    nominal: Option<ModalSolution>,
+) -> Result<Identified, RunError> {
     if let Some(v) = request.frequency_noise
         && !(v.is_finite() && v >= RELATIVE_STD.0 && v < 1.0)
     {
@@ -138,14 +178,17 @@ pub fn identify_modes(
     let matrices = model.assemble();
     // the paper's basis of n pairs, or every pair the modes' frequencies pair with
     let reach = modes.iter().map(|m| m.mode + model.rigid).max();
-    let count = request.n.or(reach).unwrap_or(model.rigid + 1);
-    // A large external model's frequency fallbacks solve on a reduced model (module
-    // `crate::modal::reduced`) built on these pairs: as many again as the modes, and two.
-    let basis = reduced::applies(model).then(|| (count + modes.len() + 2).min(matrices.size()));
-    let modal = match (basis, &settings) {
-        (Some(b), None) => ModalSolution::lowest_of(&matrices, b)?,
-        _ => ModalSolution::lowest_of(&matrices, count)?,
+    let (count, basis) = counts(model, &modes, request.n);
+    // The nominal solve's factor of K - sigma M, for the reduced model's basis (the same
+    // factor, not made twice).
+    let factored = basis.filter(|_| settings.is_none());
+    let solve = factored.unwrap_or(count);
+    let mut modal = match nominal.filter(|n| n.len() == solve) {
+        Some(given) => given,
+        None if factored.is_some() => ModalSolution::lowest_of_factored(&matrices, solve)?,
+        None => ModalSolution::lowest_of(&matrices, count)?,
     };
+    let factor = modal.take_factor();
     check_elastic(&matrices, &modal, model.rigid)?;
     let identifier = settings
         .map(|settings| Identifier::new(&modal, params.clone(), model.rigid, settings))
@@ -155,16 +198,28 @@ pub fn identify_modes(
     let falls_back = planned.iter().any(|(_, plan)| plan.is_err());
     let attached = match basis {
         Some(b) if falls_back => {
-            let nominal = if modal.len() >= b {
-                modal.clone()
+            let (nominal, factor) = if modal.len() >= b {
+                (modal.clone(), factor)
             } else {
-                ModalSolution::lowest_of(&matrices, b)?
+                drop(factor);
+                let mut nominal = ModalSolution::lowest_of_factored(&matrices, b)?;
+                let factor = nominal.take_factor();
+                (nominal, factor)
             };
             let directions: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
             let wanted = model.rigid..(reach.unwrap_or(count) + 2).min(nominal.len());
-            Some(reduced::attach(model, &nominal, &directions, wanted)?)
+            Some(reduced::attach(
+                model,
+                &nominal,
+                factor,
+                &directions,
+                wanted,
+            )?)
         }
-        _ => None,
+        _ => {
+            drop(factor);
+            None
+        }
     };
     let model = attached.as_ref().unwrap_or(model);
     let ends = Ends::new(model, reach.unwrap_or(count));

@@ -432,6 +432,7 @@ mod tests {
             values: dense.values()[..8].to_vec(),
             vectors: dense.vectors().subcols(0, 8).to_owned(),
             reduced: None,
+            factor: None,
         };
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &lowest).unwrap();
         let zero = SparseSym::zero();
@@ -508,6 +509,7 @@ mod tests {
             values: keep.iter().map(|&t| full.values()[t]).collect(),
             vectors: Mat::from_fn(mats.size(), keep.len(), |i, j| full.vectors()[(i, keep[j])]),
             reduced: None,
+            factor: None,
         };
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &gapped).unwrap();
         // Pair 3 (index 3 of the full solution) is missing below the pair at index 4.

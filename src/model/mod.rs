@@ -35,13 +35,14 @@ pub fn from_path(path: &Path) -> Result<Structure, InputError> {
 }
 
 /// [`from_path`], and for an external model the lowest pairs that its check of the rigid-body
-/// modes computed, at least `elastic` beyond them where the model declares its rigid-body
-/// count ([`matrices::build::MatricesData::build_solved`]): a command that solves the model
-/// as read for `elastic` modes takes them instead of solving it again. A beam chain has no
-/// such solution (`None`).
+/// modes computed, at least `elastic` of the structure (as read, before the check) beyond
+/// them where the model declares its rigid-body count
+/// ([`matrices::build::MatricesData::build_solved`]), with the factor that solve made: a
+/// command that solves the model as read for that many modes takes them instead of solving
+/// it again. A beam chain has no such solution (`None`).
 pub fn from_path_solved(
     path: &Path,
-    elastic: usize,
+    elastic: matrices::build::Elastic,
 ) -> Result<(Structure, Option<crate::modal::ModalSolution>), InputError> {
     let text = read_file(path)?;
     match kind(&text, path)?.as_deref() {

@@ -45,7 +45,15 @@ fn reduced_lap(structure: &Structure, modes: usize, corrections: bool) -> Struct
         .map(|p| (&p.stiffness, &p.mass))
         .filter(|_| corrections)
         .collect();
-    let built = reduced::build(structure, &nominal, &directions, RIGID..COUNT, TOLERANCE).unwrap();
+    let built = reduced::build(
+        structure,
+        &nominal,
+        None,
+        &directions,
+        RIGID..COUNT,
+        TOLERANCE,
+    )
+    .unwrap();
     let mut out = structure.clone();
     out.reduced = Some(Arc::new(built));
     out
@@ -94,6 +102,115 @@ fn reduced_pairs_of_a_solid_are_the_full_ones_far_from_the_nominal_springs() {
     }
 }
 
+/// The basis built on the nominal solve's factor of K - sigma M (identify's path,
+/// `ModalSolution::lowest_of_factored`) is the basis built on its own factorisation, bit for
+/// bit, and so are the pairs solved on it; a factor of another size is refused.
+#[test]
+fn a_basis_on_the_nominal_solves_factor_is_the_same_bits() {
+    let structure = lap("factor", LAP);
+    let mut nominal =
+        ModalSolution::lowest_of_factored(&structure.assemble(), RIGID + 2 * 8 + 2).unwrap();
+    let factor = nominal
+        .take_factor()
+        .expect("a sparse solve keeps its factor");
+    assert!(nominal.take_factor().is_none(), "taken out");
+    let alone = ModalSolution::lowest_of(&structure.assemble(), RIGID + 2 * 8 + 2).unwrap();
+    assert_eq!(nominal.values(), alone.values());
+    let params = structure.identified();
+    let directions: Vec<_> = params.iter().map(|p| (&p.stiffness, &p.mass)).collect();
+    let build = |f| {
+        reduced::build(
+            &structure,
+            &nominal,
+            f,
+            &directions,
+            RIGID..COUNT,
+            TOLERANCE,
+        )
+    };
+    let (shared, own) = (
+        build(Some(Arc::clone(&factor))).unwrap(),
+        build(None).unwrap(),
+    );
+    assert_eq!(shared.k, own.k);
+    assert_eq!(shared.m, own.m);
+    let with = |r: Reduced| {
+        let mut s = scaled(&structure, [0.3, 2.0, 1.0]);
+        s.reduced = Some(Arc::new(r));
+        reduced::lowest(&s, &[], COUNT).unwrap()
+    };
+    let (a, b) = (with(shared), with(own));
+    assert!(a.reduced().is_some() && b.reduced().is_some());
+    assert_eq!(a.values(), b.values());
+    assert_eq!(a.vectors(), b.vectors());
+    let longer = lap("other", &LAP.replace("length = 0.12", "length = 0.16"));
+    assert_ne!(longer.dof_count(), structure.dof_count());
+    let other = ModalSolution::lowest_of_factored(&longer.assemble(), RIGID + 1)
+        .unwrap()
+        .take_factor()
+        .unwrap();
+    assert!(
+        build(Some(other)).is_err(),
+        "a factor of another model's size"
+    );
+}
+
+/// `jointid identify --from-frequency` on a lap of about 3,000 DOFs (a reduced model's): the
+/// pairs the check of its rigid-body modes solved when it was read, asked for the
+/// identification's count (`nominal_count`), are its nominal pairs with their factor, and
+/// identify on them gives the same bits as identify solving them itself.
+#[test]
+fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
+    use jointid::identify::run::{Request, identify_modes, identify_modes_solved, nominal_count};
+    use jointid::measured::MeasuredModes;
+    let dir = scratch("reduced", "read-solved");
+    let text = LAP.replace("size = 0.01\nlayers = 1", "size = 0.005\nlayers = 2");
+    let solid =
+        Solid::generate(&SolidConfig::from_toml(&text, Path::new("lap.toml")).unwrap()).unwrap();
+    for file in solid.file_names() {
+        let mut f = std::fs::File::create(dir.join(&file)).unwrap();
+        solid.write_file(&file, "lap.toml", &mut f).unwrap();
+    }
+    let path = dir.join("model.toml");
+    let plain = jointid::model::from_path(&path).unwrap();
+    assert!(reduced::applies(&plain), "{} DOFs", plain.dof_count());
+    // four modes, 1% off the model's alternately, each seen at three DOFs
+    let modal = reduced::full(&plain, &[], RIGID + 4).unwrap();
+    let mut csv = String::from("mode,frequency_hz,label,value\n");
+    for r in 1..=4 {
+        let f = modal.frequency_hz(RIGID + r - 1) * if r % 2 == 0 { 1.01 } else { 0.99 };
+        for i in [0, plain.dof_count() / 2, plain.dof_count() - 1] {
+            let y = modal.vectors()[(i, RIGID + r - 1)];
+            csv += &format!("{r},{f},{},{y}\n", plain.dofs.get(i).label);
+        }
+    }
+    let measured_path = dir.join("measured.csv");
+    std::fs::write(&measured_path, csv).unwrap();
+    let request = Request {
+        frequency_noise: Some(1e-3),
+        ..Request::default()
+    };
+    let elastic = |read: &jointid::structure::Structure| {
+        let measured = MeasuredModes::from_path(&measured_path, read).unwrap();
+        nominal_count(read, &measured, &request).unwrap() - read.rigid
+    };
+    let (model, nominal) = jointid::model::from_path_solved(&path, &elastic).unwrap();
+    let nominal = nominal.unwrap();
+    let measured = MeasuredModes::from_path(&measured_path, &model).unwrap();
+    assert_eq!(model.rigid, RIGID);
+    assert_eq!(
+        Some(nominal.len()),
+        nominal_count(&model, &measured, &request)
+    );
+    assert_eq!(nominal.len(), RIGID + 4 + 4 + 2);
+    assert!(nominal.clone().take_factor().is_some(), "the read's factor");
+    let given = identify_modes_solved(&model, &measured, &request, Some(nominal)).unwrap();
+    let alone = identify_modes(&model, &measured, &request).unwrap();
+    assert_eq!(format!("{:?}", given.modes), format!("{:?}", alone.modes));
+    assert_eq!(given.modes.len(), 4);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_basis_too_poor_is_enriched_until_its_pairs_are_the_full_ones() {
     let structure = reduced_lap(&lap("poor", LAP), COUNT + 2, false);
@@ -140,7 +257,10 @@ fn a_released_reduction_frees_its_factor_for_every_copy_and_solves_in_full() {
     let first = structure.reduced.as_ref().unwrap().basis.ncols();
     assert!(enriched.basis.ncols() > first);
     for columns in [&enriched.basis, &enriched.k_basis, &enriched.m_basis] {
-        assert!(columns.shared_blocks() >= 1, "the enriched copy copied its basis");
+        assert!(
+            columns.shared_blocks() >= 1,
+            "the enriched copy copied its basis"
+        );
     }
     let mut on_enriched = at.clone();
     on_enriched.reduced = Some(Arc::clone(&enriched));

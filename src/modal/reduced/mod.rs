@@ -46,6 +46,7 @@ use faer::Mat;
 
 pub use basis::build;
 
+use super::sparse_llt::SparseLlt;
 use super::{ModalError, ModalSolution};
 use crate::structure::reduced::Reduced;
 use crate::structure::{Matrices, SparseSym, Structure};
@@ -75,14 +76,16 @@ pub fn applies(structure: &Structure) -> bool {
         && structure.reduced.is_none()
 }
 
-/// `structure` carrying the basis of [`build`] (the tolerance [`TOLERANCE`]).
+/// `structure` carrying the basis of [`build`] (the tolerance [`TOLERANCE`]; `factor` as
+/// there).
 pub fn attach(
     structure: &Structure,
     nominal: &ModalSolution,
+    factor: Option<Arc<SparseLlt>>,
     directions: &[(&SparseSym, &SparseSym)],
     modes: std::ops::Range<usize>,
 ) -> Result<Structure, ModalError> {
-    let built = build(structure, nominal, directions, modes, TOLERANCE)?;
+    let built = build(structure, nominal, factor, directions, modes, TOLERANCE)?;
     let mut out = structure.clone();
     out.reduced = Some(Arc::new(built));
     Ok(out)

@@ -34,6 +34,11 @@ pub const RIGID_GAP: f64 = 1e-2;
 /// Largest number of DOFs of an external model (the large models have 1e4 to 1e5).
 pub const MAX_DOFS: usize = 1_000_000;
 
+/// The elastic pairs a caller wants beyond the declared rigid-body modes, of the structure
+/// read (before its solve: its rigid-body count the declared one, 0 when none is declared):
+/// [`MatricesData::build_solved`] solves for them too.
+pub type Elastic<'a> = &'a dyn Fn(&Structure) -> usize;
+
 /// How many of the lowest eigenvalues are looked at for rigid-body modes (a free body in
 /// space has six).
 pub const RIGID_SEARCH: usize = 12;
@@ -76,7 +81,7 @@ pub struct ParameterData {
 impl MatricesFile {
     /// Reads the files and builds the structure, with every check of the module docs.
     pub fn build(&self) -> Result<Structure, MatricesError> {
-        Ok(self.build_solved(0)?.0)
+        Ok(self.build_solved(&|_| 0)?.0)
     }
 
     /// [`MatricesFile::build`], and the lowest pairs of the structure at its parameter values
@@ -84,7 +89,7 @@ impl MatricesFile {
     /// modes ([`MatricesData::build_solved`]).
     pub fn build_solved(
         &self,
-        elastic: usize,
+        elastic: Elastic,
     ) -> Result<(Structure, ModalSolution), MatricesError> {
         let read = |field: &str, path: &std::path::Path| {
             matrix_market::from_path(path).map_err(|problem| MatricesError::Matrix {
@@ -150,16 +155,21 @@ impl MatricesFile {
 impl MatricesData {
     /// Builds the structure, with every check of the module docs (the sizes against K's first).
     pub fn build(self) -> Result<Structure, MatricesError> {
-        Ok(self.build_solved(0)?.0)
+        Ok(self.build_solved(&|_| 0)?.0)
     }
 
     /// [`MatricesData::build`], and the solution its rigid-body check computed: the lowest
-    /// max([`RIGID_SEARCH`], r + `elastic`) pairs of K and M at the parameter values (r the
-    /// declared rigid-body count, 0 when none is declared; every pair of a model small
-    /// enough for the dense solution). A caller that will solve the same structure for
-    /// `elastic` modes takes them from here: one factorisation and one solve where there
-    /// were two (the 212,562-DOF lap: 13-15 s each).
-    pub fn build_solved(self, elastic: usize) -> Result<(Structure, ModalSolution), MatricesError> {
+    /// max([`RIGID_SEARCH`], r + e) pairs of K and M at the parameter values (r the declared
+    /// rigid-body count, 0 when none is declared; e = `elastic` of the structure before the
+    /// solve, its rigid-body count r; every pair of a model small enough for the dense
+    /// solution), with the factor of K - sigma M the solve made
+    /// ([`ModalSolution::take_factor`]). A caller that will solve the same structure for e
+    /// modes takes them from here: one factorisation and one solve where there were two (the
+    /// 212,562-DOF lap: 13-15 s each).
+    pub fn build_solved(
+        self,
+        elastic: Elastic,
+    ) -> Result<(Structure, ModalSolution), MatricesError> {
         let n = self.k.size;
         if n > MAX_DOFS {
             return Err(MatricesError::TooLarge { size: n });
@@ -197,7 +207,9 @@ impl MatricesData {
         };
         let assembled = structure.assemble();
         check_mass_diagonal(&assembled, &structure.dofs)?;
-        let count = RIGID_SEARCH.max(self.rigid_body_modes.unwrap_or(0) + elastic);
+        let declared = self.rigid_body_modes.unwrap_or(0);
+        structure.rigid = declared;
+        let count = RIGID_SEARCH.max(declared + elastic(&structure));
         let modal = lowest(&assembled, count)?;
         structure.rigid = rigid_body_modes(self.rigid_body_modes, &assembled, &modal)?;
         structure.sites.beam_mass = translational_mass(&assembled.m, &structure.dofs);
@@ -262,7 +274,7 @@ fn parameter(i: usize, p: &ParameterData, n: usize) -> Result<Parameter, Matrice
 /// definite (its Cholesky factorisation, which the shift-invert solver needs anyway and
 /// keeps for the next solve of the same M, [`crate::modal::memo`]).
 fn lowest(mats: &Matrices, count: usize) -> Result<ModalSolution, MatricesError> {
-    ModalSolution::lowest_of(mats, count.min(mats.size())).map_err(|e| match e {
+    ModalSolution::lowest_of_factored(mats, count.min(mats.size())).map_err(|e| match e {
         ModalError::MassNotPositiveDefinite => MatricesError::MassNotPositiveDefinite {
             cause: "a pivot is not positive".into(),
         },

@@ -157,15 +157,15 @@ impl MatricesError {
 /// Parses and validates the TOML text of an external model (`file` names it and is where
 /// relative paths start), then reads and checks its files.
 pub fn from_toml(text: &str, file: &Path) -> Result<Structure, MatricesError> {
-    Ok(from_toml_solved(text, file, 0)?.0)
+    Ok(from_toml_solved(text, file, &|_| 0)?.0)
 }
 
-/// [`from_toml`], and the lowest pairs its rigid-body check computed, at least `elastic`
-/// beyond the declared rigid-body modes ([`build::MatricesData::build_solved`]).
+/// [`from_toml`], and the lowest pairs its rigid-body check computed, at least `elastic` of
+/// the structure beyond the declared rigid-body modes ([`build::MatricesData::build_solved`]).
 pub fn from_toml_solved(
     text: &str,
     file: &Path,
-    elastic: usize,
+    elastic: build::Elastic,
 ) -> Result<(Structure, crate::modal::ModalSolution), MatricesError> {
     let raw: config::RawMatrices = parse_toml(text, file)?;
     raw.validate(file)?.build_solved(elastic)
