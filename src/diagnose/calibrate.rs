@@ -28,7 +28,8 @@ use crate::structure::Structure;
 /// joint parameters to calibrate and at most as many as measured modes, an elastic nominal
 /// eigensolution, and a per-mode basis (when given) that reaches every measured mode; with
 /// that nominal eigensolution, which holds the pairs the reduced model is built on when one
-/// applies ([`super::reduce::nominal_pairs`]): the nominal model is solved once.
+/// applies ([`super::reduce::nominal_pairs`]), and then the factor of K - sigma M its solve
+/// made ([`ModalSolution::take_factor`]): the nominal model is solved and factorised once.
 pub fn prepare(
     model: &Structure,
     measured: &MeasuredModes,
@@ -55,7 +56,12 @@ pub fn prepare(
         .max(rigid + 1)
         .max(super::reduce::nominal_pairs(model, measured).unwrap_or(0))
         .min(matrices.size());
-    let nominal = ModalSolution::lowest_of(&matrices, wanted)?;
+    // Where a reduced model will be built on these pairs, the solve keeps its factor for it.
+    let nominal = if super::reduce::nominal_pairs(model, measured).is_some() {
+        ModalSolution::lowest_of_factored(&matrices, wanted)?
+    } else {
+        ModalSolution::lowest_of(&matrices, wanted)?
+    };
     check_elastic(&matrices, &nominal, rigid)?;
     if let Some(per_mode) = settings.per_mode {
         let identifier = Identifier::for_structure(model, &nominal, per_mode)?;

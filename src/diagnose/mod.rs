@@ -145,11 +145,18 @@ pub fn diagnose_watched(
     watch: Watch,
 ) -> Result<Report, DiagnoseError> {
     settings.check()?;
-    let (ctx, nominal) = calibrate::prepare(model, measured, &settings)?;
+    let (ctx, mut nominal) = calibrate::prepare(model, measured, &settings)?;
+    let factor = nominal.take_factor();
     let reduced = if settings.full_model {
         Arc::clone(&ctx)
     } else {
-        reduce::attach(Arc::clone(&ctx), &nominal, measured, settings.extended)?
+        reduce::attach(
+            Arc::clone(&ctx),
+            &nominal,
+            factor,
+            measured,
+            settings.extended,
+        )?
     };
     drop(nominal);
     if Arc::ptr_eq(&reduced, &ctx) {

@@ -17,6 +17,7 @@ use serde::Serialize;
 use super::fit::Fitted;
 use crate::measured::MeasuredModes;
 use crate::modal::reduced;
+use crate::modal::sparse_llt::SparseLlt;
 use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::{EffectContext, Tier, registry};
 use crate::structure::{SparseSym, Structure};
@@ -34,11 +35,14 @@ pub fn nominal_pairs(structure: &Structure, measured: &MeasuredModes) -> Option<
 
 /// `ctx` with its structure carrying the reduced model of the module docs, when it applies;
 /// `ctx` itself otherwise. `nominal`: the nominal model's lowest pairs, solved again only when
-/// it holds fewer than [`nominal_pairs`]. `extended`: the library's extended tier is searched
-/// too, and its effects' directions join the basis.
+/// it holds fewer than [`nominal_pairs`]; `factor`: the factor of K - sigma M its solve made
+/// ([`ModalSolution::lowest_of_factored`]), which the basis keeps rather than factorise the
+/// model again. `extended`: the library's extended tier is searched too, and its effects'
+/// directions join the basis.
 pub fn attach(
     ctx: Arc<EffectContext>,
     nominal: &ModalSolution,
+    factor: Option<Arc<SparseLlt>>,
     measured: &MeasuredModes,
     extended: bool,
 ) -> Result<Arc<EffectContext>, ModalError> {
@@ -77,7 +81,7 @@ pub fn attach(
     let attached = reduced::attach(
         structure,
         nominal,
-        None,
+        factor,
         &directions,
         rigid..(rigid + m + 2).min(nominal.len()),
     )?;
