@@ -19,6 +19,7 @@
 //! [`crate::input`], [`crate::random`], [`crate::structure`], [`crate::uff`], [`crate::modal`],
 //! [`crate::model`], [`crate::measured`], [`crate::extract`].
 
+pub mod frequency_error;
 pub mod frequency_only;
 pub mod identifiability;
 pub mod projection;

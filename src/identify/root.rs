@@ -39,7 +39,7 @@
 //!
 //! Layer 4 (identification): imports the structure and the modal solution.
 
-use super::frequency_only::FrequencyError;
+use super::frequency_error::FrequencyError;
 use super::reach::{Ends, REACH};
 use crate::modal::{ModalError, lambda_to_hz, reduced};
 use crate::structure::{Parameter, SparseSym, Structure};
