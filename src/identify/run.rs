@@ -135,6 +135,20 @@ fn counts(model: &Structure, modes: &[&MeasuredMode], n: Option<usize>) -> (usiz
     (count, basis)
 }
 
+/// The request's frequency noise, when given: a relative standard deviation from 1e-12 to
+/// below 1.
+fn check_frequency_noise(noise: Option<f64>) -> Result<(), RunError> {
+    match noise {
+        Some(v) if !(v.is_finite() && v >= RELATIVE_STD.0 && v < 1.0) => Err(SettingError::new(
+            "frequency_noise",
+            Number(v),
+            "a relative standard deviation from 1e-12 to below 1",
+        )
+        .into()),
+        _ => Ok(()),
+    }
+}
+
 /// As [`identify_modes`], the nominal model's pairs taken from `nominal` (a solve of `model`
 /// as it is, [`crate::model::from_path_solved`], with its factor) when it holds as many as
 /// [`nominal_count`]: the same pairs, not solved twice.
@@ -144,16 +158,7 @@ pub fn identify_modes_solved(
     request: &Request,
     nominal: Option<ModalSolution>,
 ) -> Result<Identified, RunError> {
-    if let Some(v) = request.frequency_noise
-        && !(v.is_finite() && v >= RELATIVE_STD.0 && v < 1.0)
-    {
-        return Err(SettingError::new(
-            "frequency_noise",
-            Number(v),
-            "a relative standard deviation from 1e-12 to below 1",
-        )
-        .into());
-    }
+    check_frequency_noise(request.frequency_noise)?;
     let all = model.identified();
     if all.is_empty() {
         // before the eigensolution, and the same refusal with or without frequencies alone

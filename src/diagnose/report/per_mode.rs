@@ -180,11 +180,24 @@ pub fn per_mode_corrections(
             })
             .collect()
     };
-    // One mode after another on a model solved through a reduced model (a large one): a
-    // mode's frequency search may solve the full model at its reach's far ends, and two such
-    // solves at once hold two factors beside the reduced model's own (on the 516,516-DOF lap
-    // of bench/, 21 GB where one at a time stays near 10).
-    if fitted.configured.structure.reduced.is_some() {
+    each_mode(
+        measured,
+        fitted.configured.structure.reduced.is_some(),
+        correct,
+    )
+}
+
+/// `correct` of every measured mode, in parallel, or one mode after another when `in_turn`:
+/// on a model solved through a reduced model (a large one), a mode's frequency search may
+/// solve the full model at its reach's far ends, and two such solves at once hold two factors
+/// beside the reduced model's own (on the 516,516-DOF lap of bench/, 21 GB where one at a
+/// time stays near 10).
+fn each_mode(
+    measured: &MeasuredModes,
+    in_turn: bool,
+    correct: impl Fn((usize, &MeasuredMode)) -> Vec<ModeCorrection> + Sync + Send,
+) -> Vec<ModeCorrection> {
+    if in_turn {
         return measured
             .modes()
             .iter()
