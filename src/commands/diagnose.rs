@@ -7,7 +7,9 @@ use anyhow::{Context, bail};
 
 use crate::cli::DiagnoseArgs;
 use jointid::diagnose::absorbed::absorbed;
-use jointid::diagnose::{DiagnoseError, DiagnoseSettings, Pass, Step, Watch, diagnose_watched};
+use jointid::diagnose::{
+    DiagnoseError, DiagnoseSettings, Pass, Step, Watch, diagnose_solved, nominal_count,
+};
 use jointid::identify::Settings;
 use jointid::measured::MeasuredModes;
 use jointid::output::diagnose_log;
@@ -15,6 +17,7 @@ use jointid::output::diagnose_page::diagnose_page;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
+use jointid::structure::Structure;
 
 use crate::commands::flagged;
 use crate::commands::report::stage_page;
@@ -57,7 +60,16 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
     outputs.extend(index.as_deref());
     check_outputs(&outputs, &inputs)?;
-    let model = super::read_model(&args.model)?;
+    // The check of an external model's rigid-body modes solves it: for the pairs the
+    // diagnosis needs (the measured modes read on the model as read; on an error, none: it
+    // is said below, in its turn), one solve where there were two.
+    let elastic = |read: &Structure| {
+        MeasuredModes::from_path(&args.measured, read)
+            .ok()
+            .map(|measured| nominal_count(read, &measured, &settings))
+            .map_or(0, |count| count.saturating_sub(read.rigid))
+    };
+    let (model, nominal) = super::read_model_solved(&args.model, &elastic)?;
     // A chain whose beams were calibrated on a reference test: the same chain as typed.
     let typed =
         calibrated_chain(&args.model)?.map(|chain| (chain.typed().build(), chain.calibration));
@@ -71,7 +83,7 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     } else {
         Watch::new(&tell)
     };
-    let report = diagnose_watched(&model, &measured, settings.clone(), watch);
+    let report = diagnose_solved(&model, &measured, settings.clone(), watch, nominal);
     log.end();
     let mut report = match report {
         // A setting refused once the model is known (a cause that does not apply to it).

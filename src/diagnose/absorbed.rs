@@ -24,7 +24,7 @@ pub fn absorbed(
     settings: &DiagnoseSettings,
     report: &Report,
 ) -> Result<Absorbed, DiagnoseError> {
-    let (ctx, _) = prepare(typed, measured, settings)?;
+    let (ctx, _) = prepare(typed, measured, settings, None)?;
     let calibration = Calibration {
         noise: settings.noise,
         discrepancy: Discrepancy::default(),

@@ -24,16 +24,37 @@ use crate::model::effects::EffectContext;
 use crate::optim::Silent;
 use crate::structure::Structure;
 
+/// How many of the nominal model's lowest pairs [`prepare`] solves for `measured` (rigid-body
+/// modes included): those the checks, the per-mode basis and the reduced model need (all of
+/// them up to the dense solver's reach, the model's size at most).
+pub fn nominal_count(
+    model: &Structure,
+    measured: &MeasuredModes,
+    settings: &DiagnoseSettings,
+) -> usize {
+    settings
+        .per_mode
+        .as_ref()
+        .map_or(0, |s| s.n)
+        .max(model.rigid + 1)
+        .max(super::reduce::nominal_pairs(model, measured).unwrap_or(0))
+        .min(model.dof_count())
+}
+
 /// The effects' context of `model` measured as `measured`, after checking that the model has
 /// joint parameters to calibrate and at most as many as measured modes, an elastic nominal
 /// eigensolution, and a per-mode basis (when given) that reaches every measured mode; with
 /// that nominal eigensolution, which holds the pairs the reduced model is built on when one
 /// applies ([`super::reduce::nominal_pairs`]), and then the factor of K - sigma M its solve
 /// made ([`ModalSolution::take_factor`]): the nominal model is solved and factorised once.
+/// `given`: the model's lowest pairs solved already (the check of an external model's
+/// rigid-body modes, [`crate::model::from_path_solved`], with its factor), taken when it holds
+/// [`nominal_count`] of them: the same pairs, not solved twice.
 pub fn prepare(
     model: &Structure,
     measured: &MeasuredModes,
     settings: &DiagnoseSettings,
+    given: Option<ModalSolution>,
 ) -> Result<(Arc<EffectContext>, ModalSolution), DiagnoseError> {
     let rigid = model.rigid;
     let joint_parameters = model.identified().len();
@@ -47,20 +68,14 @@ pub fn prepare(
         });
     }
     let matrices = model.assemble();
-    // The lowest pairs the checks, the per-mode basis and the reduced model need (all of
-    // them up to DENSE_MAX_DOFS).
-    let wanted = settings
-        .per_mode
-        .as_ref()
-        .map_or(0, |s| s.n)
-        .max(rigid + 1)
-        .max(super::reduce::nominal_pairs(model, measured).unwrap_or(0))
-        .min(matrices.size());
+    let wanted = nominal_count(model, measured, settings);
     // Where a reduced model will be built on these pairs, the solve keeps its factor for it.
-    let nominal = if super::reduce::nominal_pairs(model, measured).is_some() {
-        ModalSolution::lowest_of_factored(&matrices, wanted)?
-    } else {
-        ModalSolution::lowest_of(&matrices, wanted)?
+    let nominal = match given.filter(|n| n.len() == wanted) {
+        Some(given) => given,
+        None if super::reduce::nominal_pairs(model, measured).is_some() => {
+            ModalSolution::lowest_of_factored(&matrices, wanted)?
+        }
+        None => ModalSolution::lowest_of(&matrices, wanted)?,
     };
     check_elastic(&matrices, &nominal, rigid)?;
     if let Some(per_mode) = settings.per_mode {

@@ -58,6 +58,7 @@ pub mod settings;
 pub mod whiteness;
 pub mod yardstick;
 
+pub use calibrate::nominal_count;
 pub use candidate::{Candidate, Tier, catalogue, registry};
 pub use decide::{ALPHA, AMBIGUITY_MARGIN, FIT_ALPHA, MAX_CAUSES, TREND_SIGMAS};
 pub use fit::{
@@ -76,7 +77,7 @@ pub use whiteness::Whiteness;
 use std::sync::Arc;
 
 use crate::measured::MeasuredModes;
-use crate::modal::ModalError;
+use crate::modal::{ModalError, ModalSolution};
 use crate::model::effects::EffectContext;
 use crate::structure::Structure;
 use assemble::Findings;
@@ -144,8 +145,21 @@ pub fn diagnose_watched(
     settings: DiagnoseSettings,
     watch: Watch,
 ) -> Result<Report, DiagnoseError> {
+    diagnose_solved(model, measured, settings, watch, None)
+}
+
+/// As [`diagnose_watched`], the nominal model's lowest pairs taken from `nominal` (a solve of
+/// `model` as it is, with its factor: [`crate::model::from_path_solved`]) when it holds
+/// [`nominal_count`] of them: the same pairs, not solved twice.
+pub fn diagnose_solved(
+    model: &Structure,
+    measured: &MeasuredModes,
+    settings: DiagnoseSettings,
+    watch: Watch,
+    nominal: Option<ModalSolution>,
+) -> Result<Report, DiagnoseError> {
     settings.check()?;
-    let (ctx, mut nominal) = calibrate::prepare(model, measured, &settings)?;
+    let (ctx, mut nominal) = calibrate::prepare(model, measured, &settings, nominal)?;
     let factor = nominal.take_factor();
     let reduced = if settings.full_model {
         Arc::clone(&ctx)

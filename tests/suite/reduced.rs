@@ -211,6 +211,70 @@ fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `jointid diagnose` on the same lap: the pairs the check of its rigid-body modes solved when
+/// it was read, asked for the diagnosis's count (`diagnose::nominal_count`), are the nominal
+/// solution the diagnosis starts from (`calibrate::prepare`), with their factor, the same bits
+/// as a solve of its own.
+#[test]
+fn diagnose_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
+    use jointid::diagnose::calibrate::prepare;
+    use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, nominal_count};
+    use jointid::measured::MeasuredModes;
+    let dir = scratch("reduced", "read-solved-diagnose");
+    let text = LAP.replace("size = 0.01\nlayers = 1", "size = 0.005\nlayers = 2");
+    let solid =
+        Solid::generate(&SolidConfig::from_toml(&text, Path::new("lap.toml")).unwrap()).unwrap();
+    for file in solid.file_names() {
+        let mut f = std::fs::File::create(dir.join(&file)).unwrap();
+        solid.write_file(&file, "lap.toml", &mut f).unwrap();
+    }
+    let path = dir.join("model.toml");
+    let plain = jointid::model::from_path(&path).unwrap();
+    let modal = reduced::full(&plain, &[], RIGID + 4).unwrap();
+    let mut csv = String::from("mode,frequency_hz,label,value\n");
+    for r in 1..=4 {
+        let f = modal.frequency_hz(RIGID + r - 1) * if r % 2 == 0 { 1.01 } else { 0.99 };
+        for i in [0, plain.dof_count() / 2, plain.dof_count() - 1] {
+            let y = modal.vectors()[(i, RIGID + r - 1)];
+            csv += &format!("{r},{f},{},{y}\n", plain.dofs.get(i).label);
+        }
+    }
+    let measured_path = dir.join("measured.csv");
+    std::fs::write(&measured_path, csv).unwrap();
+    let settings = DiagnoseSettings {
+        noise: Noise {
+            frequency: 1e-3,
+            shape: 1e-2,
+        },
+        pairing: PairingRule::default(),
+        per_mode: None,
+        extended: false,
+        full_model: false,
+        causes: Vec::new(),
+    };
+    let elastic = |read: &jointid::structure::Structure| {
+        let measured = MeasuredModes::from_path(&measured_path, read).unwrap();
+        nominal_count(read, &measured, &settings) - read.rigid
+    };
+    let (model, nominal) = jointid::model::from_path_solved(&path, &elastic).unwrap();
+    let nominal = nominal.unwrap();
+    let measured = MeasuredModes::from_path(&measured_path, &model).unwrap();
+    assert!(reduced::applies(&model), "{} DOFs", model.dof_count());
+    assert_eq!(nominal.len(), nominal_count(&model, &measured, &settings));
+    assert_eq!(nominal.len(), RIGID + 2 * 4 + 2);
+    let (_, mut given) = prepare(&model, &measured, &settings, Some(nominal.clone())).unwrap();
+    let (_, mut alone) = prepare(&model, &measured, &settings, None).unwrap();
+    assert_eq!(given.values(), nominal.values(), "the read's pairs taken");
+    assert_eq!(given.values(), alone.values());
+    assert_eq!(given.vectors(), alone.vectors());
+    assert!(given.take_factor().is_some(), "the read's factor");
+    assert!(alone.take_factor().is_some());
+    // A solution of another count is solved again, not taken.
+    let (_, other) = prepare(&model, &measured, &settings, Some(modal)).unwrap();
+    assert_eq!(other.len(), nominal.len());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_basis_too_poor_is_enriched_until_its_pairs_are_the_full_ones() {
     let structure = reduced_lap(&lap("poor", LAP), COUNT + 2, false);
