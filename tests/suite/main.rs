@@ -28,6 +28,7 @@ mod cluster;
 mod diagnose;
 mod diagnose_battery;
 mod diagnose_unesp;
+mod external_solid;
 mod extract;
 mod extract_uncertainty;
 mod extract_unesp;
