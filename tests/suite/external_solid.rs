@@ -47,7 +47,14 @@ fn a_bolted_hexahedral_lap_from_another_code_is_diagnosed_on_its_reduced_model()
     let model = dir.join("model");
     let export = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/lap3d/export.py");
     let out = std::process::Command::new(python())
-        .args([s(&export), s(&model), "--interface", "bolts", "--dx", "10e-3"])
+        .args([
+            s(&export),
+            s(&model),
+            "--interface",
+            "bolts",
+            "--dx",
+            "10e-3",
+        ])
         .output()
         .unwrap();
     assert!(
@@ -56,8 +63,7 @@ fn a_bolted_hexahedral_lap_from_another_code_is_diagnosed_on_its_reduced_model()
         String::from_utf8_lossy(&out.stderr)
     );
     let truth: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(model.join("truth.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(model.join("truth.json")).unwrap()).unwrap();
     assert_eq!(truth["dofs"], 43074);
     let json = dir.join("diagnose.json");
     let run = jointid(&[
