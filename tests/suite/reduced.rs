@@ -4,7 +4,7 @@
 //! them, its derivatives against central differences, the same bits on any number of
 //! threads; and a diagnosis of a larger lap on it, checked against the full model.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use jointid::modal::reduced::{self, TOLERANCE, derivative::derivative};
@@ -155,15 +155,11 @@ fn a_basis_on_the_nominal_solves_factor_is_the_same_bits() {
     );
 }
 
-/// `jointid identify --from-frequency` on a lap of about 3,000 DOFs (a reduced model's): the
-/// pairs the check of its rigid-body modes solved when it was read, asked for the
-/// identification's count (`nominal_count`), are its nominal pairs with their factor, and
-/// identify on them gives the same bits as identify solving them itself.
-#[test]
-fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
-    use jointid::identify::run::{Request, identify_modes, identify_modes_solved, nominal_count};
-    use jointid::measured::MeasuredModes;
-    let dir = scratch("reduced", "read-solved");
+/// A lap of about 3,000 DOFs (a reduced model's) written as an external model into a scratch
+/// directory `name`, and four of its modes as measured, 1% off the model's alternately, each
+/// seen at three DOFs: (the directory, model.toml, measured.csv, the model's lowest pairs).
+fn lap_read_back(name: &str) -> (PathBuf, PathBuf, PathBuf, ModalSolution) {
+    let dir = scratch("reduced", name);
     let text = LAP.replace("size = 0.01\nlayers = 1", "size = 0.005\nlayers = 2");
     let solid =
         Solid::generate(&SolidConfig::from_toml(&text, Path::new("lap.toml")).unwrap()).unwrap();
@@ -174,7 +170,6 @@ fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     let path = dir.join("model.toml");
     let plain = jointid::model::from_path(&path).unwrap();
     assert!(reduced::applies(&plain), "{} DOFs", plain.dof_count());
-    // four modes, 1% off the model's alternately, each seen at three DOFs
     let modal = reduced::full(&plain, &[], RIGID + 4).unwrap();
     let mut csv = String::from("mode,frequency_hz,label,value\n");
     for r in 1..=4 {
@@ -186,6 +181,18 @@ fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     }
     let measured_path = dir.join("measured.csv");
     std::fs::write(&measured_path, csv).unwrap();
+    (dir, path, measured_path, modal)
+}
+
+/// `jointid identify --from-frequency` on a lap of about 3,000 DOFs (a reduced model's): the
+/// pairs the check of its rigid-body modes solved when it was read, asked for the
+/// identification's count (`nominal_count`), are its nominal pairs with their factor, and
+/// identify on them gives the same bits as identify solving them itself.
+#[test]
+fn identify_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
+    use jointid::identify::run::{Request, identify_modes, identify_modes_solved, nominal_count};
+    use jointid::measured::MeasuredModes;
+    let (dir, path, measured_path, _) = lap_read_back("read-solved");
     let request = Request {
         frequency_noise: Some(1e-3),
         ..Request::default()
@@ -220,27 +227,7 @@ fn diagnose_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     use jointid::diagnose::calibrate::prepare;
     use jointid::diagnose::{DiagnoseSettings, Noise, PairingRule, nominal_count};
     use jointid::measured::MeasuredModes;
-    let dir = scratch("reduced", "read-solved-diagnose");
-    let text = LAP.replace("size = 0.01\nlayers = 1", "size = 0.005\nlayers = 2");
-    let solid =
-        Solid::generate(&SolidConfig::from_toml(&text, Path::new("lap.toml")).unwrap()).unwrap();
-    for file in solid.file_names() {
-        let mut f = std::fs::File::create(dir.join(&file)).unwrap();
-        solid.write_file(&file, "lap.toml", &mut f).unwrap();
-    }
-    let path = dir.join("model.toml");
-    let plain = jointid::model::from_path(&path).unwrap();
-    let modal = reduced::full(&plain, &[], RIGID + 4).unwrap();
-    let mut csv = String::from("mode,frequency_hz,label,value\n");
-    for r in 1..=4 {
-        let f = modal.frequency_hz(RIGID + r - 1) * if r % 2 == 0 { 1.01 } else { 0.99 };
-        for i in [0, plain.dof_count() / 2, plain.dof_count() - 1] {
-            let y = modal.vectors()[(i, RIGID + r - 1)];
-            csv += &format!("{r},{f},{},{y}\n", plain.dofs.get(i).label);
-        }
-    }
-    let measured_path = dir.join("measured.csv");
-    std::fs::write(&measured_path, csv).unwrap();
+    let (dir, path, measured_path, modal) = lap_read_back("read-solved-diagnose");
     let settings = DiagnoseSettings {
         noise: Noise {
             frequency: 1e-3,
@@ -259,7 +246,6 @@ fn diagnose_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     let (model, nominal) = jointid::model::from_path_solved(&path, &elastic).unwrap();
     let nominal = nominal.unwrap();
     let measured = MeasuredModes::from_path(&measured_path, &model).unwrap();
-    assert!(reduced::applies(&model), "{} DOFs", model.dof_count());
     assert_eq!(nominal.len(), nominal_count(&model, &measured, &settings));
     assert_eq!(nominal.len(), RIGID + 2 * 4 + 2);
     let (_, mut given) = prepare(&model, &measured, &settings, Some(nominal.clone())).unwrap();
