@@ -3,7 +3,9 @@
 # eigensolution alone: the lowest 20 modes of a clamped-free steel cantilever of 5 000 and
 # 50 000 elements (N = 1e4 and 1e5, banded) and the lowest 12 elastic modes of the free-free
 # 3D laps of bench/lap-solid.toml (N = 23,958) and bench/lap-solid-212k.toml (N = 212,562),
-# six rigid-body modes each.
+# and of a lap made by another code (hex43k: bench/lap3d/export.py, fe3d.py's 20-node
+# hexahedra tied at three bolt patches, open faces between them, N = 43,074), six rigid-body
+# modes each.
 #
 # Every timed run is its own process, runs interleaved, REPEAT of each at every thread count
 # of THREADS (RAYON_NUM_THREADS; OMP/OPENBLAS/MKL_NUM_THREADS, and scipy's Matrix Market
@@ -29,7 +31,8 @@
 # with its rounding floor, src/modal/residual.rs), and the largest relative difference of
 # jointid's frequencies (from its CSV) from scipy's.
 # Usage: bash bench/eigen_vs_scipy.sh [REPEAT] [CASES]   (CASES: any of chain1e4 chain1e5
-# solid solid212k; the default leaves out solid212k, about 2 minutes a repeat and 3 GB)
+# solid solid212k hex43k; the default leaves out solid212k, about 2 minutes a repeat and 3 GB,
+# and hex43k)
 # Environment: THREADS (default "1 2"), VARIANTS (scipy's, default "superlu mmd banded";
 # solid212k leaves out superlu: 147 s and 7.2 GB on a model of this size), LOG (a file to
 # keep the run log in).
@@ -53,11 +56,13 @@ for case in $cases; do
         chain1e5) $bench export chain 50000 "$dir/$case" >&2 ;;
         solid) $jointid solid bench/lap-solid.toml --out "$dir/$case/model" >&2 ;;
         solid212k) $jointid solid bench/lap-solid-212k.toml --out "$dir/$case/model" >&2 ;;
+        hex43k) "$python" bench/lap3d/export.py "$dir/$case/model" --interface bolts \
+            --dx 10e-3 >&2 ;;
         *) echo "unknown case $case" >&2; exit 2 ;;
     esac
     model[$case]="$dir/$case/model"
     case $case in
-        solid*) $bench export model "${model[$case]}/model.toml" "$dir/$case" >&2 ;;
+        solid* | hex*) $bench export model "${model[$case]}/model.toml" "$dir/$case" >&2 ;;
     esac
 done
 log="$dir/runs.txt"
@@ -90,13 +95,13 @@ for r in $(seq "$repeat"); do
         count=20
         variants=${VARIANTS:-"superlu mmd banded"}
         case $case in
-            solid) count=12 ;;
+            solid | hex43k) count=12 ;;
             solid212k) count=12; variants=${VARIANTS:-"mmd banded"} ;;
         esac
         for threads in $threads_list; do
             echo "run $r/$repeat: $case, $threads thread(s) ($(cut -d' ' -f1-3 /proc/loadavg))" >&2
             case $case in
-                solid*) run "$case" "$threads" jointid whole "$dir/out.csv" $jointid simulate \
+                solid* | hex*) run "$case" "$threads" jointid whole "$dir/out.csv" $jointid simulate \
                     --model "${model[$case]}/model.toml" --modes $count --out "$dir/out.csv" ;;
             esac
             run "$case" "$threads" jointid eigen - $bench solve "$dir/$case" $count
