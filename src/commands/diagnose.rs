@@ -17,7 +17,6 @@ use jointid::output::diagnose_page::diagnose_page;
 use jointid::output::diagnose_plots::diagnose_figures;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, commit_all, diagnose as out, stage};
-use jointid::structure::Structure;
 
 use crate::commands::flagged;
 use crate::commands::report::stage_page;
@@ -60,16 +59,9 @@ pub fn run(args: &DiagnoseArgs) -> anyhow::Result<()> {
     let index = args.plots.as_ref().map(|dir| dir.join("index.html"));
     outputs.extend(index.as_deref());
     check_outputs(&outputs, &inputs)?;
-    // The check of an external model's rigid-body modes solves it: for the pairs the
-    // diagnosis needs (the measured modes read on the model as read; on an error, none: it
-    // is said below, in its turn), one solve where there were two.
-    let elastic = |read: &Structure| {
-        MeasuredModes::from_path(&args.measured, read)
-            .ok()
-            .map(|measured| nominal_count(read, &measured, &settings))
-            .map_or(0, |count| count.saturating_sub(read.rigid))
-    };
-    let (model, nominal) = super::read_model_solved(&args.model, &elastic)?;
+    let (model, nominal) = super::read_model_for(&args.model, &args.measured, |read, modes| {
+        Some(nominal_count(read, modes, &settings))
+    })?;
     // A chain whose beams were calibrated on a reference test: the same chain as typed.
     let typed =
         calibrated_chain(&args.model)?.map(|chain| (chain.typed().build(), chain.calibration));

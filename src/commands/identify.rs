@@ -12,7 +12,6 @@ use jointid::measured::MeasuredModes;
 use jointid::output::guard::model_inputs;
 use jointid::output::{check_outputs, identify as out, write_atomically};
 use jointid::structure::Parameter;
-use jointid::structure::Structure;
 
 /// The library's settings by their flags.
 const FLAGS: &[(&str, &str)] = &[
@@ -36,16 +35,9 @@ pub fn run(args: &IdentifyArgs) -> anyhow::Result<()> {
         modes: args.modes.clone(),
         frequency_noise: args.frequency_noise,
     };
-    // The check of an external model's rigid-body modes solves it: for the pairs the
-    // identification needs (the measured modes read on the model as read; on an error,
-    // none: it is said below, in its turn), one solve where there were two.
-    let elastic = |read: &Structure| {
-        MeasuredModes::from_path(&args.measured, read)
-            .ok()
-            .and_then(|measured| nominal_count(read, &measured, &request))
-            .map_or(0, |count| count.saturating_sub(read.rigid))
-    };
-    let (model, nominal) = super::read_model_solved(&args.model, &elastic)?;
+    let (model, nominal) = super::read_model_for(&args.model, &args.measured, |read, modes| {
+        nominal_count(read, modes, &request)
+    })?;
     let measured = MeasuredModes::from_path(&args.measured, &model)?;
     let identified = identify_modes_solved(&model, &measured, &request, nominal).map_err(|e| {
         let (model, measured) = (args.model.display(), args.measured.display());

@@ -75,6 +75,28 @@ fn read_model_solved(
     Ok((model, nominal))
 }
 
+/// [`read_model_solved`] for a command on the measured modes at `measured`: the pairs the
+/// check of an external model's rigid-body modes solves are those `count` asks for on the
+/// modes read on the model as read (rigid-body modes included), so that the command takes
+/// them: one solve where there were two. When the modes cannot be read, or `count` has none,
+/// the check solves its own few pairs, and the command says the error in its turn.
+fn read_model_for(
+    path: &std::path::Path,
+    measured: &std::path::Path,
+    count: impl Fn(&jointid::structure::Structure, &jointid::measured::MeasuredModes) -> Option<usize>,
+) -> anyhow::Result<(
+    jointid::structure::Structure,
+    Option<jointid::modal::ModalSolution>,
+)> {
+    let elastic = |read: &jointid::structure::Structure| {
+        jointid::measured::MeasuredModes::from_path(measured, read)
+            .ok()
+            .and_then(|modes| count(read, &modes))
+            .map_or(0, |count| count.saturating_sub(read.rigid))
+    };
+    read_model_solved(path, &elastic)
+}
+
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {

@@ -248,13 +248,17 @@ fn diagnose_takes_the_pairs_and_factor_solved_when_the_model_was_read() {
     let measured = MeasuredModes::from_path(&measured_path, &model).unwrap();
     assert_eq!(nominal.len(), nominal_count(&model, &measured, &settings));
     assert_eq!(nominal.len(), RIGID + 2 * 4 + 2);
+    let read_factor = nominal.clone().take_factor().unwrap();
     let (_, mut given) = prepare(&model, &measured, &settings, Some(nominal.clone())).unwrap();
     let (_, mut alone) = prepare(&model, &measured, &settings, None).unwrap();
-    assert_eq!(given.values(), nominal.values(), "the read's pairs taken");
     assert_eq!(given.values(), alone.values());
     assert_eq!(given.vectors(), alone.vectors());
-    assert!(given.take_factor().is_some(), "the read's factor");
-    assert!(alone.take_factor().is_some());
+    // Taken, not solved again: the read's own factor, not a new one.
+    assert!(
+        Arc::ptr_eq(&given.take_factor().unwrap(), &read_factor),
+        "the read's pairs and factor taken"
+    );
+    assert!(!Arc::ptr_eq(&alone.take_factor().unwrap(), &read_factor));
     // A solution of another count is solved again, not taken.
     let (_, other) = prepare(&model, &measured, &settings, Some(modal)).unwrap();
     assert_eq!(other.len(), nominal.len());
