@@ -21,9 +21,12 @@ of the monolithic bar, to the first sensor's).
 
 Usage: generate.py OUT [--interface uniform|bolts|glued] [--monolithic] [--tip-mass KG]
        [--sensors 3|9|x1,x2,...] [--seed N] [--modes 6] [--frequency-noise 1e-3]
-       [--shape-noise 1e-2]
-  --sensors 3: x = 0, 0.2, 0.6 m; 9: nine evenly from 0 to 0.6 m; or a comma-separated list.
+       [--shape-noise 1e-2] [specimen: --length M --overlap XA,XB --width M --height M
+       --young PA --poisson NU --density KG_M3 --kn N_M3 --kt N_M3]
+  --sensors 3: x = 0, 0.2, L; 9: nine evenly from 0 to L; or a comma-separated list.
   --monolithic: one uniform bar (no lap; --interface ignored); its model has no [joint.lap].
+  The specimen flags default to fe3d.Specimen's (the fixtures' steel bar); with --overlap the
+  three bolt patches sit at a tenth of the overlap from each end and at its middle.
 """
 
 from __future__ import annotations
@@ -131,9 +134,23 @@ def main() -> int:
     ap.add_argument("--modes", type=int, default=6)
     ap.add_argument("--frequency-noise", type=float, default=1e-3)
     ap.add_argument("--shape-noise", type=float, default=1e-2)
+    base = fe3d.Specimen()
+    for name in ("length", "width", "height", "young", "poisson", "density", "kn", "kt"):
+        ap.add_argument(f"--{name}", type=float, default=getattr(base, name))
+    ap.add_argument("--overlap", default=None, help="XA,XB in m")
     a = ap.parse_args()
     t0 = time.time()
-    spec = fe3d.Specimen(interface=a.interface, monolithic=a.monolithic, tip_mass=a.tip_mass)
+    geometry = {n: getattr(a, n) for n in
+                ("length", "width", "height", "young", "poisson", "density", "kn", "kt")}
+    if a.overlap is not None:
+        xa, xb = (float(v) for v in a.overlap.split(","))
+        if not 0.0 < xa < xb < a.length:
+            ap.error(f"--overlap {a.overlap}: needs 0 < XA < XB < length ({a.length})")
+        span = xb - xa
+        geometry["overlap"] = (xa, xb)
+        geometry["bolts"] = [xa + 0.1 * span, 0.5 * (xa + xb), xb - 0.1 * span]
+    spec = fe3d.Specimen(interface=a.interface, monolithic=a.monolithic, tip_mass=a.tip_mass,
+                         **geometry)
     sensors = sensor_positions(a.sensors, spec.length)
     freqs, shapes, sel, every, rigid, mesh = measure(spec, a.modes, sensors)
     rng = np.random.default_rng(a.seed)

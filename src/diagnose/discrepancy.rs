@@ -29,8 +29,8 @@
 //!
 //! Each candidate's deviance at its optimum is its profile likelihood with tau as a nuisance
 //! parameter: two models are compared by the difference of their deviances (module `search`),
-//! each with its own discrepancy. The degrees of freedom of the discrepancy's estimate
-//! ([`dof`]) make that comparison an F test where tau was estimated. A kind whose residuals
+//! each with its own discrepancy. Where tau was estimated, that comparison is the F test of
+//! [`improvement`], kind by kind on the residuals each discrepancy was estimated on. A kind whose residuals
 //! have less than [`LEAST_DOF`] degree of freedom left by the model's unknowns ([`estimable`]:
 //! two frequencies and two joint parameters) has no discrepancy the data could estimate: it
 //! is held at 0 and the report says so.
@@ -40,6 +40,7 @@ use super::fit::{
     with_limits,
 };
 use crate::measured::MeasuredModes;
+use crate::stats::{self, Sample};
 
 /// Largest number of refits of theta under a new tau.
 pub const ROUNDS: usize = 12;
@@ -336,36 +337,117 @@ pub fn freedom(fitted: &Fitted, measured: &MeasuredModes) -> Freedom {
     }
 }
 
-/// Degrees of freedom of the error variance estimated in `fitted` (the F tests' denominator):
-/// for every discrepancy above 0 (the frequencies', the shapes' or each mode's), the residual
-/// degrees of freedom n it was estimated on, as the total variance v = s^2 + tau^2 carries them
-/// (Satterthwaite: the measurement variance s^2 is known, tau^2 estimated on n, so v has
-/// n (v / tau^2)^2: a discrepancy small beside the measurement error leaves the variance nearly
-/// known), summed; infinite when every discrepancy is 0 (the measurement error alone, known).
-pub fn dof(fitted: &Fitted, measured: &MeasuredModes, calibration: &Calibration) -> f64 {
+/// One kind of residual of an error model, with a discrepancy of its own: the frequencies,
+/// the shapes of every mode together, or one mode's shape.
+#[derive(Debug, Clone, Copy)]
+enum Kind {
+    Frequency,
+    Shapes,
+    Mode(usize),
+}
+
+/// The kinds of residual of `fitted`'s error model, each with the residuals its discrepancy
+/// was estimated on (`squares`: its residuals): their degrees of freedom n as the total
+/// variance v = s^2 + tau^2 carries them (Satterthwaite: the measurement variance s^2 is
+/// known, tau^2 estimated on n, so v has n (v / tau^2)^2: a discrepancy small beside the
+/// measurement error leaves the variance nearly known), and their count (those degrees of
+/// freedom plus the unknowns the kind absorbed); known where the discrepancy is 0 (the
+/// measurement error alone).
+fn kinds(
+    fitted: &Fitted,
+    measured: &MeasuredModes,
+    (frequency, shapes): &(Squares, Vec<Squares>),
+) -> Vec<(Kind, Sample)> {
     let (f, s) = residual_dof(fitted, measured);
-    let (frequency, shapes) = squares(fitted, measured, calibration);
     let d = &fitted.discrepancy;
     let carried = |tau: f64, n: f64, kind: &Squares| {
         let t = tau * tau;
         if t > 0.0 {
-            n.max(LEAST_DOF) * ((kind.mean_variance() + t) / t).powi(2)
+            let n = n.max(LEAST_DOF);
+            let dof = n * ((kind.mean_variance() + t) / t).powi(2);
+            Sample {
+                dof,
+                count: dof + (kind.pairs.len() as f64 - n).max(0.0),
+            }
         } else {
-            0.0
+            Sample::KNOWN
         }
     };
-    let shape_dof = if d.modes.is_empty() {
-        carried(d.shape, s, &joined(&shapes))
+    let mut kinds = vec![(Kind::Frequency, carried(d.frequency, f, frequency))];
+    if d.modes.is_empty() {
+        kinds.push((Kind::Shapes, carried(d.shape, s, &joined(shapes))));
     } else {
-        mode_dof(fitted, measured)
-            .iter()
-            .zip(&shapes)
-            .enumerate()
-            .map(|(r, (n, kind))| carried(d.shape_of(r), *n, kind))
-            .sum()
+        let per_mode = mode_dof(fitted, measured);
+        kinds.extend(
+            per_mode
+                .iter()
+                .zip(shapes)
+                .enumerate()
+                .map(|(r, (n, kind))| (Kind::Mode(r), carried(d.shape_of(r), *n, kind))),
+        );
+    }
+    kinds
+}
+
+/// The deviance of the residuals of `kind` among `squares` under the discrepancy `d`.
+fn deviance_of(kind: Kind, (frequency, shapes): &(Squares, Vec<Squares>), d: &Discrepancy) -> f64 {
+    let mode = |r: usize| shapes[r].deviance(d.shape_of(r).powi(2));
+    match kind {
+        Kind::Frequency => frequency.deviance(d.frequency * d.frequency),
+        Kind::Shapes => (0..shapes.len()).map(mode).sum(),
+        Kind::Mode(r) => mode(r),
+    }
+}
+
+/// The likelihood-ratio test of a model `larger` against `smaller`, a model it extends, both
+/// fitted with their own discrepancies, as the statistic of an F test and its denominator's
+/// degrees of freedom.
+///
+/// Per kind of `larger`'s error model (the frequencies; the shapes, or each mode's), the
+/// deviance difference D_k of its residuals is read as the classical F test's improvement
+/// over the kind's variance (`stats::improvement`: (exp(D_k / n_k) - 1) nu_k where the
+/// discrepancy was estimated on nu_k degrees of freedom of n_k residuals, D_k where it is
+/// known), and the kinds' improvements are summed. The sum's degrees of freedom are the
+/// Welch-Satterthwaite combination (sum Delta_k)^2 / sum (Delta_k^2 / nu_k) of the estimated
+/// kinds' (infinite when none was): each improvement is scaled by its own kind's variance, so
+/// that one made in six frequencies is read on their few degrees of freedom, not on the
+/// shapes' many. With one kind it is the classical F test, exactly, in the linear model.
+pub fn improvement(
+    smaller: &Fitted,
+    larger: &Fitted,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+) -> (f64, f64) {
+    let before = squares(smaller, measured, calibration);
+    let after = squares(larger, measured, calibration);
+    combined(
+        kinds(larger, measured, &after)
+            .into_iter()
+            .map(|(kind, sample)| {
+                let d = deviance_of(kind, &before, &smaller.discrepancy)
+                    - deviance_of(kind, &after, &larger.discrepancy);
+                (d, sample)
+            }),
+    )
+}
+
+/// The kinds' deviance differences and samples `parts` combined as [`improvement`] says: the
+/// sum of their improvements (at least 0) and its Welch-Satterthwaite degrees of freedom.
+fn combined(parts: impl Iterator<Item = (f64, Sample)>) -> (f64, f64) {
+    let (mut total, mut spread) = (0.0, 0.0);
+    for (d, sample) in parts {
+        let delta = stats::improvement(d, sample);
+        total += delta;
+        if sample.dof.is_finite() {
+            spread += delta * delta / sample.dof;
+        }
+    }
+    let dof = if spread > 0.0 {
+        total * total / spread
+    } else {
+        f64::INFINITY
     };
-    let dof = carried(d.frequency, f, &frequency) + shape_dof;
-    if dof == 0.0 { f64::INFINITY } else { dof }
+    (total.max(0.0), dof)
 }
 
 /// A model fitted with its own discrepancy (module docs): `fit` fits the model's unknowns
@@ -481,13 +563,39 @@ fn alternate(
             Err(_) => break,
         }
     }
-    fitted.discrepancy_dof = dof(&fitted, measured, calibration);
     Ok(fitted)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Kinds combined: one estimated kind is its own F test; an improvement made in a kind of
+    /// few degrees of freedom is read on them, whatever kinds of many beside it did not move;
+    /// known kinds add their differences as chi-square and leave the scale known.
+    #[test]
+    fn an_improvement_is_read_on_the_degrees_of_freedom_of_the_kinds_that_made_it() {
+        let frequencies = Sample {
+            dof: 5.0,
+            count: 6.0,
+        };
+        let shapes = Sample {
+            dof: 40.0,
+            count: 48.0,
+        };
+        let d = 6.0 * 27.0_f64.ln();
+        let (alone, dof) = combined([(d, frequencies)].into_iter());
+        assert!((alone - 26.0 * 5.0).abs() < 1e-9 * alone && dof == 5.0);
+        let (with_shapes, dof) = combined([(d, frequencies), (0.0, shapes)].into_iter());
+        assert_eq!((with_shapes, dof), (alone, 5.0));
+        // Two kinds improved alike: their degrees of freedom add.
+        let (_, both) = combined([(1.0, frequencies), (1.0, frequencies)].into_iter());
+        assert!((both - 10.0).abs() < 1e-12);
+        let (known, dof) = combined([(9.0, Sample::KNOWN), (3.0, Sample::KNOWN)].into_iter());
+        assert_eq!((known, dof), (12.0, f64::INFINITY));
+        // A model that fits worse is no evidence.
+        assert_eq!(combined([(-4.0, frequencies)].into_iter()).0, 0.0);
+    }
 
     /// Residuals of equal measurement variance s^2: the maximum likelihood of t is
     /// mean(e^2) - s^2 when positive, else 0.

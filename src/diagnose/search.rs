@@ -23,6 +23,7 @@ use rayon::prelude::*;
 
 use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
 use super::decide::{MAX_CAUSES, Path, Rival, adjusted, select};
+use super::discrepancy;
 use super::fit::{Fitted, refitted_chi2, residuals};
 use super::progress::Pass;
 use super::report::Verdict;
@@ -471,11 +472,12 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
         Some((lrt, p)) => (lrt, p, Test::MeasurementError),
         None => {
             let lrt = (from.deviance - fit.deviance).max(0.0);
-            (
-                lrt,
-                lr_sf(lrt, fit.added, fit.discrepancy_dof, fit.bounded),
-                Test::Discrepancy,
-            )
+            let p = fit.model.as_ref().map_or(1.0, |model| {
+                let (statistic, dof) =
+                    discrepancy::improvement(from, model, measured, stage.calibration);
+                lr_sf(statistic, fit.added, dof, fit.bounded)
+            });
+            (lrt, p, Test::Discrepancy)
         }
     };
     m.lrt = Some(lrt);

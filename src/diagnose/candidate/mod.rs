@@ -83,8 +83,6 @@ pub struct Fit {
     pub deviance: f64,
     /// The discrepancy estimated with it.
     pub discrepancy: Discrepancy,
-    /// Degrees of freedom of that estimate (infinite: none estimated).
-    pub discrepancy_dof: f64,
     /// Its degrees of freedom (data less unknowns).
     pub dof: usize,
     /// Unknowns the candidate adds to the model it extends: the degrees of freedom of the
@@ -126,7 +124,6 @@ impl Fit {
             describe,
             deviance: fitted.deviance,
             discrepancy: fitted.discrepancy.clone(),
-            discrepancy_dof: fitted.discrepancy_dof,
             dof: fitted.dof,
             added,
             unknowns: fitted.estimates.len(),

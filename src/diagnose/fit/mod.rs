@@ -266,8 +266,6 @@ pub struct Fitted {
     /// each residual in the units of [`Residuals`]: chi^2 plus a term that depends on the
     /// discrepancy alone.
     pub deviance: f64,
-    /// Degrees of freedom of the discrepancy's estimate (infinite: none was estimated).
-    pub discrepancy_dof: f64,
     /// The optimum in the fit's own unknowns (a start for a refit).
     pub(crate) solution: Vec<f64>,
 }
@@ -992,7 +990,6 @@ fn finish(
     Fitted {
         discrepancy: problem.discrepancy.clone(),
         deviance,
-        discrepancy_dof: f64::INFINITY,
         scales,
         solution: x,
         configured: eval.configured,

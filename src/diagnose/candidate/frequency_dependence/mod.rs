@@ -80,7 +80,13 @@ impl Candidate for FrequencyDependence {
             .and_then(Result::ok);
         let comparison = per.as_ref().map(|p| {
             let lrt = (shared.fitted.deviance - p.fitted.deviance).max(0.0);
-            (lrt, lr_sf(lrt, joints - 1, p.fitted.discrepancy_dof, false))
+            let (statistic, dof) = discrepancy::improvement(
+                &shared.fitted,
+                &p.fitted,
+                stage.measured,
+                stage.calibration,
+            );
+            (lrt, lr_sf(statistic, joints - 1, dof, false))
         });
         let per_supported = comparison.is_some_and(|(_, p)| p < ALPHA);
         let words = match comparison {
@@ -267,7 +273,6 @@ fn finish(
     let fitted = Fitted {
         discrepancy: problem.discrepancy.clone(),
         deviance: problem.deviance(chi2),
-        discrepancy_dof: f64::INFINITY,
         configured: Configured {
             ctx: problem.ctx.clone(),
             structure,
