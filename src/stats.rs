@@ -241,25 +241,24 @@ impl Sample {
     };
 }
 
-/// The deviance difference `d` of one kind of residuals between two models, its error variance
-/// profiled out of both and estimated on `sample` in the larger, as the classical F test's
-/// improvement over that variance: `d` where the variance is known, else
+/// The chi^2 difference `d` of one kind of residuals between two models, both weighed by the
+/// larger model's maximum-likelihood error variance, estimated on `sample`, as the classical
+/// F test's improvement over that variance's unbiased estimate: `d` where the variance is
+/// known, else d nu / n.
 ///
-/// ```text
-///   (exp(d / n) - 1) nu
-/// ```
-///
-/// In the linear Gaussian model of n observations with one unknown variance, d = n ln(RSS_0 /
-/// RSS_1), and this is (RSS_0 - RSS_1) / (RSS_1 / nu): k times the F statistic of the k
-/// unknowns added, exactly F(k, nu) under the smaller model, nu = n - p ([`lr_sf`] reads it so).
-/// Reading d itself so, its first order in d / n, overstates small differences (by n / nu) and
-/// understates large ones, so that few residuals make it far too conservative where it
-/// matters: six frequencies whose variance falls 27-fold give d = 6 ln 27 = 19.8 but 26 nu.
+/// In the linear Gaussian model of n observations with one unknown variance, the larger
+/// model's maximum-likelihood variance is RSS_1 / n, so d = n (RSS_0 - RSS_1) / RSS_1 and this
+/// is (RSS_0 - RSS_1) / (RSS_1 / nu): k times the F statistic of the k unknowns added, exactly
+/// F(k, nu) under the smaller model, nu = n - p ([`lr_sf`] reads it so). The profile
+/// likelihood ratio n ln(RSS_0 / RSS_1) read so instead is its first order: it overstates small
+/// differences (by n / nu) and understates large ones, so that few residuals make it far too
+/// conservative where it matters: six frequencies whose variance falls 27-fold give a ratio of
+/// 6 ln 27 = 19.8 but an improvement of 26 nu.
 pub fn improvement(d: f64, sample: Sample) -> f64 {
     if sample.dof.is_infinite() {
         return d;
     }
-    (d / sample.count.max(sample.dof)).exp_m1() * sample.dof
+    d * sample.dof / sample.count.max(sample.dof)
 }
 
 /// The f with P(F(d1, d2) > f) = p (bisection on [`f_sf`]), 0 < p < 1.
@@ -418,11 +417,12 @@ mod tests {
         assert!((lr_sf(9.0, 2, 1e7, true) - known).abs() < 1e-5 * known);
     }
 
-    /// The improvement of a deviance difference against simulation: a regression of n = 6
-    /// observations on 1, x and x^2 (x = 0..5), normal errors of unknown variance, the x^2 term
-    /// absent. d = n ln(RSS_0 / RSS_1) of the quadratic against the line, each variance
-    /// profiled out: its improvement read as F(1, 3) gives uniform p-values (the classical F
-    /// statistic, to rounding), where d itself read so rejects far too seldom at small levels.
+    /// The improvement against simulation: a regression of n = 6 observations on 1, x and x^2
+    /// (x = 0..5), normal errors of unknown variance, the x^2 term absent. d = (RSS_0 - RSS_1)
+    /// / (RSS_1 / n) of the line against the quadratic under the quadratic's maximum-likelihood
+    /// variance: its improvement read as F(1, 3) gives uniform p-values (the classical F
+    /// statistic, to rounding), where the profile likelihood ratio n ln(RSS_0 / RSS_1) read so
+    /// rejects far too seldom at small levels.
     #[test]
     fn an_improvement_is_the_exact_f_statistic_of_a_regression() {
         use crate::random::TrialRng;
@@ -454,19 +454,20 @@ mod tests {
             let total: f64 = y.iter().map(|u| u * u).sum();
             let rss1 = total - q.iter().map(|b| along(b).powi(2)).sum::<f64>();
             let rss0 = rss1 + along(&q[2]).powi(2);
-            let d = 6.0 * (rss0 / rss1).ln();
+            let d = (rss0 - rss1) / (rss1 / 6.0);
             let f = (rss0 - rss1) / (rss1 / 3.0);
             assert!(
                 (improvement(d, sample) - f).abs() < 1e-9 * f.max(1.0),
                 "{d}"
             );
             let p = lr_sf(improvement(d, sample), 1, 3.0, false);
+            let ratio = 6.0 * (rss0 / rss1).ln();
             for (level, (a, b)) in [0.05, 0.01]
                 .iter()
                 .zip(exact.iter_mut().zip(first_order.iter_mut()))
             {
                 *a += usize::from(p < *level);
-                *b += usize::from(lr_sf(d, 1, 3.0, false) < *level);
+                *b += usize::from(lr_sf(ratio, 1, 3.0, false) < *level);
             }
         }
         for (level, (a, b)) in [0.05, 0.01].iter().zip(exact.iter().zip(&first_order)) {
@@ -482,6 +483,7 @@ mod tests {
             count: 1e7 + 3.0,
         };
         assert!((improvement(9.0, nearly) - 9.0).abs() < 1e-5);
+        assert_eq!(improvement(9.0, sample), 4.5);
     }
 
     #[test]

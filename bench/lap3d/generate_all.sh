@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the 3D half-lap fixtures of tests/fixtures/lap3d/ (see its README.md) with
-# bench/lap3d/generate.py: ten cases, fixed seeds, 0.1% frequency and 1% shape noise, and
-# three noise-free ones (exact-*: the model-form error alone).
+# bench/lap3d/generate.py: ten cases, fixed seeds, 0.1% frequency and 1% shape noise, three
+# noise-free ones (exact-*: the model-form error alone) and two of a stubbier specimen (stubby-*).
 # About 25 s per case on two cores.   usage: bash bench/lap3d/generate_all.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -21,3 +21,6 @@ gen monolithic-9 --monolithic --sensors 9 --seed 10
 gen exact-uniform-9 --interface uniform --sensors 9 --frequency-noise 0 --shape-noise 0
 gen exact-bolts-9   --interface bolts   --sensors 9 --frequency-noise 0 --shape-noise 0
 gen exact-glued-9   --interface glued   --sensors 9 --frequency-noise 0 --shape-noise 0
+stubby="--length 0.7112 --overlap 0.29528,0.41593 --width 25.4e-3 --height 19.05e-3 --young 1.93e11 --density 8000"
+gen stubby-bolts-3 --interface bolts --sensors 0,0.2,0.7112 --seed 11 $stubby
+gen stubby-bolts-9 --interface bolts --sensors 0,0.0889,0.1778,0.2667,0.3556,0.4445,0.5334,0.6223,0.7112 --seed 13 $stubby

@@ -389,13 +389,37 @@ fn kinds(
     kinds
 }
 
-/// The deviance of the residuals of `kind` among `squares` under the discrepancy `d`.
-fn deviance_of(kind: Kind, (frequency, shapes): &(Squares, Vec<Squares>), d: &Discrepancy) -> f64 {
-    let mode = |r: usize| shapes[r].deviance(d.shape_of(r).powi(2));
+/// The chi^2 difference sum (e0_i^2 - e1_i^2) / v_i of the residuals of `kind` between
+/// `before` and `after` (the same data, two models), each weighed by the smaller of the two
+/// models' variances v_i = s_i^2 + tau^2 (`d0`, `d1` their discrepancies).
+fn difference(
+    kind: Kind,
+    (f0, s0): &(Squares, Vec<Squares>),
+    (f1, s1): &(Squares, Vec<Squares>),
+    (d0, d1): (&Discrepancy, &Discrepancy),
+) -> f64 {
+    let sum = |a: &Squares, b: &Squares, tau: f64| -> f64 {
+        a.pairs
+            .iter()
+            .zip(&b.pairs)
+            .map(|(&(e0, s2), &(e1, _))| (e0 - e1) / (s2 + tau * tau).max(f64::MIN_POSITIVE))
+            .sum()
+    };
+    let mode = |r: usize| sum(&s0[r], &s1[r], d0.shape_of(r).min(d1.shape_of(r)));
     match kind {
-        Kind::Frequency => frequency.deviance(d.frequency * d.frequency),
-        Kind::Shapes => (0..shapes.len()).map(mode).sum(),
+        Kind::Frequency => sum(f0, f1, d0.frequency.min(d1.frequency)),
+        Kind::Shapes => (0..s0.len()).map(mode).sum(),
         Kind::Mode(r) => mode(r),
+    }
+}
+
+/// Whether the larger model of `(d0, d1)` fits `kind` at least as closely as the smaller (its
+/// discrepancy there no larger).
+fn closer(kind: Kind, (d0, d1): (&Discrepancy, &Discrepancy)) -> bool {
+    match kind {
+        Kind::Frequency => d1.frequency <= d0.frequency,
+        Kind::Shapes => d1.shape <= d0.shape,
+        Kind::Mode(r) => d1.shape_of(r) <= d0.shape_of(r),
     }
 }
 
@@ -403,15 +427,20 @@ fn deviance_of(kind: Kind, (frequency, shapes): &(Squares, Vec<Squares>), d: &Di
 /// fitted with their own discrepancies, as the statistic of an F test and its denominator's
 /// degrees of freedom.
 ///
-/// Per kind of `larger`'s error model (the frequencies; the shapes, or each mode's), the
-/// deviance difference D_k of its residuals is read as the classical F test's improvement
-/// over the kind's variance (`stats::improvement`: (exp(D_k / n_k) - 1) nu_k where the
-/// discrepancy was estimated on nu_k degrees of freedom of n_k residuals, D_k where it is
-/// known), and the kinds' improvements are summed. The sum's degrees of freedom are the
-/// Welch-Satterthwaite combination (sum Delta_k)^2 / sum (Delta_k^2 / nu_k) of the estimated
-/// kinds' (infinite when none was): each improvement is scaled by its own kind's variance, so
-/// that one made in six frequencies is read on their few degrees of freedom, not on the
-/// shapes' many. With one kind it is the classical F test, exactly, in the linear model.
+/// Per kind of `larger`'s error model (the frequencies; the shapes, or each mode's), the chi^2
+/// difference of the two models' residuals under `larger`'s variances of that kind is read as
+/// the classical F test's improvement over the kind's variance (`stats::improvement`: times
+/// nu_k / n_k where the discrepancy was estimated on nu_k degrees of freedom of n_k residuals,
+/// itself where it is known), and the kinds' improvements are summed. The sum's degrees of
+/// freedom are the Welch-Satterthwaite combination (sum Delta_k)^2 / sum (Delta_k^2 / nu_k) of
+/// the estimated kinds' (infinite when none was): each improvement is scaled by its own kind's
+/// variance, so that one made in six frequencies is read on their few degrees of freedom, not
+/// on the shapes' many. With one kind it is the classical F test, exactly, in the linear model.
+///
+/// Where the larger model fits a kind less closely than the smaller (a larger discrepancy
+/// there: it gave up, say, the frequencies to fit the shapes), that kind is weighed by the
+/// smaller model's variance, measured alone where the smaller fits it within the measurement
+/// error: a model may not buy the variance its own loss is measured by.
 pub fn improvement(
     smaller: &Fitted,
     larger: &Fitted,
@@ -420,18 +449,28 @@ pub fn improvement(
 ) -> (f64, f64) {
     let before = squares(smaller, measured, calibration);
     let after = squares(larger, measured, calibration);
+    let both = (&smaller.discrepancy, &larger.discrepancy);
     combined(
         kinds(larger, measured, &after)
             .into_iter()
             .map(|(kind, sample)| {
-                let d = deviance_of(kind, &before, &smaller.discrepancy)
-                    - deviance_of(kind, &after, &larger.discrepancy);
-                (d, sample)
+                let d = difference(kind, &before, &after, both);
+                let known = !closer(kind, both) && smaller_is_known(kind, &smaller.discrepancy);
+                (d, if known { Sample::KNOWN } else { sample })
             }),
     )
 }
 
-/// The kinds' deviance differences and samples `parts` combined as [`improvement`] says: the
+/// Whether discrepancy `d` is zero on `kind`.
+fn smaller_is_known(kind: Kind, d: &Discrepancy) -> bool {
+    match kind {
+        Kind::Frequency => d.frequency == 0.0,
+        Kind::Shapes => d.shape == 0.0,
+        Kind::Mode(r) => d.shape_of(r) == 0.0,
+    }
+}
+
+/// The kinds' chi^2 differences and samples `parts` combined as [`improvement`] says: the
 /// sum of their improvements (at least 0) and its Welch-Satterthwaite degrees of freedom.
 fn combined(parts: impl Iterator<Item = (f64, Sample)>) -> (f64, f64) {
     let (mut total, mut spread) = (0.0, 0.0);
@@ -583,13 +622,15 @@ mod tests {
             dof: 40.0,
             count: 48.0,
         };
-        let d = 6.0 * 27.0_f64.ln();
+        // Six frequencies whose variance falls 27-fold: chi^2 156 under the larger model's
+        // maximum-likelihood variance, 130 under its unbiased one.
+        let d = 6.0 * 26.0;
         let (alone, dof) = combined([(d, frequencies)].into_iter());
         assert!((alone - 26.0 * 5.0).abs() < 1e-9 * alone && dof == 5.0);
         let (with_shapes, dof) = combined([(d, frequencies), (0.0, shapes)].into_iter());
         assert_eq!((with_shapes, dof), (alone, 5.0));
         // Two kinds improved alike: their degrees of freedom add.
-        let (_, both) = combined([(1.0, frequencies), (1.0, frequencies)].into_iter());
+        let (_, both) = combined([(6.0, frequencies), (6.0, frequencies)].into_iter());
         assert!((both - 10.0).abs() < 1e-12);
         let (known, dof) = combined([(9.0, Sample::KNOWN), (3.0, Sample::KNOWN)].into_iter());
         assert_eq!((known, dof), (12.0, f64::INFINITY));

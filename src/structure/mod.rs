@@ -31,7 +31,7 @@ pub mod sparse;
 
 pub use dofs::{Direction, DofInfo, DofMap, LineElement};
 pub use matrix::SymMatrix;
-pub use observation::{LocateError, Observation, observe};
+pub use observation::{LocateError, Observation, observe, terms_at};
 pub use sites::{
     ElementSite, EndSite, HeldCoupling, HeldMotions, JointSite, Section, Shear, Sites, SupportSite,
 };

@@ -15,7 +15,7 @@
 use faer::Mat;
 
 use super::DofMap;
-use super::dofs::Direction;
+use super::dofs::{Direction, LineElement};
 
 /// A measured quantity: a label, its direction and position, and the row c of the observation
 /// matrix as its nonzero terms `(dof, coefficient)`.
@@ -108,56 +108,7 @@ const ON_NODE: f64 = 1e-9;
 impl DofMap {
     /// The observation of `direction` at abscissa `x` along the line elements.
     pub fn at_x(&self, x: f64, direction: Direction) -> Result<Observation, LocateError> {
-        let lines = self.lines();
-        let (Some(first), Some(last)) = (lines.first(), lines.last()) else {
-            return Err(LocateError::NoLines);
-        };
-        if !matches!(direction, Direction::W | Direction::Theta) {
-            return Err(LocateError::Direction(direction));
-        }
-        let (from, to) = (first.x[0], last.x[1]);
-        let tol = ON_NODE * (to - from).abs().max(f64::MIN_POSITIVE);
-        if !(x.is_finite() && x >= from - tol && x <= to + tol) {
-            return Err(LocateError::Outside { x, from, to });
-        }
-        let element = lines
-            .iter()
-            .find(|e| x >= e.x[0] - tol && x <= e.x[1] + tol)
-            .expect("the elements cover the chain");
-        let l = element.x[1] - element.x[0];
-        let xi = ((x - element.x[0]) / l).clamp(0.0, 1.0);
-        let xi = if xi < ON_NODE {
-            0.0
-        } else if xi > 1.0 - ON_NODE {
-            1.0
-        } else {
-            xi
-        };
-        let (x2, x3) = (xi * xi, xi * xi * xi);
-        let coefficients = match direction {
-            Direction::W => [
-                1.0 - 3.0 * x2 + 2.0 * x3,
-                l * (xi - 2.0 * x2 + x3),
-                3.0 * x2 - 2.0 * x3,
-                l * (-x2 + x3),
-            ],
-            _ => [
-                (-6.0 * xi + 6.0 * x2) / l,
-                1.0 - 4.0 * xi + 3.0 * x2,
-                (6.0 * xi - 6.0 * x2) / l,
-                -2.0 * xi + 3.0 * x2,
-            ],
-        };
-        let mut terms: Vec<(usize, f64)> = element
-            .dofs
-            .iter()
-            .zip(coefficients)
-            .filter_map(|(d, c)| d.filter(|_| c != 0.0).map(|d| (d, c)))
-            .collect();
-        terms.sort_by_key(|t| t.0);
-        if terms.is_empty() {
-            return Err(LocateError::Constrained { x, direction });
-        }
+        let terms = terms_at(self.lines(), x, direction)?;
         // A position on a node reads the node's own DOF: the same observation as by node.
         match terms.as_slice() {
             [(d, c)] if *c == 1.0 && self.get(*d).direction == direction => {
@@ -171,6 +122,65 @@ impl DofMap {
             }),
         }
     }
+}
+
+/// The nonzero terms (ascending DOF) of the observation of `direction` at abscissa `x` along
+/// the line elements `lines` (module docs).
+pub fn terms_at(
+    lines: &[LineElement],
+    x: f64,
+    direction: Direction,
+) -> Result<Vec<(usize, f64)>, LocateError> {
+    let (Some(first), Some(last)) = (lines.first(), lines.last()) else {
+        return Err(LocateError::NoLines);
+    };
+    if !matches!(direction, Direction::W | Direction::Theta) {
+        return Err(LocateError::Direction(direction));
+    }
+    let (from, to) = (first.x[0], last.x[1]);
+    let tol = ON_NODE * (to - from).abs().max(f64::MIN_POSITIVE);
+    if !(x.is_finite() && x >= from - tol && x <= to + tol) {
+        return Err(LocateError::Outside { x, from, to });
+    }
+    let element = lines
+        .iter()
+        .find(|e| x >= e.x[0] - tol && x <= e.x[1] + tol)
+        .expect("the elements cover the chain");
+    let l = element.x[1] - element.x[0];
+    let xi = ((x - element.x[0]) / l).clamp(0.0, 1.0);
+    let xi = if xi < ON_NODE {
+        0.0
+    } else if xi > 1.0 - ON_NODE {
+        1.0
+    } else {
+        xi
+    };
+    let (x2, x3) = (xi * xi, xi * xi * xi);
+    let coefficients = match direction {
+        Direction::W => [
+            1.0 - 3.0 * x2 + 2.0 * x3,
+            l * (xi - 2.0 * x2 + x3),
+            3.0 * x2 - 2.0 * x3,
+            l * (-x2 + x3),
+        ],
+        _ => [
+            (-6.0 * xi + 6.0 * x2) / l,
+            1.0 - 4.0 * xi + 3.0 * x2,
+            (6.0 * xi - 6.0 * x2) / l,
+            -2.0 * xi + 3.0 * x2,
+        ],
+    };
+    let mut terms: Vec<(usize, f64)> = element
+        .dofs
+        .iter()
+        .zip(coefficients)
+        .filter_map(|(d, c)| d.filter(|_| c != 0.0).map(|d| (d, c)))
+        .collect();
+    terms.sort_by_key(|t| t.0);
+    if terms.is_empty() {
+        return Err(LocateError::Constrained { x, direction });
+    }
+    Ok(terms)
 }
 
 /// The matrix C Y (points x columns of `y`): every observation read on every column.

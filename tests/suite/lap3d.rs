@@ -148,6 +148,31 @@ fn a_solid_lap_is_named_as_a_lap_by_the_users_beam_model() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The bolted lap of a stubbier specimen (a 25.4 x 19.05 mm section, 0.7112 m long, a 0.12065
+/// m overlap: `stubby-bolts-3` and `-9`). Shear is a larger share of what the user's
+/// Euler-Bernoulli model misses: the lap alone leaves 2.0% on three sensors, the lap with
+/// shear 0.39%. That second cause was not significant while the profile likelihood ratio of
+/// six frequencies was read as F on their few degrees of freedom; it is by the classical F
+/// statistic (`stats::improvement`). On nine sensors one sits 5 um from the joint, no node of
+/// its own (module `mesh`): the model was refused as unsolvable.
+#[test]
+#[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
+fn a_stubby_bolted_lap_is_named_with_its_shear_by_the_users_beam_model() {
+    let dir = scratch("lap3d", "stubby");
+    for case in ["stubby-bolts-3", "stubby-bolts-9"] {
+        let r = diagnose(case, &dir);
+        eprintln!("{}", line(case, &r));
+        let (_, named) = lap_named(case, &r);
+        assert_eq!(named, ["layered_lap", "shear"], "{case}");
+        assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0, "{case}");
+        let r = diagnose_with(case, "timoshenko", &dir);
+        eprintln!("{} (Timoshenko)", line(case, &r));
+        lap_named_with(case, &r, &["shear", "suspension"]);
+        assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0, "{case}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 #[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
 fn a_monolithic_bar_and_an_unmodelled_end_mass_are_answered_not_refused() {

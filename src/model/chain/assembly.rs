@@ -19,7 +19,7 @@ use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
 use crate::structure::{
     Alternative, Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions,
     JointSite, LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite,
-    SymMatrix,
+    SymMatrix, terms_at,
 };
 
 impl Chain {
@@ -46,7 +46,7 @@ impl Chain {
         let held = layout.elements(&lines, &node_held, held_count, &mut k, &mut m);
         let mut extra = layout.support_springs(&mut k);
         extra.extend(layout.masses(&hanging, &mut k, &mut m));
-        layout.sensor_masses(&mut m);
+        layout.sensor_masses(&lines, &mut m);
         let (mut lap_k, mut lap_m) = (SparseSym::zero(), SparseSym::zero());
         laps.base(&mut lap_k, &mut lap_m);
         k.extend_from_slice(lap_k.entries());
@@ -377,11 +377,18 @@ impl Layout<'_> {
         extra
     }
 
-    /// The sensors' masses on their translations, into `m`.
-    fn sensor_masses(&self, m: &mut Entries) {
+    /// The sensors' masses on their translations, into `m`: m c c^T of the translation c^T u
+    /// the sensor reads along `lines` (its node's, or between nodes the interpolation: module
+    /// `mesh`); none where a support holds it.
+    fn sensor_masses(&self, lines: &[LineElement], m: &mut Entries) {
         for s in self.chain.sensors.iter().filter(|s| s.mass > 0.0) {
-            if let Some(w) = self.node_dofs[self.node_at(s.x)][0] {
-                m.push((w, w, s.mass));
+            let Ok(terms) = terms_at(lines, s.x, Direction::W) else {
+                continue;
+            };
+            for &(a, ca) in &terms {
+                for &(b, cb) in &terms {
+                    m.push((a, b, s.mass * ca * cb));
+                }
             }
         }
     }

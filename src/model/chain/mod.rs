@@ -88,14 +88,13 @@ impl Chain {
         self.beams.iter().map(Beam::mass).sum()
     }
 
-    /// Abscissae where a node must be: supports, masses, sensors, requested nodes, the ends
-    /// of the joints' overlaps.
+    /// Abscissae where a node must be: supports, masses, requested nodes, the ends of the
+    /// joints' overlaps (the sensors are nodes where they can be: module `mesh`).
     pub fn feature_positions(&self) -> Vec<f64> {
         self.supports
             .iter()
             .map(|s| s.x)
             .chain(self.masses.iter().map(|m| m.x))
-            .chain(self.sensors.iter().map(|s| s.x))
             .chain(self.nodes_at.iter().copied())
             .chain(self.overlaps().into_iter().flat_map(|(_, a, b)| [a, b]))
             .collect()
