@@ -5,9 +5,11 @@
 //! - **Which is best.** Every model is fitted with its own discrepancy (module
 //!   `discrepancy`); D = deviance(extended model) - deviance(model) is the likelihood-ratio
 //!   statistic of the cause added, the discrepancy profiled out of both. Its p-value is
-//!   P(chi^2_k > D) where no discrepancy was estimated, and where one was, on nu degrees of
-//!   freedom of n residuals, P(F(k, nu) > (exp(D / n) - 1) nu / k): the F test that D is in
-//!   the linear model with an unknown variance ([`crate::stats::profile_lr_sf`]); a cause whose unknowns are all held
+//!   P(chi^2_k > D) where no discrepancy was estimated. Where one was, the test is the
+//!   classical F test, kind by kind of residual (frequencies, shapes): the chi^2 difference of
+//!   the two models under the larger's variance, times nu / n of its estimate, over k, read
+//!   as F(k, nu) with nu the Welch-Satterthwaite degrees of freedom of the kinds that improved
+//!   (module `discrepancy`, `improvement`); a cause whose unknowns are all held
 //!   non-negative (a mass, a spring, an Euler-Bernoulli beam's shear flexibility) is zero in
 //!   the model it extends, on the edge of its range, and its test is one-sided (the
 //!   chi-bar-square bound of [`crate::stats::lr_sf`]). A cause is significant when that p-value, times

@@ -428,7 +428,8 @@ fn closer(kind: Kind, (d0, d1): (&Discrepancy, &Discrepancy)) -> bool {
 /// degrees of freedom.
 ///
 /// Per kind of `larger`'s error model (the frequencies; the shapes, or each mode's), the chi^2
-/// difference of the two models' residuals under `larger`'s variances of that kind is read as
+/// difference of the two models' residuals under `larger`'s variances of that kind (its
+/// maximum-likelihood estimate, or the measurement error alone) is read as
 /// the classical F test's improvement over the kind's variance (`stats::improvement`: times
 /// nu_k / n_k where the discrepancy was estimated on nu_k degrees of freedom of n_k residuals,
 /// itself where it is known), and the kinds' improvements are summed. The sum's degrees of
