@@ -38,7 +38,9 @@
 //!   no significant cause otherwise: `unexplained`. A clearly best cause, extended by the
 //!   search with every further cause clearly best at its step: `effect` (or
 //!   `frequency_dependent`) when the model of all of them is adequate, `partial` when a misfit
-//!   beyond the measurement error remains. A best cause with contenders: `ambiguous` when it is
+//!   beyond the measurement error remains and the model lowers the joint-only fit's chi^2
+//!   under the measurement error (`unexplained` when it does not: it only traded one kind of
+//!   misfit for another under its own discrepancy). A best cause with contenders: `ambiguous` when it is
 //!   adequate, `unexplained` when not (several partial explanations the data cannot tell
 //!   apart).
 //!
@@ -178,6 +180,7 @@ pub struct Decision {
 pub fn decide(
     path: &Path,
     explains: impl Fn(usize) -> bool,
+    lowers: impl Fn(usize) -> bool,
     base_explains: bool,
     names: &[Verdict],
 ) -> Decision {
@@ -215,6 +218,11 @@ pub fn decide(
     let verdict = match (explains(last), path.models.len()) {
         (true, 1) => names[first],
         (true, _) => Verdict::Effect,
+        // A model that lowers none of the joint-only fit's misfit under the measurement error
+        // explains none of it: its significance came from trading one kind of misfit for
+        // another under its own discrepancy (a damaged element: shapes fitted, frequencies
+        // given up).
+        (false, _) if !lowers(last) => return alone(Verdict::Unexplained),
         (false, _) => Verdict::Partial,
     };
     Decision {
@@ -333,51 +341,54 @@ mod tests {
         ];
         let nothing = Path::default();
         assert_eq!(
-            decide(&nothing, |_| true, true, &names).verdict,
+            decide(&nothing, |_| true, |_| true, true, &names).verdict,
             Verdict::None
         );
         assert_eq!(
-            decide(&nothing, |_| true, false, &names).verdict,
+            decide(&nothing, |_| true, |_| true, false, &names).verdict,
             Verdict::Unexplained
         );
         let one = Path {
             models: vec![0],
             contenders: Vec::new(),
         };
-        let d = decide(&one, |_| true, false, &names);
+        let d = decide(&one, |_| true, |_| true, false, &names);
         assert_eq!(
             (d.verdict, d.best, d.causes),
             (Verdict::Effect, Some(0), vec![0])
         );
-        let d = decide(&one, |_| false, false, &names);
+        let d = decide(&one, |_| false, |_| true, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(0)));
         let dependent = Path {
             models: vec![1],
             contenders: Vec::new(),
         };
-        let d = decide(&dependent, |_| true, false, &names);
+        let d = decide(&dependent, |_| true, |_| true, false, &names);
         assert_eq!(d.verdict, Verdict::FrequencyDependent);
         // Two causes together: effect when the model of both is adequate, partial when not.
         let two = Path {
             models: vec![0, 3],
             contenders: Vec::new(),
         };
-        let d = decide(&two, |i| i == 3, false, &names);
+        let d = decide(&two, |i| i == 3, |_| true, false, &names);
         assert_eq!(
             (d.verdict, d.best, d.causes),
             (Verdict::Effect, Some(3), vec![0, 3])
         );
-        let d = decide(&two, |_| false, false, &names);
+        let d = decide(&two, |_| false, |_| true, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Partial, Some(3)));
+        // ... and unexplained when it lowers none of the joint-only fit's misfit.
+        let d = decide(&two, |_| false, |_| false, false, &names);
+        assert_eq!((d.verdict, d.best), (Verdict::Unexplained, None));
         // Contenders: ambiguous when the best is adequate, unexplained when not.
         let close = Path {
             models: vec![2],
             contenders: vec![0],
         };
-        let d = decide(&close, |_| true, false, &names);
+        let d = decide(&close, |_| true, |_| true, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Ambiguous, Some(2)));
         assert_eq!(d.contenders, vec![2, 0]);
-        let d = decide(&close, |_| false, false, &names);
+        let d = decide(&close, |_| false, |_| true, false, &names);
         assert_eq!((d.verdict, d.best), (Verdict::Unexplained, None));
         assert_eq!(d.contenders, vec![2, 0]);
     }

@@ -241,7 +241,14 @@ fn diagnose_on(
     let scored = score::score(found, &judge);
     let names: Vec<Verdict> = scored.iter().map(|s| s.verdict).collect();
     let explains = |i: usize| decide::Judgement::of(&scored[i].report).explains(&estimate);
-    let decision = decide::decide(&path, explains, base_explains, &names);
+    let before = ErrorSummary::of(&calibrated.base, measured, &estimate).chi2;
+    let lowers = |i: usize| {
+        scored[i]
+            .model
+            .as_ref()
+            .is_some_and(|m| ErrorSummary::of(m, measured, &estimate).chi2 < before)
+    };
+    let decision = decide::decide(&path, explains, lowers, base_explains, &names);
     let after = decision.best.and_then(|b| scored[b].model.clone());
     let after = after.unwrap_or_else(|| calibrated.base.clone());
     let report = assemble::assemble(Findings {
