@@ -30,7 +30,8 @@
 //! Each candidate's deviance at its optimum is its profile likelihood with tau as a nuisance
 //! parameter: two models are compared by the difference of their deviances (module `search`),
 //! each with its own discrepancy. Where tau was estimated, that comparison is the F test of
-//! [`improvement`], kind by kind on the residuals each discrepancy was estimated on. A kind whose residuals
+//! [`improvement`], kind by kind on the residuals each discrepancy was estimated on. A kind
+//! whose residuals
 //! have less than [`LEAST_DOF`] degree of freedom left by the model's unknowns ([`estimable`]:
 //! two frequencies and two joint parameters) has no discrepancy the data could estimate: it
 //! is held at 0 and the report says so.
@@ -456,14 +457,14 @@ pub fn improvement(
             .into_iter()
             .map(|(kind, sample)| {
                 let d = difference(kind, &before, &after, both);
-                let known = !closer(kind, both) && smaller_is_known(kind, &smaller.discrepancy);
+                let known = !closer(kind, both) && known_on(kind, &smaller.discrepancy);
                 (d, if known { Sample::KNOWN } else { sample })
             }),
     )
 }
 
 /// Whether discrepancy `d` is zero on `kind`.
-fn smaller_is_known(kind: Kind, d: &Discrepancy) -> bool {
+fn known_on(kind: Kind, d: &Discrepancy) -> bool {
     match kind {
         Kind::Frequency => d.frequency == 0.0,
         Kind::Shapes => d.shape == 0.0,
