@@ -348,7 +348,7 @@ enum Kind {
 }
 
 /// The kinds of residual of `fitted`'s error model, each with the residuals its discrepancy
-/// was estimated on (`squares`: its residuals): their degrees of freedom n as the total
+/// `d` was estimated on (`squares`: its residuals): their degrees of freedom n as the total
 /// variance v = s^2 + tau^2 carries them (Satterthwaite: the measurement variance s^2 is
 /// known, tau^2 estimated on n, so v has n (v / tau^2)^2: a discrepancy small beside the
 /// measurement error leaves the variance nearly known), and their count (those degrees of
@@ -358,9 +358,9 @@ fn kinds(
     fitted: &Fitted,
     measured: &MeasuredModes,
     (frequency, shapes): &(Squares, Vec<Squares>),
+    d: &Discrepancy,
 ) -> Vec<(Kind, Sample)> {
     let (f, s) = residual_dof(fitted, measured);
-    let d = &fitted.discrepancy;
     let carried = |tau: f64, n: f64, kind: &Squares| {
         let t = tau * tau;
         if t > 0.0 {
@@ -443,6 +443,10 @@ fn closer(kind: Kind, (d0, d1): (&Discrepancy, &Discrepancy)) -> bool {
 /// there: it gave up, say, the frequencies to fit the shapes), that kind is weighed by the
 /// smaller model's variance, measured alone where the smaller fits it within the measurement
 /// error: a model may not buy the variance its own loss is measured by.
+/// Each model's discrepancy is taken as its residuals give it (the maximum likelihood of
+/// each kind), also where its fit held it at 0 (residuals too few beside its unknowns, or a
+/// refit that failed): under the measurement error alone, a misfit carried nowhere would make
+/// any change of those residuals look significant.
 pub fn improvement(
     smaller: &Fitted,
     larger: &Fitted,
@@ -451,13 +455,22 @@ pub fn improvement(
 ) -> (f64, f64) {
     let before = squares(smaller, measured, calibration);
     let after = squares(larger, measured, calibration);
-    let both = (&smaller.discrepancy, &larger.discrepancy);
+    // Each model's discrepancy as its residuals give it, also where the fit held it at 0.
+    let of = |fitted: &Fitted, squares: &(Squares, Vec<Squares>)| {
+        let freedom = Freedom {
+            frequency: true,
+            shape: true,
+            per_mode: !fitted.discrepancy.modes.is_empty(),
+        };
+        most_likely(squares, freedom)
+    };
+    let (d0, d1) = (of(smaller, &before), of(larger, &after));
     combined(
-        kinds(larger, measured, &after)
+        kinds(larger, measured, &after, &d1)
             .into_iter()
             .map(|(kind, sample)| {
-                let d = difference(kind, &before, &after, both);
-                let known = !closer(kind, both) && known_on(kind, &smaller.discrepancy);
+                let d = difference(kind, &before, &after, (&d0, &d1));
+                let known = !closer(kind, (&d0, &d1)) && known_on(kind, &d0);
                 (d, if known { Sample::KNOWN } else { sample })
             }),
     )
