@@ -31,10 +31,9 @@
 //! parameter: two models are compared by the difference of their deviances (module `search`),
 //! each with its own discrepancy. Where tau was estimated, that comparison is the F test of
 //! [`improvement`], kind by kind on the residuals each discrepancy was estimated on. A kind
-//! whose residuals
-//! have less than [`LEAST_DOF`] degree of freedom left by the model's unknowns ([`estimable`]:
-//! two frequencies and two joint parameters) has no discrepancy the data could estimate: it
-//! is held at 0 and the report says so.
+//! whose residuals have less than [`LEAST_DOF`] degree of freedom left by the model's
+//! unknowns ([`estimable`]: two frequencies and two joint parameters) has no discrepancy the
+//! data could estimate: it is held at 0 and the report says so.
 
 use super::fit::{
     Calibration, Discrepancy, FitError, Fitted, Residuals, measurement_sigmas, residuals,

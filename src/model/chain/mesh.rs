@@ -59,7 +59,7 @@ pub(super) const SAME_X: f64 = 1e-9;
 
 /// A sensor closer than this fraction of its beam's element length to another break point is
 /// not one (module docs).
-pub const NEAR: f64 = 0.05;
+pub(super) const NEAR: f64 = 0.05;
 
 impl Mesh {
     /// Meshes `chain`.
