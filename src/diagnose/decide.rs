@@ -20,7 +20,11 @@
 //!   Burnham & Anderson, "Model Selection and Multimodel Inference", sec. 2.6); every other
 //!   less than [`AMBIGUITY_MARGIN`] behind it contends with it. The criterion, not D, ranks
 //!   them: the D of a cause that fits within the measurement error stands on the yardstick
-//!   of its own residuals, so two causes' D are not on one scale. Where the frequency-dependent joint is the best
+//!   of its own residuals, so two causes' D are not on one scale. Where the best so found fits
+//!   within the measurement error, the criterion is read again with every model's chi^2 under
+//!   the yardstick of the best's residuals (module `search`, `ranked`): the scale its
+//!   significance was read on, one for all, and the one the data show where they show the
+//!   noise below the stated. Where the frequency-dependent joint is the best
 //!   and a static cause contends, the static one is taken (what looks frequency-dependent to
 //!   the paper's per-mode method is often an unmodelled static effect) and the
 //!   frequency-dependent joint does not contend with a static best.

@@ -24,7 +24,7 @@ use rayon::prelude::*;
 use super::candidate::{Candidate, CandidateError, Fit, Part, Stage, combine, tell_fitted};
 use super::decide::{MAX_CAUSES, Path, Rival, adjusted, select};
 use super::discrepancy;
-use super::fit::{Fitted, refitted_chi2, residuals};
+use super::fit::{Fitted, chi2_of, refitted_chi2, residuals};
 use super::progress::Pass;
 use super::report::Verdict;
 use super::yardstick;
@@ -135,8 +135,8 @@ pub fn search(
     for m in &mut models {
         judge(m, stage.base, tried, stage);
     }
-    let rivals: Vec<Rival> = models.iter().map(rival).collect();
-    let path = select(&rivals).map_or_else(Path::default, |(first, contenders)| Path {
+    let all: Vec<&Model> = models.iter().collect();
+    let path = ranked(&all, stage).map_or_else(Path::default, |(first, contenders)| Path {
         models: vec![first],
         contenders,
     });
@@ -210,8 +210,8 @@ fn add_causes(
             })
             .collect();
         let at = append_judged(models, fitted, &from, tried, stage);
-        let rivals: Vec<Rival> = models[at..].iter().map(rival).collect();
-        match select(&rivals) {
+        let added: Vec<&Model> = models[at..].iter().collect();
+        match ranked(&added, stage) {
             Some((best, close)) if close.is_empty() => path.models.push(at + best),
             _ => break,
         }
@@ -243,7 +243,7 @@ fn pair_up(
         .map(|parts| together(library, singles, parts, stage, lap, PAIRED))
         .collect();
     let at = append_judged(models, fitted, stage.base, tried, stage);
-    with_pairs(path, models, at)
+    with_pairs(path, models, at, stage)
 }
 
 /// Appends `fitted` to `models`, `tried` counting them, each judged against `from` (the model
@@ -358,7 +358,7 @@ fn untried_pairs(library: &[Arc<dyn Candidate>], models: &[Model]) -> Vec<Vec<us
 /// (or its first cause and contenders) and the models that extended it at the step that
 /// stopped; a pair clearly best of them by the relative rules ([`select`]) replaces the path,
 /// every model within the margin of it contending; else the path stands as it is.
-fn with_pairs(path: Path, models: &[Model], at: usize) -> Path {
+fn with_pairs(path: Path, models: &[Model], at: usize, stage: &Stage) -> Path {
     let mut standing: Vec<usize> = if path.contenders.is_empty() {
         path.models.last().copied().into_iter().collect()
     } else {
@@ -373,8 +373,8 @@ fn with_pairs(path: Path, models: &[Model], at: usize) -> Path {
         standing.extend((0..at).filter(|&i| models[i].extends == Some(end)));
     }
     standing.extend(at..models.len());
-    let rivals: Vec<Rival> = standing.iter().map(|&i| rival(&models[i])).collect();
-    match select(&rivals) {
+    let rivals: Vec<&Model> = standing.iter().map(|&i| &models[i]).collect();
+    match ranked(&rivals, stage) {
         Some((best, close)) if standing[best] >= at => Path {
             models: vec![standing[best]],
             contenders: close.iter().map(|&c| standing[c]).collect(),
@@ -483,6 +483,36 @@ fn judge(m: &mut Model, from: &Fitted, tried: usize, stage: &Stage) {
     m.lrt = Some(lrt);
     m.adjusted = Some(adjusted(p, tried));
     m.test = Some(test);
+}
+
+/// The clearly best of `standing` and its contenders by the relative rules ([`select`]), the
+/// models' information criteria read on one scale: where the best by its own deviance fits
+/// within the measurement error (its test stood on it), every model's chi^2 under the
+/// yardstick that model's residuals give, the scale its significance was read on; else each
+/// model's deviance with its own discrepancy. Under a noise estimated at half the stated, the
+/// stated scale shrinks every lead to a quarter of what the data show, and two causes the data
+/// tell apart would contend.
+fn ranked(standing: &[&Model], stage: &Stage) -> Option<(usize, Vec<usize>)> {
+    let rivals: Vec<Rival> = standing.iter().map(|m| rival(m)).collect();
+    let (best, close) = select(&rivals)?;
+    let m = standing[best];
+    let fitted = match (m.test, m.fitted()) {
+        (Some(Test::MeasurementError), Some(f)) if m.verdict != Verdict::FrequencyDependent => f,
+        _ => return Some((best, close)),
+    };
+    let measured = stage.measured;
+    let scale = yardstick::of_model(&m.name, fitted, measured, stage.calibration).calibration();
+    let common: Vec<Rival> = standing
+        .iter()
+        .zip(rivals)
+        .map(|(m, r)| Rival {
+            deviance: m.fitted().map_or(f64::INFINITY, |f| {
+                chi2_of(&residuals(f, measured), measured, &scale)
+            }),
+            ..r
+        })
+        .collect();
+    select(&common)
 }
 
 /// What the relative rules read of `m`.

@@ -393,3 +393,27 @@ fn verdicts_per_noise_situation_reach_their_floors() {
         clean.1
     );
 }
+
+/// Three cases of the large battery (tests/fixtures/battery-large, made by the same
+/// independent generator): a weak sensor mass or suspension under noise half the stated. The
+/// shape residuals show the noise at about 0.45x the stated; the effect's noncentrality at the
+/// true noise is 64. Each is named: the candidates' information criteria are read under the
+/// yardstick the best model's residuals give, the scale their significance was read on. Read
+/// under the stated noise, every lead shrank to a fifth and a mimic (joint coupling, joint
+/// mass, shear) stayed within the margin: `ambiguous`.
+#[test]
+#[ignore = "long unoptimised: .ci/run runs it in release"]
+fn weak_effects_under_half_the_stated_noise_are_told_apart_on_the_scale_the_data_show() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/battery-large");
+    let mut cases: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("tests/fixtures/battery-large")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.join("truth.json").exists())
+        .collect();
+    cases.sort();
+    assert_eq!(cases.len(), 3);
+    for (name, word, truth) in verdicts(&cases) {
+        let effect = truth["effect"]["name"].as_str().expect("effect name");
+        assert_eq!(word, format!("effect:{effect}"), "{name}");
+    }
+}
