@@ -9,13 +9,13 @@
 //! DOF index 2 node + (0 for w, 1 for theta) and bitwise the matrices of a dense assembly
 //! element by element.
 
-use super::Chain;
 use super::beam::{element_mass, element_stiffness};
 use super::joint::{JointStiffness, parameter_name};
 use super::lap::{LAP_UNIT, ROOT_UNIT};
 use super::layered::{self, Laps};
 use super::mesh::{Mesh, SAME_X};
 use super::support::{SPRING_NAMES, SPRING_UNITS, rigid_body_modes};
+use super::{Chain, PointMass};
 use crate::structure::{
     Alternative, Direction, DofInfo, DofMap, ElementSite, EndSite, HeldCoupling, HeldMotions,
     JointSite, LineElement, Matrices, Parameter, Role, Sites, SparseSym, Structure, SupportSite,
@@ -45,7 +45,7 @@ impl Chain {
         let (mut k, mut m) = (Vec::new(), Vec::new());
         let held = layout.elements(&lines, &node_held, held_count, &mut k, &mut m);
         let mut extra = layout.support_springs(&mut k);
-        extra.extend(layout.masses(&hanging, &mut k, &mut m));
+        extra.extend(layout.masses(&lines, &hanging, &mut k, &mut m));
         layout.sensor_masses(&lines, &mut m);
         let (mut lap_k, mut lap_m) = (SparseSym::zero(), SparseSym::zero());
         laps.base(&mut lap_k, &mut lap_m);
@@ -332,35 +332,34 @@ impl Layout<'_> {
         extra
     }
 
-    /// The point masses (on their node, or hanging on a spring from its own DOF `hanging`):
-    /// into `m` (a spring into `k`), or as identified parameters (returned).
-    fn masses(&self, hanging: &[usize], k: &mut Entries, m: &mut Entries) -> Vec<Parameter> {
+    /// The point masses (on their node, between nodes by the elements' interpolation along
+    /// `lines` (module `mesh`), or hanging on a spring from its own DOF `hanging`): into `m` (a
+    /// spring into `k`), or as identified parameters (returned).
+    fn masses(
+        &self,
+        lines: &[LineElement],
+        hanging: &[usize],
+        k: &mut Entries,
+        m: &mut Entries,
+    ) -> Vec<Parameter> {
         let mut extra = Vec::new();
         let mut hanging_dof = hanging.iter();
         for (i, p) in self.chain.masses.iter().enumerate() {
-            let [w, theta] = self.node_dofs[self.node_at(p.x)];
-            // (DOF, mass on it): translation m, rotation J of a rigidly attached mass.
-            let carried: Vec<(usize, f64)> = match p.spring {
-                None => w
-                    .map(|w| (w, p.mass))
-                    .into_iter()
-                    .chain(
-                        theta
-                            .filter(|_| p.rotary_inertia > 0.0)
-                            .map(|t| (t, p.rotary_inertia)),
-                    )
-                    .collect(),
+            // (DOF, DOF, mass on them): translation m, rotation J of a rigidly attached mass.
+            let carried: Entries = match p.spring {
+                None => self.attached(lines, p),
                 Some(spring) => {
+                    let [w, _] = self.node_dofs[self.node_at(p.x)];
                     let own = *hanging_dof.next().expect("a DOF per hanging mass");
                     spring_entries(k, w, Some(own), spring);
-                    vec![(own, p.mass)]
+                    vec![(own, own, p.mass)]
                 }
             };
             if p.identify {
                 // dM/dm: the rotary inertia scales with the mass.
                 let mut dm = SparseSym::zero();
-                for &(d, value) in &carried {
-                    dm.push(d, d, value / p.mass);
+                for &(a, b, value) in &carried {
+                    dm.push(a, b, value / p.mass);
                 }
                 extra.push(Parameter {
                     name: format!("mass{i}.m"),
@@ -371,10 +370,39 @@ impl Layout<'_> {
                     role: Role::Identified,
                 });
             } else {
-                m.extend(carried.iter().map(|&(d, value)| (d, d, value)));
+                m.extend_from_slice(&carried);
             }
         }
         extra
+    }
+
+    /// The mass matrix entries of the rigidly attached point mass `p`: m on its node's
+    /// translation and J on its rotation, or, between nodes (module `mesh`), m c c^T + J d d^T
+    /// of the interpolations c, d of the translation and the rotation along `lines`.
+    fn attached(&self, lines: &[LineElement], p: &PointMass) -> Entries {
+        let on_node = self.mesh.nodes.iter().position(|n| self.same(n.x, p.x));
+        let spread = |direction: Direction, value: f64| -> Entries {
+            let terms = match on_node {
+                Some(node) => {
+                    let [w, theta] = self.node_dofs[node];
+                    let dof = if direction == Direction::W { w } else { theta };
+                    dof.map(|d| vec![(d, 1.0)]).unwrap_or_default()
+                }
+                None => terms_at(lines, p.x, direction).unwrap_or_default(),
+            };
+            let mut out = Vec::with_capacity(terms.len() * terms.len());
+            for &(a, ca) in &terms {
+                for &(b, cb) in &terms {
+                    out.push((a, b, value * ca * cb));
+                }
+            }
+            out
+        };
+        let mut carried = spread(Direction::W, p.mass);
+        if p.rotary_inertia > 0.0 {
+            carried.extend(spread(Direction::Theta, p.rotary_inertia));
+        }
+        carried
     }
 
     /// The sensors' masses on their translations, into `m`: m c c^T of the translation c^T u

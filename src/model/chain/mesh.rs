@@ -7,12 +7,14 @@
 //! without break points keeps exactly its `elements` elements, and the paper's uniform chains
 //! mesh as they always did.
 //!
-//! A sensor is a break point of its own unless it lies within [`NEAR`] h of another break
-//! point or of its beam's ends: the element between them, shorter than that, would be stiffer
-//! than its neighbours by more than (1 / NEAR)^3 = 8000, and a sensor 5 um from a joint on a
-//! 5 mm mesh (1e9) left the eigenproblem unsolvable. It then reads the element's Hermite
-//! interpolation, exact for the model, and its mass, if it carries one, is spread by the same
-//! interpolation.
+//! A sensor, or a rigidly attached point mass, is a break point of its own unless it lies
+//! within [`NEAR`] h of another break point or of its beam's ends: the element between them,
+//! shorter than that, would be stiffer than its neighbours by more than (1 / NEAR)^3 = 8000,
+//! and a sensor 5 um from a joint on a 5 mm mesh (1e9) left the eigenproblem unsolvable. A
+//! sensor then reads the element's Hermite interpolation, exact for the model; a mass (a
+//! sensor's, or a point mass with its rotary inertia) is spread by the same interpolation,
+//! m c c^T. A mass on a spring, a support, an overlap's end or a requested node is always a
+//! node.
 
 use super::Chain;
 use super::beam::Section;
@@ -57,8 +59,8 @@ pub(super) const MERGE: f64 = 1e-9;
 /// Abscissae closer than this fraction of the chain's length are one position.
 pub(super) const SAME_X: f64 = 1e-9;
 
-/// A sensor closer than this fraction of its beam's element length to another break point is
-/// not one (module docs).
+/// A sensor or a rigidly attached mass closer than this fraction of its beam's element
+/// length to another break point is not one (module docs).
 pub(super) const NEAR: f64 = 0.05;
 
 impl Mesh {
@@ -81,7 +83,7 @@ impl Mesh {
             breaks.sort_by(f64::total_cmp);
             breaks.dedup_by(|a, b| (*a - *b).abs() <= MERGE * length);
             let near = NEAR * beam.element_length();
-            for s in chain.sensors.iter().map(|s| s.x - start) {
+            for s in chain.point_positions().into_iter().map(|x| x - start) {
                 let clear = s > near && s < length - near;
                 if clear && breaks.iter().all(|b| (b - s).abs() > near) {
                     breaks.push(s);

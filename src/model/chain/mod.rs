@@ -88,15 +88,36 @@ impl Chain {
         self.beams.iter().map(Beam::mass).sum()
     }
 
-    /// Abscissae where a node must be: supports, masses, requested nodes, the ends of the
-    /// joints' overlaps (the sensors are nodes where they can be: module `mesh`).
+    /// Abscissae where a node must be: supports, masses hanging on springs, requested nodes,
+    /// the ends of the joints' overlaps (the sensors and the rigidly attached masses are nodes
+    /// where they can be: [`Chain::point_positions`], module `mesh`).
     pub fn feature_positions(&self) -> Vec<f64> {
         self.supports
             .iter()
             .map(|s| s.x)
-            .chain(self.masses.iter().map(|m| m.x))
+            .chain(
+                self.masses
+                    .iter()
+                    .filter(|m| m.spring.is_some())
+                    .map(|m| m.x),
+            )
             .chain(self.nodes_at.iter().copied())
             .chain(self.overlaps().into_iter().flat_map(|(_, a, b)| [a, b]))
+            .collect()
+    }
+
+    /// Abscissae of what the model can read or carry between nodes, by the elements'
+    /// interpolation: the sensors and the rigidly attached masses (module `mesh`).
+    pub fn point_positions(&self) -> Vec<f64> {
+        self.sensors
+            .iter()
+            .map(|s| s.x)
+            .chain(
+                self.masses
+                    .iter()
+                    .filter(|m| m.spring.is_none())
+                    .map(|m| m.x),
+            )
             .collect()
     }
 
