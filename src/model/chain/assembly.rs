@@ -123,6 +123,13 @@ pub const LAYERED_LAP: &str = "layered_lap";
 /// Matrix entries (row, column, value), summed in their order.
 type Entries = Vec<(usize, usize, f64)>;
 
+/// The entries of value c c^T, c the observation `terms` ((DOF, coefficient)).
+fn outer(terms: &[(usize, f64)], value: f64) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+    terms
+        .iter()
+        .flat_map(move |&(a, ca)| terms.iter().map(move |&(b, cb)| (a, b, value * ca * cb)))
+}
+
 /// Per node, its (w, theta) DOF or held motion (`None` where it has none).
 type PerNode = Vec<[Option<usize>; 2]>;
 
@@ -390,13 +397,7 @@ impl Layout<'_> {
                 }
                 None => terms_at(lines, p.x, direction).unwrap_or_default(),
             };
-            let mut out = Vec::with_capacity(terms.len() * terms.len());
-            for &(a, ca) in &terms {
-                for &(b, cb) in &terms {
-                    out.push((a, b, value * ca * cb));
-                }
-            }
-            out
+            outer(&terms, value).collect::<Entries>()
         };
         let mut carried = spread(Direction::W, p.mass);
         if p.rotary_inertia > 0.0 {
@@ -413,11 +414,7 @@ impl Layout<'_> {
             let Ok(terms) = terms_at(lines, s.x, Direction::W) else {
                 continue;
             };
-            for &(a, ca) in &terms {
-                for &(b, cb) in &terms {
-                    m.push((a, b, s.mass * ca * cb));
-                }
-            }
+            m.extend(outer(&terms, s.mass));
         }
     }
 
