@@ -627,16 +627,21 @@ fn chain_with_a_sensor_at(dir: &std::path::Path, x: f64, mass: Option<f64>) -> V
     )
 }
 
+/// The model file of the chain of [`chain_with`] with `extra`.
+fn chain_text(extra: &str) -> String {
+    let beam = "[[beam]]\nlength = 0.35\nelements = 70\nyoungs_modulus = 2.0e11\n\
+        density = 7850\narea = 3.2258e-4\nsecond_moment = 4.3358e-9\n\n";
+    format!(
+        "{beam}{beam}[[joint]]\nk1 = 1.0e9\nk2 = 1.0e5\n\n[[sensor]]\nx = 0\nlabel = \"a1\"\n\n\
+         {extra}\n[[sensor]]\nx = 0.7\nlabel = \"a3\"\n"
+    )
+}
+
 /// The frequencies (Hz) of the modes `jointid simulate` writes for the chain of
 /// [`chain_with_a_sensor_at`] with sensors at its ends and `extra` (model-file text), the
 /// files named by `name` in `dir`.
 fn chain_with(dir: &std::path::Path, name: &str, extra: &str) -> Vec<f64> {
-    let beam = "[[beam]]\nlength = 0.35\nelements = 70\nyoungs_modulus = 2.0e11\n\
-        density = 7850\narea = 3.2258e-4\nsecond_moment = 4.3358e-9\n\n";
-    let text = format!(
-        "{beam}{beam}[[joint]]\nk1 = 1.0e9\nk2 = 1.0e5\n\n[[sensor]]\nx = 0\nlabel = \"a1\"\n\n\
-         {extra}\n[[sensor]]\nx = 0.7\nlabel = \"a3\"\n"
-    );
+    let text = chain_text(extra);
     let (model, out) = (
         dir.join(format!("m{name}.toml")),
         dir.join(format!("m{name}.csv")),
@@ -681,46 +686,50 @@ fn a_sensor_a_hair_from_a_joint_is_read_between_nodes_with_its_mass() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The frequencies of the chain of [`chain_with`] with `extra(x)` at x = `node` - d for d =
+/// 0, 5, 10 and 20 um (d = 0: on the node there; else between nodes, module `mesh`), checked to
+/// move smoothly with d: the parabola through d = 0, 5 and 10 um gives the frequency at 20 um
+/// within 1% of its change, and 5 um moves no mode by more than 1e-4.
+fn smooth_beside(
+    dir: &std::path::Path,
+    name: &str,
+    node: f64,
+    extra: impl Fn(f64) -> String,
+) -> Vec<Vec<f64>> {
+    let at: Vec<Vec<f64>> = [0.0, 5e-6, 10e-6, 20e-6]
+        .into_iter()
+        .map(|d| chain_with(dir, &format!("{name}{d}"), &extra(node - d)))
+        .collect();
+    for r in 0..4 {
+        let f: Vec<f64> = at.iter().map(|one| one[r]).collect();
+        assert!((f[1] / f[0] - 1.0).abs() < 1e-4, "{name}: {at:?}");
+        // The parabola through d = 0, 5, 10 um at 20 um: 3 f0 - 8 f5 + 6 f10.
+        let predicted = 3.0 * f[0] - 8.0 * f[1] + 6.0 * f[2];
+        assert!(
+            (predicted - f[3]).abs() <= 1e-2 * (f[3] - f[0]).abs() + 2e-12 * f[0],
+            "{name}, mode {}: {f:?}",
+            r + 1
+        );
+    }
+    at
+}
+
 /// A point mass (50 g, rotary inertia 2e-5 kg m^2) 5 um from a joint on a 5 mm mesh: as a
 /// node of its own it made a 5 um element and no eigensolution. It is carried between nodes by
-/// the elements' interpolation (module `mesh`). The frequencies move smoothly with the mass's
-/// distance d from the joint's node, where it is on the node (d = 0) as where it is carried
-/// (d = 5, 10, 20 um): the parabola through d = 0, 5 and 10 um gives the frequency at 20 um
-/// within 1% of its change, and 5 um moves no mode by more than 1e-6 (mode 3 by 2.6e-7: the
+/// the elements' interpolation (module `mesh`), and the frequencies move smoothly with its
+/// distance from the joint's node ([`smooth_beside`]; 5 um moves mode 3 by 2.6e-7: the
 /// slope of the mode there, not an error). The mass and its rotary inertia count: without them
 /// mode 3 is more than 1% higher, without the rotary inertia alone higher too.
 #[test]
 fn a_point_mass_a_hair_from_a_joint_is_carried_between_nodes() {
     let dir = crate::common::scratch("setups", "mass-near-joint");
-    let mass = |d: f64, inertia: bool| {
-        let j = if inertia {
-            "rotary_inertia = 2e-5\n"
-        } else {
-            ""
-        };
-        chain_with(
-            &dir,
-            &format!("p{d}-{inertia}"),
-            &format!("[[mass]]\nx = {}\nmass = 0.05\n{j}", 0.35 - d),
-        )
-    };
-    let at: Vec<Vec<f64>> = [0.0, 5e-6, 10e-6, 20e-6]
-        .into_iter()
-        .map(|d| mass(d, true))
-        .collect();
-    let translation = mass(5e-6, false);
+    let mass = |j: &'static str| move |x: f64| format!("[[mass]]\nx = {x}\nmass = 0.05\n{j}");
+    let at = smooth_beside(&dir, "p", 0.35, mass("rotary_inertia = 2e-5\n"));
+    let translation = chain_with(&dir, "t", &mass("")(0.35 - 5e-6));
     let bare = chain_with(&dir, "bare", "");
     for r in 0..4 {
-        let f: Vec<f64> = at.iter().map(|one| one[r]).collect();
-        assert!((f[1] / f[0] - 1.0).abs() < 1e-6, "{at:?}");
-        // The parabola through d = 0, 5, 10 um at 20 um: 3 f0 - 8 f5 + 6 f10.
-        let predicted = 3.0 * f[0] - 8.0 * f[1] + 6.0 * f[2];
-        assert!(
-            (predicted - f[3]).abs() <= 1e-2 * (f[3] - f[0]).abs() + 2e-12 * f[0],
-            "mode {}: {f:?}",
-            r + 1
-        );
-        assert!(translation[r] >= f[1] && bare[r] >= translation[r]);
+        assert!((at[1][r] / at[0][r] - 1.0).abs() < 1e-6, "{at:?}");
+        assert!(translation[r] >= at[1][r] && bare[r] >= translation[r]);
     }
     assert!(bare[2] / at[1][2] - 1.0 > 0.01, "{bare:?} {at:?}");
     assert!(
@@ -730,5 +739,43 @@ fn a_point_mass_a_hair_from_a_joint_is_carried_between_nodes() {
             .any(|(c, a)| c / a - 1.0 > 1e-4),
         "{translation:?} {at:?}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A support of springs (1e5 N/m, 50 N m/rad) 5 um from the chain's end: spread between nodes
+/// as k c c^T (module `mesh`), its frequencies smooth in its distance from the end's node
+/// ([`smooth_beside`]; at a joint's abscissa it springs both beams' nodes, so the joint is not
+/// the place to compare), and it counts. A pinned support 5 um from a joint holds a node,
+/// cannot be spread, and is refused with the field, the distance and what to do (it was "no
+/// eigensolution").
+#[test]
+fn a_support_a_hair_from_a_joint_is_spread_when_sprung_and_refused_when_rigid() {
+    let dir = crate::common::scratch("setups", "support-near-joint");
+    let spring = |x: f64| {
+        format!("[[support]]\nx = {x}\nkind = \"spring\"\ntranslational = 1e5\nrotational = 50\n")
+    };
+    let at = smooth_beside(&dir, "s", 0.7, spring);
+    let bare = chain_with(&dir, "bare", "");
+    assert!((at[1][0] / bare[0] - 1.0).abs() > 1e-3, "{at:?} {bare:?}");
+    let model = dir.join("pinned.toml");
+    let pinned = "[[support]]\nx = 0.349995\nkind = \"pinned\"\n";
+    std::fs::write(&model, chain_text(pinned)).unwrap();
+    let out = dir.join("pinned.csv");
+    let run = crate::common::jointid(&[
+        "simulate",
+        "--model",
+        model.to_str().unwrap(),
+        "--modes",
+        "4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("support[0].x = 0.349995") && stderr.contains("put it at x = 0.35"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

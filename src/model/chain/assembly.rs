@@ -44,7 +44,7 @@ impl Chain {
         // after the joints': identified support springs and masses.
         let (mut k, mut m) = (Vec::new(), Vec::new());
         let held = layout.elements(&lines, &node_held, held_count, &mut k, &mut m);
-        let mut extra = layout.support_springs(&mut k);
+        let mut extra = layout.support_springs(&lines, &mut k);
         extra.extend(layout.masses(&lines, &hanging, &mut k, &mut m));
         layout.sensor_masses(&lines, &mut m);
         let (mut lap_k, mut lap_m) = (SparseSym::zero(), SparseSym::zero());
@@ -301,8 +301,10 @@ impl Layout<'_> {
         held
     }
 
-    /// The supports' grounded springs: into `k`, or as identified parameters (returned).
-    fn support_springs(&self, k: &mut Entries) -> Vec<Parameter> {
+    /// The supports' grounded springs: into `k`, or as identified parameters (returned). On
+    /// every node at the support's abscissa, or, between nodes (module `mesh`), k c c^T of the
+    /// interpolation c of the motion along `lines`.
+    fn support_springs(&self, lines: &[LineElement], k: &mut Entries) -> Vec<Parameter> {
         let mut extra = Vec::new();
         for (i, s) in self.chain.supports.iter().enumerate() {
             let values = s.kind.springs();
@@ -318,10 +320,18 @@ impl Layout<'_> {
                     .filter(|(node, _)| self.same(node.x, s.x))
                     .filter_map(|(_, d)| d[slot])
                     .collect();
+                let on_node = self.mesh.nodes.iter().any(|n| self.same(n.x, s.x));
+                let unit: Entries = if on_node {
+                    dofs.iter().map(|&d| (d, d, 1.0)).collect()
+                } else {
+                    let direction = [Direction::W, Direction::Theta][slot];
+                    let terms = terms_at(lines, s.x, direction).unwrap_or_default();
+                    outer(&terms, 1.0).collect()
+                };
                 if s.identify[slot] {
                     let mut pattern = SparseSym::zero();
-                    for &d in &dofs {
-                        pattern.push(d, d, 1.0);
+                    for &(a, b, v) in &unit {
+                        pattern.push(a, b, v);
                     }
                     extra.push(Parameter {
                         name: format!("support{i}.{name}"),
@@ -332,7 +342,7 @@ impl Layout<'_> {
                         role: Role::Identified,
                     });
                 } else {
-                    k.extend(dofs.iter().map(|&d| (d, d, values[slot])));
+                    k.extend(unit.iter().map(|&(a, b, v)| (a, b, values[slot] * v)));
                 }
             }
         }

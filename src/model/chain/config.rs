@@ -265,7 +265,7 @@ impl RawChain {
             .enumerate()
             .map(|(i, x)| position(format!("mesh.nodes_at[{i}]"), x))
             .collect::<Result<Vec<_>, InputError>>()?;
-        Ok(Chain {
+        let chain = Chain {
             beams,
             joints,
             supports,
@@ -273,7 +273,24 @@ impl RawChain {
             sensors,
             nodes_at,
             calibration,
-        })
+        };
+        if let Some((i, other, near)) = super::mesh::crowded_support(&chain) {
+            let x = chain.supports[i].x;
+            return Err(check.invalid(
+                format!("support[{i}].x"),
+                x,
+                format!(
+                    "it lies {:.3e} m from another node of the mesh at x = {other} m (a joint, a \
+                     beam's end, a segment's or an overlap's end, a support, a mass on a spring \
+                     or a requested node), closer than {near:.3e} m (5% of the element length): \
+                     the element between them would be thousands of times stiffer than its \
+                     neighbours, and a rigid support holds a node; put it at x = {other}, or \
+                     {near:.3e} m or more from it",
+                    (x - other).abs()
+                ),
+            ));
+        }
+        Ok(chain)
     }
 }
 

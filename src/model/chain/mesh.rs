@@ -7,14 +7,16 @@
 //! without break points keeps exactly its `elements` elements, and the paper's uniform chains
 //! mesh as they always did.
 //!
-//! A sensor, or a rigidly attached point mass, is a break point of its own unless it lies
+//! A sensor, a rigidly attached point mass or a support of springs is a break point of its own unless it lies
 //! within [`NEAR`] h of another break point or of its beam's ends: the element between them,
 //! shorter than that, would be stiffer than its neighbours by more than (1 / NEAR)^3 = 8000,
 //! and a sensor 5 um from a joint on a 5 mm mesh (1e9) left the eigenproblem unsolvable. A
 //! sensor then reads the element's Hermite interpolation, exact for the model; a mass (a
 //! sensor's, or a point mass with its rotary inertia) is spread by the same interpolation,
-//! m c c^T. A mass on a spring, a support, an overlap's end or a requested node is always a
-//! node.
+//! m c c^T; a support's grounded springs likewise, k c c^T. A mass on a spring, a rigid
+//! support, an overlap's end or a requested node is always a node, and a rigid support (it
+//! holds a node's motion) that close to another node is refused by the model file's check
+//! ([`crowded_support`]).
 
 use super::Chain;
 use super::beam::Section;
@@ -59,8 +61,8 @@ pub(super) const MERGE: f64 = 1e-9;
 /// Abscissae closer than this fraction of the chain's length are one position.
 pub(super) const SAME_X: f64 = 1e-9;
 
-/// A sensor or a rigidly attached mass closer than this fraction of its beam's element
-/// length to another break point is not one (module docs).
+/// A sensor, a rigidly attached mass or a support of springs closer than this fraction of its
+/// beam's element length to another break point is not one (module docs).
 pub(super) const NEAR: f64 = 0.05;
 
 impl Mesh {
@@ -73,15 +75,7 @@ impl Mesh {
         let mut start = 0.0;
         for (b, beam) in chain.beams.iter().enumerate() {
             let length = beam.length;
-            let mut breaks: Vec<f64> = beam
-                .segments
-                .iter()
-                .flat_map(|g| [g.from, g.to])
-                .chain(features.iter().map(|&x| x - start))
-                .filter(|&s| s > MERGE * length && s < length * (1.0 - MERGE))
-                .collect();
-            breaks.sort_by(f64::total_cmp);
-            breaks.dedup_by(|a, b| (*a - *b).abs() <= MERGE * length);
+            let mut breaks = breaks_of(chain, b, start, &features);
             let near = NEAR * beam.element_length();
             for s in chain.point_positions().into_iter().map(|x| x - start) {
                 let clear = s > near && s < length - near;
@@ -129,6 +123,53 @@ impl Mesh {
             beam_ends,
         }
     }
+}
+
+/// The break points of beam `b` (starting at abscissa `start`) strictly inside it, from its
+/// start, in order, one per point: its segments' ends and the chain's `features` on it.
+fn breaks_of(chain: &Chain, b: usize, start: f64, features: &[f64]) -> Vec<f64> {
+    let length = chain.beams[b].length;
+    let mut breaks: Vec<f64> = chain.beams[b]
+        .segments
+        .iter()
+        .flat_map(|g| [g.from, g.to])
+        .chain(features.iter().map(|&x| x - start))
+        .filter(|&s| s > MERGE * length && s < length * (1.0 - MERGE))
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup_by(|a, b| (*a - *b).abs() <= MERGE * length);
+    breaks
+}
+
+/// A node the mesh must place that lies within [`NEAR`] h of another (or of its beam's end)
+/// without being on it: the element between them would be stiffer than its neighbours by more
+/// than (1 / NEAR)^3 (module docs). Of a rigid support, which holds a node's motion and so
+/// cannot be carried between nodes: (its index, the other point's abscissa, NEAR h).
+pub fn crowded_support(chain: &Chain) -> Option<(usize, f64, f64)> {
+    let features = chain.feature_positions();
+    let mut start = 0.0;
+    for (b, beam) in chain.beams.iter().enumerate() {
+        let (length, near) = (beam.length, NEAR * beam.element_length());
+        let points: Vec<f64> = std::iter::once(0.0)
+            .chain(breaks_of(chain, b, start, &features))
+            .chain(std::iter::once(length))
+            .collect();
+        for (i, support) in chain.supports.iter().enumerate() {
+            let s = support.x - start;
+            if !support.kind.holds().contains(&true) || s < 0.0 || s > length {
+                continue;
+            }
+            let crowding = points.iter().find(|&&p| {
+                let d = (p - s).abs();
+                d > MERGE * length && d <= near
+            });
+            if let Some(&p) = crowding {
+                return Some((i, start + p, near));
+            }
+        }
+        start += length;
+    }
+    None
 }
 
 /// Over the overlap of a joint that is a layered lap, the elements of the left beam carry the

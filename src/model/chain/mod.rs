@@ -88,12 +88,14 @@ impl Chain {
         self.beams.iter().map(Beam::mass).sum()
     }
 
-    /// Abscissae where a node must be: supports, masses hanging on springs, requested nodes,
-    /// the ends of the joints' overlaps (the sensors and the rigidly attached masses are nodes
-    /// where they can be: [`Chain::point_positions`], module `mesh`).
+    /// Abscissae where a node must be: rigid supports, masses hanging on springs, requested
+    /// nodes, the ends of the joints' overlaps (the sensors, the rigidly attached masses and
+    /// the supports of springs are nodes where they can be: [`Chain::point_positions`], module
+    /// `mesh`).
     pub fn feature_positions(&self) -> Vec<f64> {
         self.supports
             .iter()
+            .filter(|s| s.kind.holds().contains(&true))
             .map(|s| s.x)
             .chain(
                 self.masses
@@ -107,11 +109,18 @@ impl Chain {
     }
 
     /// Abscissae of what the model can read or carry between nodes, by the elements'
-    /// interpolation: the sensors and the rigidly attached masses (module `mesh`).
+    /// interpolation: the sensors, the rigidly attached masses and the supports of springs
+    /// (module `mesh`).
     pub fn point_positions(&self) -> Vec<f64> {
         self.sensors
             .iter()
             .map(|s| s.x)
+            .chain(
+                self.supports
+                    .iter()
+                    .filter(|s| !s.kind.holds().contains(&true))
+                    .map(|s| s.x),
+            )
             .chain(
                 self.masses
                     .iter()
