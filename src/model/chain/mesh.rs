@@ -7,16 +7,16 @@
 //! without break points keeps exactly its `elements` elements, and the paper's uniform chains
 //! mesh as they always did.
 //!
-//! A sensor, a rigidly attached point mass or a support of springs is a break point of its own unless it lies
-//! within [`NEAR`] h of another break point or of its beam's ends: the element between them,
-//! shorter than that, would be stiffer than its neighbours by more than (1 / NEAR)^3 = 8000,
-//! and a sensor 5 um from a joint on a 5 mm mesh (1e9) left the eigenproblem unsolvable. A
-//! sensor then reads the element's Hermite interpolation, exact for the model; a mass (a
-//! sensor's, or a point mass with its rotary inertia) is spread by the same interpolation,
-//! m c c^T; a support's grounded springs likewise, k c c^T. A mass on a spring, a rigid
-//! support, an overlap's end or a requested node is always a node, and a rigid support (it
-//! holds a node's motion) that close to another node is refused by the model file's check
-//! ([`crowded_support`]).
+//! A sensor, a rigidly attached point mass or a support of springs is a break point of its
+//! own unless it lies within [`NEAR`] h of another break point or of its beam's ends: the
+//! element between them, shorter than that, would be stiffer than its neighbours by more than
+//! (1 / NEAR)^3 = 8000, and a sensor 5 um from a joint on a 5 mm mesh (1e9) left the
+//! eigenproblem unsolvable. A sensor then reads the element's Hermite interpolation, exact for
+//! the model; a mass (a sensor's, or a point mass with its rotary inertia) is spread by the
+//! same interpolation, m c c^T; a support's grounded springs likewise, k c c^T. A mass on a
+//! spring, a rigid support, an overlap's end or a requested node is always a node, and a rigid
+//! support (it holds a node's motion) that close to another node is refused by the model
+//! file's check ([`crowded_support`]).
 
 use super::Chain;
 use super::beam::Section;
