@@ -162,8 +162,10 @@ fn a_stubby_bolted_lap_is_named_with_its_shear_by_the_users_beam_model() {
     for case in ["stubby-bolts-3", "stubby-bolts-9"] {
         let r = diagnose(case, &dir);
         eprintln!("{}", line(case, &r));
-        let (_, named) = lap_named(case, &r);
-        assert_eq!(named, ["layered_lap", "shear"], "{case}");
+        // Shear beside the lap; on nine sensors a suspension's springs then stand in for the
+        // bolts' distribution (as with Timoshenko beams on the fixtures' bolted lap).
+        let (_, named) = lap_named_with(case, &r, &["shear", "suspension"]);
+        assert_eq!(named[..2], ["layered_lap", "shear"], "{case}");
         assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0, "{case}");
         let r = diagnose_with(case, "timoshenko", &dir);
         eprintln!("{} (Timoshenko)", line(case, &r));
@@ -304,9 +306,14 @@ fn with_the_extended_library_the_unmodelled_end_mass_is_named_and_weighed() {
         for model in ["model", "timoshenko"] {
             let r = diagnose_extended(case, model, &dir);
             eprintln!("{} ({model}, --extended)", line(case, &r));
+            // With the user's Euler-Bernoulli beams, shear may come third.
             let mut named = causes(&r);
             named.sort();
-            assert_eq!(named, ["end_mass", "layered_lap"], "{case} {model}");
+            let with_shear = model == "model" && named == ["end_mass", "layered_lap", "shear"];
+            assert!(
+                named == ["end_mass", "layered_lap"] || with_shear,
+                "{case} {model}: {named:?}"
+            );
             let verdict = r["verdict"].as_str().unwrap();
             assert!(
                 verdict == "effect" || verdict == "partial",
