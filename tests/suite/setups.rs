@@ -627,6 +627,20 @@ fn chain_with_a_sensor_at(dir: &std::path::Path, x: f64, mass: Option<f64>) -> V
     )
 }
 
+/// The arguments of `jointid simulate` of the lowest four modes of `model` into `out`.
+fn simulate_four<'a>(model: &'a std::path::Path, out: &'a std::path::Path) -> [&'a str; 7] {
+    let path = |p: &'a std::path::Path| p.to_str().expect("a UTF-8 path");
+    [
+        "simulate",
+        "--model",
+        path(model),
+        "--modes",
+        "4",
+        "--out",
+        path(out),
+    ]
+}
+
 /// The model file of the chain of [`chain_with`] with `extra`.
 fn chain_text(extra: &str) -> String {
     let beam = "[[beam]]\nlength = 0.35\nelements = 70\nyoungs_modulus = 2.0e11\n\
@@ -647,15 +661,7 @@ fn chain_with(dir: &std::path::Path, name: &str, extra: &str) -> Vec<f64> {
         dir.join(format!("m{name}.csv")),
     );
     std::fs::write(&model, text).unwrap();
-    crate::common::jointid_ok(&[
-        "simulate",
-        "--model",
-        model.to_str().unwrap(),
-        "--modes",
-        "4",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    crate::common::jointid_ok(&simulate_four(&model, &out));
     let mut frequencies: Vec<f64> = Vec::new();
     for line in std::fs::read_to_string(&out).unwrap().lines().skip(1) {
         let f: f64 = line.split(',').nth(1).unwrap().parse().unwrap();
@@ -761,15 +767,7 @@ fn a_support_a_hair_from_a_joint_is_spread_when_sprung_and_refused_when_rigid() 
     let pinned = "[[support]]\nx = 0.349995\nkind = \"pinned\"\n";
     std::fs::write(&model, chain_text(pinned)).unwrap();
     let out = dir.join("pinned.csv");
-    let run = crate::common::jointid(&[
-        "simulate",
-        "--model",
-        model.to_str().unwrap(),
-        "--modes",
-        "4",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let run = crate::common::jointid(&simulate_four(&model, &out));
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2), "{stderr}");
     assert!(
