@@ -405,22 +405,28 @@ fn difference(
             .map(|(&(e0, s2), &(e1, _))| (e0 - e1) / (s2 + tau * tau).max(f64::MIN_POSITIVE))
             .sum()
     };
-    let mode = |r: usize| sum(&s0[r], &s1[r], d0.shape_of(r).min(d1.shape_of(r)));
+    let tau = |kind: Kind| tau_of(kind, d0).min(tau_of(kind, d1));
+    let mode = |r: usize| sum(&s0[r], &s1[r], tau(Kind::Mode(r)));
     match kind {
-        Kind::Frequency => sum(f0, f1, d0.frequency.min(d1.frequency)),
+        Kind::Frequency => sum(f0, f1, tau(kind)),
         Kind::Shapes => (0..s0.len()).map(mode).sum(),
         Kind::Mode(r) => mode(r),
+    }
+}
+
+/// The discrepancy `d` gives `kind` (a standard deviation).
+fn tau_of(kind: Kind, d: &Discrepancy) -> f64 {
+    match kind {
+        Kind::Frequency => d.frequency,
+        Kind::Shapes => d.shape,
+        Kind::Mode(r) => d.shape_of(r),
     }
 }
 
 /// Whether the larger model of `(d0, d1)` fits `kind` at least as closely as the smaller (its
 /// discrepancy there no larger).
 fn closer(kind: Kind, (d0, d1): (&Discrepancy, &Discrepancy)) -> bool {
-    match kind {
-        Kind::Frequency => d1.frequency <= d0.frequency,
-        Kind::Shapes => d1.shape <= d0.shape,
-        Kind::Mode(r) => d1.shape_of(r) <= d0.shape_of(r),
-    }
+    tau_of(kind, d1) <= tau_of(kind, d0)
 }
 
 /// The likelihood-ratio test of a model `larger` against `smaller`, a model it extends, both
@@ -477,11 +483,7 @@ pub fn improvement(
 
 /// Whether discrepancy `d` is zero on `kind`.
 fn known_on(kind: Kind, d: &Discrepancy) -> bool {
-    match kind {
-        Kind::Frequency => d.frequency == 0.0,
-        Kind::Shapes => d.shape == 0.0,
-        Kind::Mode(r) => d.shape_of(r) == 0.0,
-    }
+    tau_of(kind, d) == 0.0
 }
 
 /// The kinds' chi^2 differences and samples `parts` combined as [`improvement`] says: the

@@ -188,11 +188,13 @@ impl Layout<'_> {
     }
 
     fn node_at(&self, x: f64) -> usize {
-        self.mesh
-            .nodes
-            .iter()
-            .position(|node| self.same(node.x, x))
+        self.node_near(x)
             .expect("the mesh has a node at every feature")
+    }
+
+    /// The first node at abscissa `x`, if the mesh has one there (module `mesh`).
+    fn node_near(&self, x: f64) -> Option<usize> {
+        self.mesh.nodes.iter().position(|node| self.same(node.x, x))
     }
 
     /// A DOF (its translation) for every mass that hangs on a spring, after the nodes'.
@@ -312,17 +314,16 @@ impl Layout<'_> {
                 if values[slot] <= 0.0 {
                     continue;
                 }
-                let dofs: Vec<usize> = self
-                    .mesh
-                    .nodes
-                    .iter()
-                    .zip(&self.node_dofs)
-                    .filter(|(node, _)| self.same(node.x, s.x))
-                    .filter_map(|(_, d)| d[slot])
-                    .collect();
-                let on_node = self.mesh.nodes.iter().any(|n| self.same(n.x, s.x));
-                let unit: Entries = if on_node {
-                    dofs.iter().map(|&d| (d, d, 1.0)).collect()
+                let unit: Entries = if self.node_near(s.x).is_some() {
+                    // Every node there: at a joint's abscissa, both beams' ends.
+                    self.mesh
+                        .nodes
+                        .iter()
+                        .zip(&self.node_dofs)
+                        .filter(|(node, _)| self.same(node.x, s.x))
+                        .filter_map(|(_, d)| d[slot])
+                        .map(|d| (d, d, 1.0))
+                        .collect()
                 } else {
                     let direction = [Direction::W, Direction::Theta][slot];
                     let terms = terms_at(lines, s.x, direction).unwrap_or_default();
@@ -397,7 +398,7 @@ impl Layout<'_> {
     /// translation and J on its rotation, or, between nodes (module `mesh`), m c c^T + J d d^T
     /// of the interpolations c, d of the translation and the rotation along `lines`.
     fn attached(&self, lines: &[LineElement], p: &PointMass) -> Entries {
-        let on_node = self.mesh.nodes.iter().position(|n| self.same(n.x, p.x));
+        let on_node = self.node_near(p.x);
         let spread = |direction: Direction, value: f64| -> Entries {
             let terms = match on_node {
                 Some(node) => {

@@ -156,7 +156,7 @@ pub fn crowded_support(chain: &Chain) -> Option<(usize, f64, f64)> {
             .collect();
         for (i, support) in chain.supports.iter().enumerate() {
             let s = support.x - start;
-            if !support.kind.holds().contains(&true) || s < 0.0 || s > length {
+            if !support.kind.holds_a_motion() || s < 0.0 || s > length {
                 continue;
             }
             let crowding = points.iter().find(|&&p| {

@@ -95,7 +95,7 @@ impl Chain {
     pub fn feature_positions(&self) -> Vec<f64> {
         self.supports
             .iter()
-            .filter(|s| s.kind.holds().contains(&true))
+            .filter(|s| s.kind.holds_a_motion())
             .map(|s| s.x)
             .chain(
                 self.masses
@@ -118,7 +118,7 @@ impl Chain {
             .chain(
                 self.supports
                     .iter()
-                    .filter(|s| !s.kind.holds().contains(&true))
+                    .filter(|s| !s.kind.holds_a_motion())
                     .map(|s| s.x),
             )
             .chain(

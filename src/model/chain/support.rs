@@ -97,6 +97,12 @@ impl SupportKind {
         }
     }
 
+    /// Whether it holds a motion of its node (clamped, pinned, guided: a rigid support), not
+    /// only springs.
+    pub fn holds_a_motion(&self) -> bool {
+        self.holds().contains(&true)
+    }
+
     /// Its grounded springs on w (N/m) and theta (N m/rad); 0 where it has none.
     pub fn springs(&self) -> [f64; 2] {
         match *self {
