@@ -23,7 +23,11 @@
 //! two blocks (from two starts of tau, the better end kept): the weighted least squares of theta under the current tau (the fit of module
 //! `fit`, from the last optimum), then each tau^2 by its own one-dimensional maximum
 //! likelihood given the residuals ([`variance`]); every step lowers the deviance, and it stops
-//! when tau^2 moves by less than [`TOLERANCE`] of the total variance. A model that fits within
+//! when tau^2 moves by less than [`TOLERANCE`] of the total variance. Near a discrepancy that
+//! the model's unknowns can trade against (a shape discrepancy falling towards 0 while the fit
+//! leans on the shapes) the alternation crawls, each step a few percent of the way: every two
+//! steps are followed by the squared extrapolation of [`crate::optim::squared`] in the
+//! variances, kept where its fit has the lower deviance ([`ROUNDS`] fits in all). A model that fits within
 //! the measurement error keeps tau = 0 and its deviance is its chi^2 (plus the constant
 //! sum ln s_i^2, the same for every model of the data): the error model changes nothing there.
 //!
@@ -40,6 +44,7 @@ use super::fit::{
     with_limits,
 };
 use crate::measured::MeasuredModes;
+use crate::optim::squared;
 use crate::stats::{self, Sample};
 
 /// Largest number of refits of theta under a new tau.
@@ -604,21 +609,83 @@ fn alternate(
         current.discrepancy = held;
         fitted = fit(&current, None)?;
     }
-    for _ in 0..ROUNDS {
-        let squares = squares(&fitted, measured, calibration);
-        let next = most_likely(&squares, freedom);
-        if settled(&next, &current.discrepancy, &squares) {
+    let mut rounds = 0;
+    while rounds < ROUNDS {
+        let now = squares(&fitted, measured, calibration);
+        let next = most_likely(&now, freedom);
+        if settled(&next, &current.discrepancy, &now) {
             break;
         }
-        current.discrepancy = next;
+        let before = std::mem::replace(&mut current.discrepancy, next);
         match fit(&current, Some(&fitted)) {
             Ok(next) => fitted = next,
             // A refit that fails under the new discrepancy leaves the last one: a fit of the
             // model under the discrepancy before, whose deviance is its own.
-            Err(_) => break,
+            Err(_) => {
+                current.discrepancy = before;
+                break;
+            }
+        }
+        rounds += 1;
+        // The two steps before -> current -> further, extrapolated (module docs).
+        let after = squares(&fitted, measured, calibration);
+        let further = most_likely(&after, freedom);
+        if rounds == ROUNDS || settled(&further, &current.discrepancy, &after) {
+            continue;
+        }
+        let variances = |d: &Discrepancy| variances(d, freedom);
+        let Some(x) = squared::extrapolate(
+            &variances(&before),
+            &variances(&current.discrepancy),
+            &variances(&further),
+            0.0,
+        ) else {
+            continue;
+        };
+        let jump = Calibration {
+            discrepancy: from_variances(&x, freedom),
+            ..calibration.clone()
+        };
+        if let Ok(jumped) = fit(&jump, Some(&fitted)) {
+            rounds += 1;
+            if jumped.deviance <= fitted.deviance {
+                (current, fitted) = (jump, jumped);
+            }
         }
     }
     Ok(fitted)
+}
+
+/// The variances of `d` as one vector, for the extrapolation of [`alternate`]: the
+/// frequencies', then the shapes' (one per mode where `freedom` has them, else the shared one).
+fn variances(d: &Discrepancy, freedom: Freedom) -> Vec<f64> {
+    let mut x = vec![d.frequency * d.frequency];
+    if freedom.per_mode {
+        x.extend(d.modes.iter().map(|t| t * t));
+    } else {
+        x.push(d.shape * d.shape);
+    }
+    x
+}
+
+/// The discrepancy of the variances `x` of [`variances`].
+fn from_variances(x: &[f64], freedom: Freedom) -> Discrepancy {
+    let tau = |v: &f64| v.max(0.0).sqrt();
+    let shapes = &x[1..];
+    let shape = if freedom.per_mode {
+        (shapes.iter().map(|v| v.max(0.0)).sum::<f64>() / shapes.len().max(1) as f64).sqrt()
+    } else {
+        shapes.first().map_or(0.0, tau)
+    };
+    Discrepancy {
+        frequency: tau(&x[0]),
+        shape,
+        modes: if freedom.per_mode {
+            shapes.iter().map(tau).collect()
+        } else {
+            Vec::new()
+        },
+    }
 }
 
 #[cfg(test)]

@@ -15,12 +15,14 @@
 //! ([`crate::modal::nelson`], one LU per mode), and the expansion over the computed pairs last
 //! (a repeated eigenvalue, where neither applies). Pairs solved on a reduced model take the
 //! reduced model's exact derivatives ([`crate::modal::reduced::derivative`]): no factor, no
-//! full matrices.
+//! full matrices. A fit needs the vector derivatives only where its sensors read them:
+//! [`ModeDerivatives::read`] takes them through the sensors' functionals, by one adjoint solve
+//! per sensor instead of one per parameter where a mode has fewer sensors than parameters.
 
 use std::sync::Arc;
 
 use crate::modal::ModalSolution;
-use crate::modal::deflated::DeflatedModes;
+use crate::modal::deflated::{DeflatedModes, Reading};
 use crate::modal::nelson::{EigenDerivative, NelsonMode};
 use crate::modal::reduced::derivative::derivative;
 use crate::modal::sparse_llt::SparseLlt;
@@ -125,6 +127,39 @@ impl<'a> ModeDerivatives<'a> {
             Some(Ok(all)) => all.into_iter().map(pairs).collect(),
             _ => modes.iter().map(|&s| self.of_one(s, params)).collect(),
         }
+    }
+
+    /// As [`ModeDerivatives::of`], each vector derivative read through the linear functionals
+    /// of its mode (`reads[k]`: the nonzero terms of every c of mode `modes[k]`):
+    /// `[mode][parameter]` = (d lambda, c^T d y for every c). By the adjoint solve of
+    /// [`DeflatedModes::readings`] where the functionals of every mode are fewer than the
+    /// parameters, else from the whole vectors of [`ModeDerivatives::of`].
+    pub fn read(
+        &self,
+        modes: &[usize],
+        params: &[(&SparseSym, &SparseSym)],
+        reads: &[Vec<&[(usize, f64)]>],
+    ) -> Vec<Vec<Reading>> {
+        let fewer = reads.iter().all(|r| r.len() < params.len());
+        if let Some(Ok(read)) = self
+            .deflated
+            .as_ref()
+            .filter(|_| fewer)
+            .map(|d| d.readings(modes, params, reads))
+        {
+            return read;
+        }
+        let dot = |c: &[(usize, f64)], v: &[f64]| c.iter().map(|&(d, x)| x * v[d]).sum::<f64>();
+        self.of(modes, params)
+            .into_iter()
+            .zip(reads)
+            .map(|(of_mode, r)| {
+                of_mode
+                    .into_iter()
+                    .map(|(value, dy)| (value, r.iter().map(|c| dot(c, &dy)).collect()))
+                    .collect()
+            })
+            .collect()
     }
 
     /// Mode `s` alone, where the modes together failed: the deflated factor, Nelson's
@@ -246,6 +281,41 @@ mod tests {
                         "{}: mode {s}, dof {i}: {dyi} vs {fd}",
                         param.name
                     );
+                }
+            }
+        }
+    }
+
+    /// On a model solved sparsely (the 604-DOF chain, 12 pairs), the adjoint readings of
+    /// [`ModeDerivatives::read`] (two functionals, three parameters) are the whole vector
+    /// derivatives of [`ModeDerivatives::of`] read through the same functionals; with more
+    /// functionals than parameters it reads the whole vectors, the same numbers.
+    #[test]
+    fn readings_are_the_whole_derivatives_read() {
+        use crate::model::fixtures::{free_two_bars, k2_and_point_mass};
+        let structure = free_two_bars(150);
+        let (dk2, point_mass) = k2_and_point_mass(&structure);
+        let zero = SparseSym::zero();
+        let mats = structure.assemble();
+        let modal = ModalSolution::lowest_of(&mats, 12).unwrap();
+        assert!(modal.len() < modal.dof_count());
+        let derivatives = ModeDerivatives::of_solution(Some(&mats), &modal);
+        let params = [(&dk2, &zero), (&zero, &point_mass), (&dk2, &point_mass)];
+        let a: Vec<(usize, f64)> = vec![(100, 1.0)];
+        let b: Vec<(usize, f64)> = vec![(300, 0.7), (301, 0.01)];
+        let modes = [3, 6, 9];
+        let whole = derivatives.of(&modes, &params);
+        for reads in [vec![&a[..], &b[..]], vec![&a[..], &b[..], &a[..], &b[..]]] {
+            let all: Vec<Vec<&[(usize, f64)]>> = modes.iter().map(|_| reads.clone()).collect();
+            let got = derivatives.read(&modes, &params, &all);
+            for (of_mode, want_mode) in got.iter().zip(&whole) {
+                for ((value, read), (want, dy)) in of_mode.iter().zip(want_mode) {
+                    assert!((value - want).abs() <= 1e-12 * want.abs());
+                    let scale = dy.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                    for (r, c) in read.iter().zip(&reads) {
+                        let w: f64 = c.iter().map(|&(d, x)| x * dy[d]).sum();
+                        assert!((r - w).abs() < 1e-8 * scale, "{r} vs {w}");
+                    }
                 }
             }
         }

@@ -49,6 +49,18 @@ pub const MAX_ITERATIONS: usize = 300;
 /// the derivative of its vectors is not defined.
 pub const SIMPLE_GAP: f64 = 1e-10;
 
+/// The derivative of an eigenpair read through linear functionals: d lambda, and c^T d y for
+/// every functional c asked for.
+pub type Reading = (f64, Vec<f64>);
+
+/// Of every column (mode s, parameter j): Y_T^T g (its row s: d lambda_s), the right-hand side
+/// b = -(g - M Y_T Y_T^T g) of the rest, and y_s^T dM y_s.
+struct Projected {
+    coefficients: Mat<f64>,
+    b: Mat<f64>,
+    y_dm_y: Vec<f64>,
+}
+
 /// The factor of K - sigma M and the computed pairs, ready for derivatives of any of them.
 pub struct DeflatedModes<'a> {
     k: SparseColMatRef<'a, usize, f64>,
@@ -128,36 +140,12 @@ impl<'a> DeflatedModes<'a> {
         self.check(modes, params)?;
         let (lambda, y) = (self.modal.values(), self.modal.vectors());
         let p = params.len();
-        let columns: Vec<(usize, usize)> = modes
-            .iter()
-            .flat_map(|&s| (0..p).map(move |j| (s, j)))
-            .collect();
-        let (g, y_dm_y) = forcing(y, lambda, &columns, params);
-        if !g.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
-            return Err(ModalError::NonFinite);
-        }
-        // Y_T^T g: d lambda_s and the computed pairs' share.
-        let mut coefficients = Mat::zeros(self.modal.len(), columns.len());
-        matmul(
-            coefficients.as_mut(),
-            Accum::Replace,
-            y.transpose(),
-            g.as_ref(),
-            1.0,
-            Par::Seq,
-        );
-        // b = -(g - M Y_T Y_T^T g).
-        let mut b = g;
-        matmul(
-            b.as_mut(),
-            Accum::Add,
-            self.my.as_ref(),
-            coefficients.as_ref(),
-            -1.0,
-            Par::Seq,
-        );
-        b.col_iter_mut()
-            .for_each(|c| c.iter_mut().for_each(|v| *v = -*v));
+        let columns = mode_parameter_columns(modes, p);
+        let Projected {
+            coefficients,
+            b,
+            y_dm_y,
+        } = self.projected(&columns, params)?;
         let mut vectors = self.rest(&columns, b)?;
         // d y_s = Y_T a + r.
         let a = Mat::from_fn(self.modal.len(), columns.len(), |t, c| {
@@ -183,6 +171,135 @@ impl<'a> DeflatedModes<'a> {
         Ok((0..modes.len())
             .map(|k| (k * p..(k + 1) * p).map(derivative).collect())
             .collect())
+    }
+
+    /// The derivatives of the pairs `modes`, each for every parameter in `params`, read through
+    /// linear functionals rather than whole: for mode `modes[k]`, `reads[k]` lists the nonzero
+    /// terms (DOF, coefficient) of every c whose c^T d y_s is wanted. `[mode][parameter]`:
+    /// (d lambda_s, c^T d y_s for every c).
+    ///
+    /// The adjoint of [`DeflatedModes::derivatives`]: the rest r of d y_s is G b with
+    /// G = sum_{t outside T} y_t y_t^T / (lambda_t - lambda_s) symmetric, so c^T r = z^T b with
+    /// z = G c, the solution of the same projected system for the right-hand side
+    /// c - M Y_T Y_T^T c. One solve per functional instead of one per parameter: fewer where
+    /// the sensors of a mode are fewer than the parameters.
+    pub fn readings(
+        &self,
+        modes: &[usize],
+        params: &[(&SparseSym, &SparseSym)],
+        reads: &[Vec<&[(usize, f64)]>],
+    ) -> Result<Vec<Vec<Reading>>, ModalError> {
+        self.check(modes, params)?;
+        let (lambda, y) = (self.modal.values(), self.modal.vectors());
+        let (n, p) = (y.nrows(), params.len());
+        let columns = mode_parameter_columns(modes, p);
+        let Projected {
+            coefficients,
+            b,
+            y_dm_y,
+        } = self.projected(&columns, params)?;
+        // The functionals as columns, (mode, functional) each.
+        let adjoint: Vec<(usize, usize)> = modes
+            .iter()
+            .zip(reads)
+            .flat_map(|(&s, r)| (0..r.len()).map(move |i| (s, i)))
+            .collect();
+        let mut c = Mat::<f64>::zeros(n, adjoint.len());
+        let terms = reads.iter().flatten();
+        for (col, t) in terms.enumerate() {
+            for &(d, v) in t.iter() {
+                if d >= n {
+                    return Err(ModalError::VectorLength {
+                        len: d + 1,
+                        dofs: n,
+                    });
+                }
+                c[(d, col)] += v;
+            }
+        }
+        // Y_T^T c: the computed pairs' share, and c - M Y_T Y_T^T c.
+        let mut yc = Mat::zeros(self.modal.len(), adjoint.len());
+        matmul(
+            yc.as_mut(),
+            Accum::Replace,
+            y.transpose(),
+            c.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        matmul(
+            c.as_mut(),
+            Accum::Add,
+            self.my.as_ref(),
+            yc.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        let z = self.rest(&adjoint, c)?;
+        let mut out = Vec::with_capacity(modes.len());
+        let mut first = 0;
+        for (k, (&s, r)) in modes.iter().zip(reads).enumerate() {
+            let of_parameter = |j: usize| {
+                let col = k * p + j;
+                let share = |a: usize| {
+                    (0..self.modal.len())
+                        .map(|t| {
+                            let at = if t == s {
+                                -0.5 * y_dm_y[col]
+                            } else {
+                                coefficients[(t, col)] / (lambda[s] - lambda[t])
+                            };
+                            at * yc[(t, a)]
+                        })
+                        .sum::<f64>()
+                };
+                let read = (first..first + r.len())
+                    .map(|a| share(a) + col_dot_of(&z, a, &b, col))
+                    .collect();
+                (coefficients[(s, col)], read)
+            };
+            out.push((0..p).map(of_parameter).collect());
+            first += r.len();
+        }
+        Ok(out)
+    }
+
+    /// [`Projected`] of every column (mode s, parameter j).
+    fn projected(
+        &self,
+        columns: &[(usize, usize)],
+        params: &[(&SparseSym, &SparseSym)],
+    ) -> Result<Projected, ModalError> {
+        let (lambda, y) = (self.modal.values(), self.modal.vectors());
+        let (g, y_dm_y) = forcing(y, lambda, columns, params);
+        if !g.col_iter().all(|c| c.iter().all(|v| v.is_finite())) {
+            return Err(ModalError::NonFinite);
+        }
+        let mut coefficients = Mat::zeros(self.modal.len(), columns.len());
+        matmul(
+            coefficients.as_mut(),
+            Accum::Replace,
+            y.transpose(),
+            g.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        let mut b = g;
+        matmul(
+            b.as_mut(),
+            Accum::Add,
+            self.my.as_ref(),
+            coefficients.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        b.col_iter_mut()
+            .for_each(|c| c.iter_mut().for_each(|v| *v = -*v));
+        Ok(Projected {
+            coefficients,
+            b,
+            y_dm_y,
+        })
     }
 
     /// The modes computed and simple, the parameters' indices below N.
@@ -319,6 +436,14 @@ impl<'a> DeflatedModes<'a> {
     }
 }
 
+/// The columns (mode, parameter) of every mode of `modes` for each of `p` parameters.
+fn mode_parameter_columns(modes: &[usize], p: usize) -> Vec<(usize, usize)> {
+    modes
+        .iter()
+        .flat_map(|&s| (0..p).map(move |j| (s, j)))
+        .collect()
+}
+
 /// g = (dK - lambda_s dM) y_s of every column (mode s, parameter j) and y_s^T dM y_s.
 fn forcing(
     y: &Mat<f64>,
@@ -350,9 +475,14 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn col_dot(a: &Mat<f64>, b: &Mat<f64>, c: usize) -> f64 {
-    a.col(c)
+    col_dot_of(a, c, b, c)
+}
+
+/// Column `i` of `a` dotted with column `j` of `b`.
+fn col_dot_of(a: &Mat<f64>, i: usize, b: &Mat<f64>, j: usize) -> f64 {
+    a.col(i)
         .iter()
-        .zip(b.col(c).iter())
+        .zip(b.col(j).iter())
         .map(|(x, y)| x * y)
         .sum()
 }
@@ -453,6 +583,56 @@ mod tests {
                     assert!(
                         (a - b).abs() < 1e-9 * scale,
                         "mode {s}, dof {i}: {a} vs {b}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The adjoint readings against the modal expansion over all 64 pairs of the dense
+    /// solution, read through the same functionals: a single DOF, a two-term interpolation,
+    /// and a functional over many DOFs; several modes in one call, each with its own number
+    /// of functionals (fewer than, as many as and more than the parameters).
+    #[test]
+    fn readings_match_the_full_modal_expansion_read_through_the_same_functionals() {
+        let structure = chain(15);
+        let (dk2, point_mass) = params(&structure);
+        let mats = structure.assemble();
+        let dense = ModalSolution::solve(&mats).unwrap();
+        let lowest = ModalSolution {
+            values: dense.values()[..8].to_vec(),
+            vectors: dense.vectors().subcols(0, 8).to_owned(),
+            reduced: None,
+            factor: None,
+        };
+        let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &lowest).unwrap();
+        let zero = SparseSym::zero();
+        let both = [(&dk2, &zero), (&zero, &point_mass)];
+        let single: Vec<(usize, f64)> = vec![(7, 1.0)];
+        let pair: Vec<(usize, f64)> = vec![(20, 0.3), (21, -0.05)];
+        let wide: Vec<(usize, f64)> = (0..64)
+            .step_by(3)
+            .map(|d| (d, 1.0 / (1.0 + d as f64)))
+            .collect();
+        let modes = [2, 5, 7];
+        let reads: Vec<Vec<&[(usize, f64)]>> = vec![
+            vec![&single],
+            vec![&pair, &wide],
+            vec![&single, &pair, &wide],
+        ];
+        let got = deflated.readings(&modes, &both, &reads).unwrap();
+        let read = |c: &[(usize, f64)], v: &[f64]| c.iter().map(|&(d, x)| x * v[d]).sum::<f64>();
+        for ((&s, of_mode), r) in modes.iter().zip(&got).zip(&reads) {
+            for ((value, readings), (dk, dm)) in of_mode.iter().zip(both) {
+                let (expected, vector) = eigen_derivative(&dense, s, dk, dm);
+                assert!((value - expected).abs() < 1e-12 * expected.abs());
+                let scale = largest(&vector);
+                assert_eq!(readings.len(), r.len());
+                for (got, c) in readings.iter().zip(r) {
+                    let want = read(c, &vector);
+                    assert!(
+                        (got - want).abs() < 1e-9 * scale,
+                        "mode {s}: {got} vs {want}"
                     );
                 }
             }

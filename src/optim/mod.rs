@@ -8,7 +8,9 @@
 //!   scaling in the null space of the active constraints;
 //! - [`assignment`]: pairing rows with columns of largest total weight (the pairing of modes);
 //! - [`lm`]: the one Levenberg-Marquardt solver, behind a problem trait, with typed reasons of
-//!   termination and an observer.
+//!   termination and an observer;
+//! - [`squared`]: the squared extrapolation that speeds up a slow fixed-point iteration (the
+//!   alternation of a fit and its error model's variances).
 //!
 //! Layer 1 (foundations; see the crate docs): imports faer, serde and thiserror, nothing of
 //! the crate.
@@ -17,6 +19,7 @@ pub mod assignment;
 pub mod bounds;
 pub mod lm;
 pub mod lstsq;
+pub mod squared;
 pub mod step;
 
 pub use bounds::Bounds;

@@ -474,21 +474,27 @@ impl<'a> Problem<'a> {
         let scale_at = self.joint_count() + self.effect_count();
         let mut jac = Mat::zeros(rows, unknowns);
         let mut row = 0;
-        let all = derivatives.of(&pairing.model_index, &pairs);
+        let reads: Vec<Vec<&[(usize, f64)]>> = self
+            .measured
+            .modes()
+            .iter()
+            .map(|m| m.points.iter().map(|p| p.terms.as_slice()).collect())
+            .collect();
+        let all = derivatives.read(&pairing.model_index, &pairs, &reads);
         for ((r, m), of_mode) in self.measured.modes().iter().enumerate().zip(all) {
             let s = pairing.model_index[r];
             let sign = model_sign(&eval.modal, s, m);
             let f = eval.modal.frequency_hz(s);
             let chains = params.iter().map(|(_, chain)| chain);
-            for (col, (chain, (d_lambda, dy))) in chains.zip(of_mode).enumerate() {
+            for (col, (chain, (d_lambda, read))) in chains.zip(of_mode).enumerate() {
                 let df = d_lambda
                     / (8.0
                         * std::f64::consts::PI
                         * std::f64::consts::PI
                         * f.max(f64::MIN_POSITIVE));
                 jac[(row, col)] = chain * df / (self.sigma_f[r] * m.frequency_hz);
-                for (k, (p, &sigma)) in m.points.iter().zip(&self.sigma[r]).enumerate() {
-                    jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * p.read(&dy) / sigma;
+                for (k, (dc, &sigma)) in read.iter().zip(&self.sigma[r]).enumerate() {
+                    jac[(row + 1 + k, col)] = chain * x[scale_at + r] * sign * dc / sigma;
                 }
             }
             for (k, (p, &sigma)) in m.points.iter().zip(&self.sigma[r]).enumerate() {
