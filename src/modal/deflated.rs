@@ -548,12 +548,9 @@ mod tests {
         }
     }
 
-    /// The 64-DOF chain: the lowest 8 pairs of the dense solution against the expansion over
-    /// all 64 of them, both parameters in one call. The same pairs on both sides, so that
-    /// only the method differs (the dense pairs themselves differ from the sparse solution's
-    /// by about 1e-9 relative at this size).
-    #[test]
-    fn derivatives_match_the_full_modal_expansion() {
+    /// The 64-DOF chain's matrices, its dense solution (all 64 pairs), the lowest 8 of them,
+    /// and the derivative matrices of k2 and of the point mass.
+    fn expansion_case() -> (Matrices, ModalSolution, ModalSolution, SparseSym, SparseSym) {
         let structure = chain(15);
         let (dk2, point_mass) = params(&structure);
         let mats = structure.assemble();
@@ -564,6 +561,16 @@ mod tests {
             reduced: None,
             factor: None,
         };
+        (mats, dense, lowest, dk2, point_mass)
+    }
+
+    /// The 64-DOF chain: the lowest 8 pairs of the dense solution against the expansion over
+    /// all 64 of them, both parameters in one call. The same pairs on both sides, so that
+    /// only the method differs (the dense pairs themselves differ from the sparse solution's
+    /// by about 1e-9 relative at this size).
+    #[test]
+    fn derivatives_match_the_full_modal_expansion() {
+        let (mats, dense, lowest, dk2, point_mass) = expansion_case();
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &lowest).unwrap();
         let zero = SparseSym::zero();
         let both = [(&dk2, &zero), (&zero, &point_mass)];
@@ -595,16 +602,7 @@ mod tests {
     /// of functionals (fewer than, as many as and more than the parameters).
     #[test]
     fn readings_match_the_full_modal_expansion_read_through_the_same_functionals() {
-        let structure = chain(15);
-        let (dk2, point_mass) = params(&structure);
-        let mats = structure.assemble();
-        let dense = ModalSolution::solve(&mats).unwrap();
-        let lowest = ModalSolution {
-            values: dense.values()[..8].to_vec(),
-            vectors: dense.vectors().subcols(0, 8).to_owned(),
-            reduced: None,
-            factor: None,
-        };
+        let (mats, dense, lowest, dk2, point_mass) = expansion_case();
         let deflated = DeflatedModes::new(mats.k.as_faer(), mats.m.as_faer(), &lowest).unwrap();
         let zero = SparseSym::zero();
         let both = [(&dk2, &zero), (&zero, &point_mass)];
