@@ -8,7 +8,8 @@
 //! frequencies (relative to them), tau_s for the shape components (a fraction of each mode's
 //! measured peak), one per mode where every mode has the sensors to estimate its own
 //! ([`LEAST_MODE_DOF`]: a mode that only the structure's missing physics bends out of the beam
-//! model's shapes then carries its own). The variance of residual i is v_i = s_i^2 + tau_k^2, and the deviance
+//! model's shapes then carries its own). The variance of residual i is v_i = s_i^2 + tau_k^2,
+//! and the deviance
 //!
 //! ```text
 //!   -2 ln L(theta, tau) = sum_i [ e_i(theta)^2 / v_i + ln v_i ]      (+ a constant)
@@ -19,17 +20,17 @@
 //! 130, 2004: the prediction-error variance as a parameter of each model class; Kennedy &
 //! O'Hagan, "Bayesian calibration of computer models", JRSS B 63, 2001, for the discrepancy as
 //! a term of its own; Simoen, De Roeck & Lombaert, "Dealing with uncertainty in model
-//! updating for damage assessment: a review", MSSP 56-57, 2015). [`fit_with`] alternates the
-//! two blocks (from two starts of tau, the better end kept): the weighted least squares of theta under the current tau (the fit of module
-//! `fit`, from the last optimum), then each tau^2 by its own one-dimensional maximum
-//! likelihood given the residuals ([`variance`]); every step lowers the deviance, and it stops
-//! when tau^2 moves by less than [`TOLERANCE`] of the total variance. Near a discrepancy that
-//! the model's unknowns can trade against (a shape discrepancy falling towards 0 while the fit
-//! leans on the shapes) the alternation crawls, each step a few percent of the way: every two
-//! steps are followed by the squared extrapolation of [`crate::optim::squared`] in the
-//! variances, kept where its fit has the lower deviance ([`ROUNDS`] fits in all). A model that fits within
-//! the measurement error keeps tau = 0 and its deviance is its chi^2 (plus the constant
-//! sum ln s_i^2, the same for every model of the data): the error model changes nothing there.
+//! updating for damage assessment: a review", MSSP 56-57, 2015). [`fit_with`] alternates the two
+//! blocks (from two starts of tau, the better end kept): the weighted least squares of theta under
+//! the current tau (the fit of module `fit`, from the last optimum), then each tau^2 by its own
+//! one-dimensional maximum likelihood given the residuals ([`variance`]); every step lowers the
+//! deviance, and it stops when tau^2 moves by less than [`TOLERANCE`] of the total variance. Near a
+//! discrepancy that the model's unknowns can trade against (a shape discrepancy falling towards 0
+//! while the fit leans on the shapes) the alternation crawls, each step a few percent of the way:
+//! every two steps are followed by the squared extrapolation of [`crate::optim::squared`] in the
+//! variances, kept where its fit has the lower deviance ([`ROUNDS`] fits in all). A model that fits
+//! within the measurement error keeps tau = 0 and its deviance is its chi^2 (plus the constant sum
+//! ln s_i^2, the same for every model of the data): the error model changes nothing there.
 //!
 //! Each candidate's deviance at its optimum is its profile likelihood with tau as a nuisance
 //! parameter: two models are compared by the difference of their deviances (module `search`),
