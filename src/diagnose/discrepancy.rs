@@ -634,13 +634,10 @@ fn alternate(
         if rounds == ROUNDS || settled(&further, &current.discrepancy, &after) {
             continue;
         }
-        let variances = |d: &Discrepancy| variances(d, freedom);
-        let Some(x) = squared::extrapolate(
-            &variances(&before),
-            &variances(&current.discrepancy),
-            &variances(&further),
-            0.0,
-        ) else {
+        let of = |d: &Discrepancy| variances(d, freedom);
+        let Some(x) =
+            squared::extrapolate(&of(&before), &of(&current.discrepancy), &of(&further), 0.0)
+        else {
             continue;
         };
         let jump = Calibration {

@@ -314,7 +314,8 @@ mod tests {
                     let scale = dy.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
                     for (r, c) in read.iter().zip(&reads) {
                         let w: f64 = c.iter().map(|&(d, x)| x * dy[d]).sum();
-                        assert!((r - w).abs() < 1e-8 * scale, "{r} vs {w}");
+                        // Both solves stop at 1e-11 of their right-hand side (measured: 7e-15).
+                        assert!((r - w).abs() < 1e-11 * scale, "{r} vs {w}");
                     }
                 }
             }

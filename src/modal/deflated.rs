@@ -148,14 +148,7 @@ impl<'a> DeflatedModes<'a> {
         } = self.projected(&columns, params)?;
         let mut vectors = self.rest(&columns, b)?;
         // d y_s = Y_T a + r.
-        let a = Mat::from_fn(self.modal.len(), columns.len(), |t, c| {
-            let s = columns[c].0;
-            if t == s {
-                -0.5 * y_dm_y[c]
-            } else {
-                coefficients[(t, c)] / (lambda[s] - lambda[t])
-            }
-        });
+        let a = computed_share(&columns, lambda, &coefficients, &y_dm_y);
         matmul(
             vectors.as_mut(),
             Accum::Add,
@@ -236,29 +229,33 @@ impl<'a> DeflatedModes<'a> {
             Par::Seq,
         );
         let z = self.rest(&adjoint, c)?;
-        let mut out = Vec::with_capacity(modes.len());
+        // c^T d y_s = (Y_T^T c)^T a + z^T b, for every functional and column.
+        let a = computed_share(&columns, lambda, &coefficients, &y_dm_y);
+        let mut read = Mat::zeros(adjoint.len(), columns.len());
+        matmul(
+            read.as_mut(),
+            Accum::Replace,
+            yc.transpose(),
+            a.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        matmul(
+            read.as_mut(),
+            Accum::Add,
+            z.transpose(),
+            b.as_ref(),
+            1.0,
+            Par::Seq,
+        );
         let mut first = 0;
+        let mut out = Vec::with_capacity(modes.len());
         for (k, (&s, r)) in modes.iter().zip(reads).enumerate() {
-            let of_parameter = |j: usize| {
-                let col = k * p + j;
-                let share = |a: usize| {
-                    (0..self.modal.len())
-                        .map(|t| {
-                            let at = if t == s {
-                                -0.5 * y_dm_y[col]
-                            } else {
-                                coefficients[(t, col)] / (lambda[s] - lambda[t])
-                            };
-                            at * yc[(t, a)]
-                        })
-                        .sum::<f64>()
-                };
-                let read = (first..first + r.len())
-                    .map(|a| share(a) + col_dot_of(&z, a, &b, col))
-                    .collect();
-                (coefficients[(s, col)], read)
+            let of_parameter = |col: usize| {
+                let values = (first..first + r.len()).map(|f| read[(f, col)]).collect();
+                (coefficients[(s, col)], values)
             };
-            out.push((0..p).map(of_parameter).collect());
+            out.push((k * p..(k + 1) * p).map(of_parameter).collect());
             first += r.len();
         }
         Ok(out)
@@ -436,6 +433,24 @@ impl<'a> DeflatedModes<'a> {
     }
 }
 
+/// The coefficients a of d y_s on the computed pairs Y_T, of every column (mode s, parameter):
+/// (y_t^T g) / (lambda_s - lambda_t) for t != s, -1/2 y_s^T dM y_s for t = s (module docs).
+fn computed_share(
+    columns: &[(usize, usize)],
+    lambda: &[f64],
+    coefficients: &Mat<f64>,
+    y_dm_y: &[f64],
+) -> Mat<f64> {
+    Mat::from_fn(coefficients.nrows(), columns.len(), |t, c| {
+        let s = columns[c].0;
+        if t == s {
+            -0.5 * y_dm_y[c]
+        } else {
+            coefficients[(t, c)] / (lambda[s] - lambda[t])
+        }
+    })
+}
+
 /// The columns (mode, parameter) of every mode of `modes` for each of `p` parameters.
 fn mode_parameter_columns(modes: &[usize], p: usize) -> Vec<(usize, usize)> {
     modes
@@ -475,14 +490,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn col_dot(a: &Mat<f64>, b: &Mat<f64>, c: usize) -> f64 {
-    col_dot_of(a, c, b, c)
-}
-
-/// Column `i` of `a` dotted with column `j` of `b`.
-fn col_dot_of(a: &Mat<f64>, i: usize, b: &Mat<f64>, j: usize) -> f64 {
-    a.col(i)
+    a.col(c)
         .iter()
-        .zip(b.col(j).iter())
+        .zip(b.col(c).iter())
         .map(|(x, y)| x * y)
         .sum()
 }
@@ -628,8 +638,9 @@ mod tests {
                 assert_eq!(readings.len(), r.len());
                 for (got, c) in readings.iter().zip(r) {
                     let want = read(c, &vector);
+                    // The conjugate gradients stop at 1e-11 (measured: 2.2e-12).
                     assert!(
-                        (got - want).abs() < 1e-9 * scale,
+                        (got - want).abs() < 1e-10 * scale,
                         "mode {s}: {got} vs {want}"
                     );
                 }

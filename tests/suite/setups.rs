@@ -695,7 +695,7 @@ fn a_sensor_a_hair_from_a_joint_is_read_between_nodes_with_its_mass() {
 /// The frequencies of the chain of [`chain_with`] with `extra(x)` at x = `node` - d for d =
 /// 0, 5, 10 and 20 um (d = 0: on the node there; else between nodes, module `mesh`), checked to
 /// move smoothly with d: the parabola through d = 0, 5 and 10 um gives the frequency at 20 um
-/// within 1% of its change, and 5 um moves no mode by more than 1e-4.
+/// within 0.1% of its change, and 5 um moves no mode by more than 1e-4.
 fn smooth_beside(
     dir: &std::path::Path,
     name: &str,
@@ -711,8 +711,10 @@ fn smooth_beside(
         assert!((f[1] / f[0] - 1.0).abs() < 1e-4, "{name}: {at:?}");
         // The parabola through d = 0, 5, 10 um at 20 um: 3 f0 - 8 f5 + 6 f10.
         let predicted = 3.0 * f[0] - 8.0 * f[1] + 6.0 * f[2];
+        // Measured: at most 1.8e-4 of the change (the springs' mode 2); a node treated apart
+        // from its neighbourhood would miss by a fraction of order 1.
         assert!(
-            (predicted - f[3]).abs() <= 1e-2 * (f[3] - f[0]).abs() + 2e-12 * f[0],
+            (predicted - f[3]).abs() <= 1e-3 * (f[3] - f[0]).abs() + 2e-12 * f[0],
             "{name}, mode {}: {f:?}",
             r + 1
         );
