@@ -5,8 +5,10 @@
 //! Pairing survives a poor starting model: a measured mode that no model mode resembles (the
 //! pairing's error) is set aside and the joint calibrated on the others; with the calibrated
 //! joint every mode set aside is paired again and, where it now has a partner, taken back
-//! and the joint calibrated again on all of them. A mode that still has none is left out of
-//! the diagnosis and reported with the reason. The diagnosis is refused only when fewer modes
+//! and the joint calibrated again on all of them. A mode kept that loses its partner in that
+//! calibration (the joint moved by the modes taken back) is set aside in its turn; a mode
+//! taken back stays ([`take_back`]). A mode that still has none is left out of the diagnosis
+//! and reported with the reason. The diagnosis is refused only when fewer modes
 //! remain than the joint has parameters, with the first pairing error.
 
 use std::sync::Arc;
@@ -128,56 +130,29 @@ pub fn calibrate(
         match fitted {
             Ok(both) => break both,
             Err(FitError::Unpaired(e)) => {
-                let Unpaired::NoPartner {
-                    mode, frequency_hz, ..
-                } = &e
-                else {
+                let Some(left) = set_aside(&e) else {
                     return Err(FitError::Unpaired(e).into());
                 };
                 // Setting it aside would leave fewer modes than the joint has parameters.
                 if kept.modes().len() <= joints.max(1) {
                     return Err(FitError::Unpaired(e).into());
                 }
-                kept = without(&kept, *mode);
-                aside.push(LeftOut {
-                    mode: *mode,
-                    frequency_hz: *frequency_hz,
-                    reason: e.to_string(),
-                });
+                kept = without(&kept, left.mode);
+                aside.push(left);
             }
             Err(e) => return Err(e.into()),
         }
     };
-    // The modes set aside paired again with the calibrated joint: those that now have a
-    // partner are taken back.
-    let back: Vec<usize> = aside
-        .iter()
-        .map(|left| left.mode)
-        .filter(|&mode| {
-            let trial = with(&kept, measured, mode);
-            pair(
-                &base.modal,
-                &trial,
-                ctx.structure.rigid,
-                &calibration.pairing,
-            )
-            .is_ok()
-        })
-        .collect();
-    let (measured, initial, base) = if back.is_empty() {
-        (kept, initial, base)
-    } else {
-        let all = back
-            .iter()
-            .fold(kept.clone(), |m, &r| with(&m, measured, r));
-        match again(ctx, &all, calibration, &base) {
-            Ok((initial, again)) => (all, initial, again),
-            Err(_) => (kept, initial, base),
-        }
-    };
+    let (measured, initial, base) = take_back(
+        ctx,
+        measured,
+        calibration,
+        (kept, initial, base),
+        &mut aside,
+    );
     let left_out = aside
         .into_iter()
-        .filter(|left| measured.modes().iter().all(|m| m.mode != left.mode))
+        .filter(|left| !holds(&measured, left.mode))
         .collect();
     // Growth beyond round-off (relative, and absolute for data the model fits exactly) of the
     // deviance, each with its own discrepancy: the calibration can only lower it unless the
@@ -201,6 +176,91 @@ pub fn calibrate(
         initial,
         base,
     })
+}
+
+/// The modes set aside taken back where the calibrated joint pairs them (module docs), from
+/// `calibrated` (the modes kept, the model as given and the joint calibrated on them): each
+/// mode set aside is paired again with the calibrated joint and, where it has a partner, taken
+/// back and the joint calibrated again on all. A mode kept that loses its partner on the way
+/// (the joint moved by the modes taken back) is set aside in its turn, into `aside`, and may
+/// come back in a later round. A mode comes back at most once and is not set aside again:
+/// where the calibration fails otherwise, the last one stands. Every round takes at least one
+/// mode back, so there are at most as many rounds as modes.
+fn take_back(
+    ctx: &Arc<EffectContext>,
+    measured: &MeasuredModes,
+    calibration: &Calibration,
+    calibrated: (MeasuredModes, Fitted, Fitted),
+    aside: &mut Vec<LeftOut>,
+) -> (MeasuredModes, Fitted, Fitted) {
+    let (mut kept, mut initial, mut base) = calibrated;
+    let joints = ctx.structure.identified().len();
+    let mut returned: Vec<usize> = Vec::new();
+    loop {
+        let back: Vec<usize> = aside
+            .iter()
+            .map(|left| left.mode)
+            .filter(|mode| !returned.contains(mode) && !holds(&kept, *mode))
+            .filter(|&mode| {
+                let trial = with(&kept, measured, mode);
+                pair(
+                    &base.modal,
+                    &trial,
+                    ctx.structure.rigid,
+                    &calibration.pairing,
+                )
+                .is_ok()
+            })
+            .collect();
+        if back.is_empty() {
+            return (kept, initial, base);
+        }
+        returned.extend(&back);
+        let mut all = back
+            .iter()
+            .fold(kept.clone(), |m, &r| with(&m, measured, r));
+        let mut dropped = Vec::new();
+        let refitted = loop {
+            match again(ctx, &all, calibration, &base) {
+                Ok(fits) => break Some(fits),
+                Err(FitError::Unpaired(e)) => match set_aside(&e) {
+                    Some(left)
+                        if !returned.contains(&left.mode) && all.modes().len() > joints.max(1) =>
+                    {
+                        all = without(&all, left.mode);
+                        dropped.push(left);
+                    }
+                    _ => break None,
+                },
+                Err(_) => break None,
+            }
+        };
+        let Some((again_initial, again_base)) = refitted else {
+            return (kept, initial, base);
+        };
+        (kept, initial, base) = (all, again_initial, again_base);
+        aside.extend(dropped);
+    }
+}
+
+/// The measured mode a pairing error `e` leaves without a partner, with the reason, where the
+/// error is that one (not a pair given that does not exist).
+fn set_aside(e: &Unpaired) -> Option<LeftOut> {
+    match e {
+        Unpaired::NoPartner {
+            mode, frequency_hz, ..
+        } => Some(LeftOut {
+            mode: *mode,
+            frequency_hz: *frequency_hz,
+            reason: e.to_string(),
+        }),
+        _ => None,
+    }
+}
+
+/// Whether `measured` holds mode `mode`.
+fn holds(measured: &MeasuredModes, mode: usize) -> bool {
+    measured.modes().iter().any(|m| m.mode == mode)
 }
 
 /// The model as given and the joint calibrated again on `all`, the modes kept with those taken

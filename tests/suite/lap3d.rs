@@ -175,6 +175,47 @@ fn a_stubby_bolted_lap_is_named_with_its_shear_by_the_users_beam_model() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A third specimen with a softer interface (`soft-*`: k_n, k_t a tenth of the fixtures').
+/// Its lap's fit has several minima along k_s: from the start of least chi^2 with only the
+/// shape scales fitted, three bolts on nine sensors ended with 5.3% RMS in the frequencies
+/// (k_s a quarter of the interface's), where a start from the bonded side reaches the
+/// interface (module `layered_lap`). With the interface uniform, the first mode lies 41%
+/// below the user's starting point joint, beyond the pairing's window: it was set aside, and
+/// when the calibrated joint paired it again, the sixth mode lost its partner on the way and
+/// the first stayed out. The fundamental is kept now, the sixth set aside in its place.
+#[test]
+#[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
+fn a_softer_interface_and_a_starting_joint_far_off_still_give_the_lap() {
+    let dir = scratch("lap3d", "soft");
+    let r = diagnose("soft-bolts-9", &dir);
+    eprintln!("{}", line("soft-bolts-9", &r));
+    lap_named("soft-bolts-9", &r);
+    assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0);
+    // The 1D lap's uniform interface stands for three patches: its k_s is the interface's
+    // mean over the overlap, 2.286e9 N/m per m (within 4% measured).
+    let k_s = after_parameter(&r, "k_s");
+    assert!((k_s / 2.286e9 - 1.0).abs() < 0.25, "k_s = {k_s}");
+    // With Timoshenko beams the lap alone (4.0% from the best start alone, 0.43% now).
+    let r = diagnose_with("soft-bolts-9", "timoshenko", &dir);
+    eprintln!("{} (Timoshenko)", line("soft-bolts-9", &r));
+    lap_named("soft-bolts-9", &r);
+    assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0);
+    let r = diagnose("soft-uniform-6", &dir);
+    eprintln!("{}", line("soft-uniform-6", &r));
+    let left: Vec<u64> = r["left_out"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["mode"].as_u64().unwrap())
+        .collect();
+    // The fundamental is kept; one mode at most is set aside (the sixth, MAC 0.47 with the
+    // calibrated point joint).
+    assert!(!left.contains(&1) && left.len() <= 1, "{}", r["left_out"]);
+    lap_named("soft-uniform-6", &r);
+    assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 #[ignore = "seconds per case in release, a minute unoptimised: .ci/run runs it in release"]
 fn a_monolithic_bar_and_an_unmodelled_end_mass_are_answered_not_refused() {
