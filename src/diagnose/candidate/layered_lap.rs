@@ -174,13 +174,9 @@ fn starts(stage: &Stage, structure: &Structure) -> Result<Vec<Start>, CandidateE
     }
 }
 
-/// The order in which the starts are fitted: the best (least chi^2 with only the shape scales
-/// fitted), the best with the stiffest interface shear of the grid, then the others by chi^2;
-/// fitted until two fits pair every measured mode with a bending mode, [`STARTS_TRIED`] at
-/// most. The shear stiffness is where the lap's fit has several basins: a soft
-/// interface's slip brings axial modes of the layers down among the bending modes, and a fit
-/// from a start on the soft side can end among them, or in a minimum between two pairings,
-/// where a start from the bonded side descends to the interface the data show.
+/// The order in which the starts are fitted (module docs): the best (least chi^2 with only the
+/// shape scales fitted), the best with the stiffest interface shear of the grid (the bonded
+/// side of the basins along k_s), then the others by chi^2.
 fn ordered(starts: Vec<Start>) -> Vec<Arc<EffectContext>> {
     let stiffest = SHEAR_FACTORS[SHEAR_FACTORS.len() - 1];
     let bonded = starts.iter().position(|(f, _)| f[1] == stiffest);
