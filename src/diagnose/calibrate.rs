@@ -152,7 +152,7 @@ pub fn calibrate(
     );
     let left_out = aside
         .into_iter()
-        .filter(|left| !holds(&measured, left.mode))
+        .filter(|left| measured.get(left.mode).is_none())
         .collect();
     // Growth beyond round-off (relative, and absolute for data the model fits exactly) of the
     // deviance, each with its own discrepancy: the calibration can only lower it unless the
@@ -200,7 +200,7 @@ fn take_back(
         let back: Vec<usize> = aside
             .iter()
             .map(|left| left.mode)
-            .filter(|mode| !returned.contains(mode) && !holds(&kept, *mode))
+            .filter(|mode| !returned.contains(mode) && kept.get(*mode).is_none())
             .filter(|&mode| {
                 let trial = with(&kept, measured, mode);
                 pair(
@@ -256,11 +256,6 @@ fn set_aside(e: &Unpaired) -> Option<LeftOut> {
         }),
         _ => None,
     }
-}
-
-/// Whether `measured` holds mode `mode`.
-fn holds(measured: &MeasuredModes, mode: usize) -> bool {
-    measured.modes().iter().any(|m| m.mode == mode)
 }
 
 /// The model as given and the joint calibrated again on `all`, the modes kept with those taken

@@ -23,7 +23,9 @@
 //! cannot determine marked as such (the paper's projection needs at least as many sensors as
 //! basis modes) rather than printed.
 
-use crate::common::{assert_finite, assert_within_fit_range, jointid_ok, number, scratch};
+use crate::common::{
+    assert_finite, assert_within_fit_range, jointid_ok, mode_numbers, number, scratch,
+};
 use serde_json::Value;
 
 /// The joint and the three sensors.
@@ -152,12 +154,7 @@ fn a_lap_outside_the_library_is_partial_or_unexplained_with_its_error_pattern_an
                 number(&remaining["removed"]) > 0.5,
                 "seed {seed}: {remaining}"
             );
-            let modes: Vec<u64> = remaining["modes"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|m| m["mode"].as_u64().unwrap())
-                .collect();
+            let modes = mode_numbers(&remaining["modes"]);
             assert!(
                 !modes.is_empty() && modes.iter().all(|m| m % 2 == 1),
                 "seed {seed}: {remaining}"

@@ -177,15 +177,18 @@ fn starts(stage: &Stage, structure: &Structure) -> Result<Vec<Start>, CandidateE
 /// The order in which the starts are fitted (module docs): the best (least chi^2 with only the
 /// shape scales fitted), the best with the stiffest interface shear of the grid (the bonded
 /// side of the basins along k_s), then the others by chi^2.
-fn ordered(starts: Vec<Start>) -> Vec<Arc<EffectContext>> {
+fn ordered(mut starts: Vec<Start>) -> Vec<Arc<EffectContext>> {
     let stiffest = SHEAR_FACTORS[SHEAR_FACTORS.len() - 1];
-    let bonded = starts.iter().position(|(f, _)| f[1] == stiffest);
-    let mut order: Vec<usize> = vec![0];
-    order.extend(bonded.filter(|&i| i != 0));
-    order.extend((1..starts.len()).filter(|i| Some(*i) != bonded));
-    let mut starts: Vec<Option<Arc<EffectContext>>> =
-        starts.into_iter().map(|(_, ctx)| Some(ctx)).collect();
-    order.into_iter().filter_map(|i| starts[i].take()).collect()
+    // Second, unless it is already first or second.
+    if let Some(i) = starts
+        .iter()
+        .position(|(f, _)| f[1] == stiffest)
+        .filter(|&i| i > 1)
+    {
+        let bonded = starts.remove(i);
+        starts.insert(1, bonded);
+    }
+    starts.into_iter().map(|(_, ctx)| ctx).collect()
 }
 
 /// How many starts are fitted at most ([`ordered`]).

@@ -98,6 +98,16 @@ pub fn number(v: &serde_json::Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
+/// The `mode` number of every entry of the JSON array `v` (a report's `left_out`, or
+/// `remaining.modes`).
+pub fn mode_numbers(v: &serde_json::Value) -> Vec<u64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("not an array: {v}"))
+        .iter()
+        .map(|m| m["mode"].as_u64().unwrap())
+        .collect()
+}
+
 /// Every number anywhere in `v` is finite (JSON has no NaN or infinity: they would come out
 /// as null or be missing, which [`number`] refuses where a value is required).
 pub fn assert_finite(v: &serde_json::Value, path: &str) {
