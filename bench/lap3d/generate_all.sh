@@ -28,3 +28,4 @@ gen stubby-bolts-9 --interface bolts --sensors 0,0.0889,0.1778,0.2667,0.3556,0.4
 soft="--length 0.5 --height 15e-3 --overlap 0.22,0.30 --kn 6.56e10 --kt 1.0e10"
 gen soft-bolts-9   --interface bolts   --sensors 9 --seed 107 $soft
 gen soft-uniform-6 --interface uniform --sensors 0,0.1,0.2,0.3,0.4,0.5 --seed 108 $soft
+gen soft-uniform-9 --interface uniform --sensors 9 --seed 112 $soft
