@@ -222,7 +222,7 @@ fn a_soft_interface_between_the_decades_of_the_starts_is_reached() {
     for model in ["model", "timoshenko"] {
         let r = diagnose_with("soft-uniform-9", model, &dir);
         eprintln!("{} ({model})", line("soft-uniform-9", &r));
-        // A coupling of the joint's k1, k2 is named beside the lap where the data show it.
+        // A joints' coupling stiffness (joint_coupling) may be named beside the lap and shear.
         lap_named_with("soft-uniform-9", &r, &["shear", "joint_coupling"]);
         assert!(number(&r["after"]["frequency_rms_pct"]) <= 1.0);
         // The interface's k_t over the overlap: 2.54e8 N/m per m (within 2% measured).
