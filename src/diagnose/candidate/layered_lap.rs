@@ -32,13 +32,14 @@
 //! start of least chi^2 with only the shape scales fitted and from the best of the stiffest
 //! k_s, then from the next by chi^2 until two fits pair every mode with a bending mode (five
 //! starts at most: neighbouring starts often end in the same pairing with an axial mode), and
-//! the one of least deviance is kept; where none does, the first start's
-//! outcome stands (excluded with that reason, or its error). On the solid lap of a softer
-//! interface (a tenth of the fixtures' k_n, k_t), three bolts on nine sensors
-//! (`tests/fixtures/lap3d/soft-bolts-9`), every start of the grid with k_s below 10 times its
-//! scale ended in one of three minima of deviance -403 to -410 (the best start: k_s a quarter
-//! of the interface's mean over the overlap, 5.3% RMS left in the frequencies), every one from
-//! 10 times up in one of -489 (k_s within 4% of that mean; with shear, 0.47% RMS).
+//! the one of least deviance is kept; where none does, the first start's outcome stands
+//! (excluded with that reason, or its error). On the solid lap of a softer interface (a tenth
+//! of the fixtures' k_n, k_t), three bolts on nine sensors
+//! (`tests/fixtures/lap3d/soft-bolts-9`), every start of the grid in whole decades with k_s
+//! below 10 times its scale ended in one of three minima of deviance -403 to -410 (the best
+//! start: k_s a quarter of the interface's mean over the overlap, 5.3% RMS left in the
+//! frequencies), every one from 10 times up in one of -489 (k_s within 4% of that mean; with
+//! shear, 0.47% RMS).
 //!
 //! The lap is not nested in the point joint. Its likelihood-ratio statistic chi^2(point) -
 //! chi^2(lap) is tested with one added parameter for the overlap's given geometry (k_n, k_s
